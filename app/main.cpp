@@ -1,0 +1,34 @@
+// flotsam: one executable, one subcommand per pipeline step. Each stage registers its
+// own subcommands (see the register_* functions); settings come from the command line
+// or from a TOML file given with --config, where unknown keys are an error.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/commands.hpp"
+#include "common/error.hpp"
+#include "common/version.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"flotsam: tsunami debris transport in a port city (shallow-water flows, then rigid-body debris replayed through them)"};
+    app.set_version_flag("--version", flotsam::version_string());
+    app.require_subcommand(1);
+    const std::string command_line = flotsam::join_command_line(argc, argv);
+    flotsam::register_hydro_commands(app, command_line);
+    flotsam::register_data_commands(app, command_line);
+    flotsam::register_debris_commands(app, command_line);
+    flotsam::register_pipeline_commands(app, command_line);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const flotsam::Error& e) {
+        std::fprintf(stderr, "flotsam: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "flotsam: internal error: %s\n", e.what());
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,224 @@
+#include "common/scene.hpp"
+
+#include <cmath>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/netcdf.hpp"
+#include "common/version.hpp"
+
+namespace flotsam {
+
+bool Region::contains(double x, double y) const {
+    // Even-odd ray casting toward +x.
+    bool inside = false;
+    const std::size_t n = polygon.size();
+    for (std::size_t a = 0, b = n - 1; a < n; b = a++) {
+        const double xa = polygon[a][0], ya = polygon[a][1], xb = polygon[b][0], yb = polygon[b][1];
+        if ((ya > y) != (yb > y) && x < xa + (y - ya) * (xb - xa) / (yb - ya)) inside = !inside;
+    }
+    return inside;
+}
+
+const ScenePoint* Scene::find_point(const std::string& name) const {
+    for (const auto& p : points)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+namespace {
+
+std::vector<double> read_field(const nc::File& f, const std::string& name, const Grid& g) {
+    const int v = f.var(name);
+    const auto shape = f.shape(v);
+    if (shape.size() != 2 || shape[0] != std::size_t(g.ny) || shape[1] != std::size_t(g.nx))
+        fail(f.path(), "variable '" + name + "'",
+             "shape must be (y, x) = (" + std::to_string(g.ny) + ", " + std::to_string(g.nx) + "), found " +
+                 [&] { std::string s = "("; for (std::size_t k = 0; k < shape.size(); ++k) s += (k ? ", " : "") + std::to_string(shape[k]); return s + ")"; }());
+    const auto dims = f.dim_names(v);
+    if (dims[0] != f.dim_names(f.var("y"))[0] || dims[1] != f.dim_names(f.var("x"))[0])
+        fail(f.path(), "variable '" + name + "'", "dimensions must be (y, x), found (" + dims[0] + ", " + dims[1] + ")");
+    return nc::read_finite(f, name);
+}
+
+std::vector<std::string> read_names(const nc::File& f, const std::string& var) { return f.get_strings(f.var(var)); }
+
+}  // namespace
+
+Scene read_scene(const std::string& path) {
+    const nc::File f = nc::File::open_read(path);
+    Scene s;
+    s.path = path;
+    const std::vector<double> x = nc::read_finite(f, "x");
+    const std::vector<double> y = nc::read_finite(f, "y");
+    if (f.shape(f.var("x")).size() != 1) fail(path, "variable 'x'", "must be one-dimensional");
+    if (f.shape(f.var("y")).size() != 1) fail(path, "variable 'y'", "must be one-dimensional");
+    s.grid = grid_from_coordinates(x, y, path);
+    s.z = read_field(f, "z", s.grid);
+    if (f.has_var("manning_n")) {
+        s.manning_n = read_field(f, "manning_n", s.grid);
+        for (std::size_t k = 0; k < s.manning_n.size(); ++k)
+            if (!(s.manning_n[k] >= 0.0 && s.manning_n[k] < 1.0))
+                fail(path, "variable 'manning_n'", "value " + std::to_string(s.manning_n[k]) + " at flat index " + std::to_string(k) +
+                                                       " is outside [0, 1) s m^-1/3");
+    }
+    if (f.has_var("building")) {
+        const auto b = read_field(f, "building", s.grid);
+        s.building.resize(b.size());
+        for (std::size_t k = 0; k < b.size(); ++k) {
+            if (b[k] != 0.0 && b[k] != 1.0)
+                fail(path, "variable 'building'", "must be 0 or 1, found " + std::to_string(b[k]) + " at flat index " + std::to_string(k));
+            s.building[k] = std::int8_t(b[k]);
+        }
+    }
+    const bool has_eta0 = f.has_var("eta0"), has_u0 = f.has_var("u0"), has_v0 = f.has_var("v0");
+    if (has_eta0) s.eta0 = read_field(f, "eta0", s.grid);
+    if (has_u0 != has_v0) fail(path, has_u0 ? "variable 'u0'" : "variable 'v0'", "u0 and v0 must be given together");
+    if (has_u0) { s.u0 = read_field(f, "u0", s.grid); s.v0 = read_field(f, "v0", s.grid); }
+
+    if (f.has_var("point_name")) {
+        const auto names = read_names(f, "point_name");
+        const auto kinds = read_names(f, "point_kind");
+        const auto px = nc::read_finite(f, "point_x"), py = nc::read_finite(f, "point_y"), ph = nc::read_finite(f, "point_heading");
+        for (std::size_t k = 0; k < names.size(); ++k) s.points.push_back({names[k], kinds[k], px[k], py[k], ph[k]});
+    }
+    if (f.has_var("section_name")) {
+        const auto names = read_names(f, "section_name");
+        const auto sx = nc::read_finite(f, "section_x"), s0 = nc::read_finite(f, "section_y_min"), s1 = nc::read_finite(f, "section_y_max");
+        for (std::size_t k = 0; k < names.size(); ++k) s.sections.push_back({names[k], sx[k], s0[k], s1[k]});
+    }
+    if (f.has_var("region_name")) {
+        const auto names = read_names(f, "region_name");
+        const auto start = f.get_int(f.var("region_vertex_start")), count = f.get_int(f.var("region_vertex_count"));
+        const auto vx = nc::read_finite(f, "region_vertex_x"), vy = nc::read_finite(f, "region_vertex_y");
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            Region r{names[k], {}};
+            if (start[k] < 0 || count[k] < 3 || std::size_t(start[k] + count[k]) > vx.size())
+                fail(path, "variable 'region_vertex_start'", "region '" + names[k] + "' has an invalid vertex range");
+            for (int v = start[k]; v < start[k] + count[k]; ++v) r.polygon.push_back({vx[v], vy[v]});
+            s.regions.push_back(std::move(r));
+        }
+    }
+    s.title = f.att_text(NC_GLOBAL, "title").value_or("");
+    s.source = f.att_text(NC_GLOBAL, "source").value_or("");
+    s.comment = f.att_text(NC_GLOBAL, "comment").value_or("");
+    s.synthetic = f.att_text(NC_GLOBAL, "flotsam_synthetic").value_or("") == "true";
+    return s;
+}
+
+void write_scene(const std::string& path, const Scene& s, const std::string& history) {
+    const Grid& g = s.grid;
+    if (s.z.size() != g.size()) fail(path, "variable 'z'", "size does not match the grid");
+    AtomicOutput out(path);
+    {
+        nc::File f = nc::File::create(out.temp_path());
+        const int dx = f.def_dim("x", g.nx), dy = f.def_dim("y", g.ny);
+        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy});
+        f.put_att(vx, "units", std::string("m"));
+        f.put_att(vx, "axis", std::string("X"));
+        f.put_att(vx, "standard_name", std::string("projection_x_coordinate"));
+        f.put_att(vx, "long_name", std::string("x of cell centre (east)"));
+        f.put_att(vy, "units", std::string("m"));
+        f.put_att(vy, "axis", std::string("Y"));
+        f.put_att(vy, "standard_name", std::string("projection_y_coordinate"));
+        f.put_att(vy, "long_name", std::string("y of cell centre (north)"));
+        const std::vector<std::size_t> chunk = {std::size_t(std::min(g.ny, 128)), std::size_t(std::min(g.nx, 128))};
+        auto field = [&](const char* name, nc_type t, const char* units, const char* sn, const char* ln) {
+            const int v = f.def_var(name, t, {dy, dx});
+            f.def_chunking(v, chunk);
+            f.def_deflate(v, 4, true);
+            if (units[0]) f.put_att(v, "units", std::string(units));
+            if (sn[0]) f.put_att(v, "standard_name", std::string(sn));
+            f.put_att(v, "long_name", std::string(ln));
+            return v;
+        };
+        const int vz = field("z", NC_FLOAT, "m", "bedrock_altitude", "bed and building elevation above still water level");
+        f.put_att(vz, "positive", std::string("up"));
+        int vn = -1, vb = -1, ve = -1, vu = -1, vv = -1;
+        if (!s.manning_n.empty()) vn = field("manning_n", NC_FLOAT, "s m-1/3", "", "Manning roughness coefficient");
+        if (!s.building.empty()) {
+            vb = field("building", NC_BYTE, "", "", "building mask (1 = building)");
+            f.put_att(vb, "flag_values", std::vector<std::int8_t>{0, 1});
+            f.put_att(vb, "flag_meanings", std::string("open building"));
+        }
+        if (!s.eta0.empty()) ve = field("eta0", NC_FLOAT, "m", "sea_surface_height_above_mean_sea_level", "initial water level");
+        if (!s.u0.empty()) {
+            vu = field("u0", NC_FLOAT, "m s-1", "", "initial x velocity");
+            vv = field("v0", NC_FLOAT, "m s-1", "", "initial y velocity");
+        }
+        // Feature tables.
+        int pn = -1, pk = -1, px = -1, py = -1, ph = -1;
+        if (!s.points.empty()) {
+            const int d = f.def_dim("point", s.points.size());
+            pn = f.def_var("point_name", NC_STRING, {d});
+            pk = f.def_var("point_kind", NC_STRING, {d});
+            f.put_att(pk, "long_name", std::string("gauge: record a time series; start: a debris start"));
+            px = f.def_var("point_x", NC_DOUBLE, {d}); f.put_att(px, "units", std::string("m"));
+            py = f.def_var("point_y", NC_DOUBLE, {d}); f.put_att(py, "units", std::string("m"));
+            ph = f.def_var("point_heading", NC_DOUBLE, {d}); f.put_att(ph, "units", std::string("degree"));
+            f.put_att(ph, "long_name", std::string("debris long axis from +x, counter-clockwise"));
+        }
+        int sn = -1, sx = -1, s0 = -1, s1 = -1;
+        if (!s.sections.empty()) {
+            const int d = f.def_dim("section", s.sections.size());
+            sn = f.def_var("section_name", NC_STRING, {d});
+            sx = f.def_var("section_x", NC_DOUBLE, {d}); f.put_att(sx, "units", std::string("m"));
+            s0 = f.def_var("section_y_min", NC_DOUBLE, {d}); f.put_att(s0, "units", std::string("m"));
+            s1 = f.def_var("section_y_max", NC_DOUBLE, {d}); f.put_att(s1, "units", std::string("m"));
+        }
+        int rn = -1, rs = -1, rc = -1, rx = -1, ry = -1;
+        std::vector<int> start, count;
+        std::vector<double> vxs, vys;
+        if (!s.regions.empty()) {
+            for (const auto& r : s.regions) {
+                start.push_back(int(vxs.size()));
+                count.push_back(int(r.polygon.size()));
+                for (const auto& p : r.polygon) { vxs.push_back(p[0]); vys.push_back(p[1]); }
+            }
+            const int d = f.def_dim("region", s.regions.size());
+            const int dv = f.def_dim("region_vertex", vxs.size());
+            rn = f.def_var("region_name", NC_STRING, {d});
+            rs = f.def_var("region_vertex_start", NC_INT, {d});
+            rc = f.def_var("region_vertex_count", NC_INT, {d});
+            rx = f.def_var("region_vertex_x", NC_DOUBLE, {dv}); f.put_att(rx, "units", std::string("m"));
+            ry = f.def_var("region_vertex_y", NC_DOUBLE, {dv}); f.put_att(ry, "units", std::string("m"));
+        }
+        f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
+        f.put_att(NC_GLOBAL, "title", s.title);
+        f.put_att(NC_GLOBAL, "source", s.source.empty() ? version_string() : s.source);
+        f.put_att(NC_GLOBAL, "history", history);
+        if (!s.comment.empty()) f.put_att(NC_GLOBAL, "comment", s.comment);
+        f.put_att(NC_GLOBAL, "flotsam_synthetic", std::string(s.synthetic ? "true" : "false"));
+        f.enddef();
+
+        f.put(vx, g.xs());
+        f.put(vy, g.ys());
+        auto as_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
+        f.put(vz, as_float(s.z));
+        if (vn >= 0) f.put(vn, as_float(s.manning_n));
+        if (vb >= 0) f.put(vb, s.building);
+        if (ve >= 0) f.put(ve, as_float(s.eta0));
+        if (vu >= 0) { f.put(vu, as_float(s.u0)); f.put(vv, as_float(s.v0)); }
+        if (pn >= 0) {
+            std::vector<std::string> names, kinds;
+            std::vector<double> x, y, h;
+            for (const auto& p : s.points) { names.push_back(p.name); kinds.push_back(p.kind); x.push_back(p.x); y.push_back(p.y); h.push_back(p.heading_deg); }
+            f.put(pn, names); f.put(pk, kinds); f.put(px, x); f.put(py, y); f.put(ph, h);
+        }
+        if (sn >= 0) {
+            std::vector<std::string> names;
+            std::vector<double> x, y0, y1;
+            for (const auto& c : s.sections) { names.push_back(c.name); x.push_back(c.x); y0.push_back(c.y_min); y1.push_back(c.y_max); }
+            f.put(sn, names); f.put(sx, x); f.put(s0, y0); f.put(s1, y1);
+        }
+        if (rn >= 0) {
+            std::vector<std::string> names;
+            for (const auto& r : s.regions) names.push_back(r.name);
+            f.put(rn, names); f.put(rs, start); f.put(rc, count); f.put(rx, vxs); f.put(ry, vys);
+        }
+        f.close();
+    }
+    out.commit();
+}
+
+}  // namespace flotsam

@@ -1,0 +1,70 @@
+// A scene: the static world both stages share. Bed elevation, roughness, buildings,
+// an optional initial state, and the named points, sections and regions that runs and
+// statistics refer to.
+//
+// File format (NetCDF): coordinates x(x), y(y) [m, cell centres, uniform, increasing];
+// z(y, x) bed elevation above still water [m, positive up] (buildings included);
+// optional manning_n(y, x) [s m^-1/3]; optional building(y, x) [0/1 byte mask];
+// optional eta0, u0, v0 (y, x) initial level [m] and velocity [m/s];
+// optional feature tables (see write_scene): points, sections, regions.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/grid.hpp"
+
+namespace flotsam {
+
+struct ScenePoint {
+    std::string name;            // e.g. "WG1", "FD"
+    std::string kind;            // "gauge" (record a time series) or "start" (a debris start)
+    double x = 0.0;              // [m]
+    double y = 0.0;              // [m]
+    double heading_deg = 0.0;    // debris long axis from +x, counter-clockwise [degrees]
+};
+
+// A north-south line x = const between y_min and y_max, for passage statistics.
+struct Section {
+    std::string name;
+    double x = 0.0;              // [m]
+    double y_min = 0.0;          // [m]
+    double y_max = 0.0;          // [m]
+};
+
+// A named closed polygon (vertices in order, not repeated), for arrival counts.
+struct Region {
+    std::string name;
+    std::vector<std::array<double, 2>> polygon;  // [m]
+    bool contains(double x, double y) const;
+};
+
+struct Scene {
+    Grid grid;
+    std::vector<double> z;                  // bed elevation above still water [m], size grid.size()
+    std::vector<double> manning_n;          // [s m^-1/3]; empty: use the run's default
+    std::vector<std::int8_t> building;      // 1 where a building stands; empty: none marked
+    std::vector<double> eta0, u0, v0;       // initial level [m] and velocity [m/s]; empty: still water
+    std::vector<ScenePoint> points;
+    std::vector<Section> sections;
+    std::vector<Region> regions;
+    std::string title;
+    std::string source;
+    std::string comment;
+    bool synthetic = false;                 // generated analogue, not a measured layout
+    std::string path;                       // the file it was read from (for messages)
+
+    const ScenePoint* find_point(const std::string& name) const;
+};
+
+// Reads and validates a scene. Errors name the file and variable: missing x/y/z,
+// non-uniform or non-monotonic coordinates, NaN or fill values, shapes that do not
+// match (y, x), non-positive Manning n, a building mask with values other than 0/1.
+Scene read_scene(const std::string& path);
+
+// Writes a scene atomically (CF-1.11 NetCDF-4).
+void write_scene(const std::string& path, const Scene& scene, const std::string& history);
+
+}  // namespace flotsam

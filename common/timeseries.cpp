@@ -1,0 +1,98 @@
+#include "common/timeseries.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+
+namespace flotsam {
+
+double TimeSeries::at(double t) const {
+    if (time.empty()) fail(source, "", "empty time series");
+    if (t < time.front() - 1e-9 || t > time.back() + 1e-9)
+        fail(source, "", "time " + std::to_string(t) + " s is outside the series [" + std::to_string(time.front()) + ", " +
+                             std::to_string(time.back()) + "] s");
+    if (t <= time.front()) return value.front();
+    if (t >= time.back()) return value.back();
+    const auto it = std::upper_bound(time.begin(), time.end(), t);
+    const std::size_t k = std::size_t(it - time.begin());
+    const double w = (t - time[k - 1]) / (time[k] - time[k - 1]);
+    return (1.0 - w) * value[k - 1] + w * value[k];
+}
+
+namespace {
+bool parse_double(const std::string& s, double& out) {
+    const char* b = s.c_str();
+    while (*b == ' ' || *b == '\t') ++b;
+    char* e = nullptr;
+    out = std::strtod(b, &e);
+    if (e == b) return false;
+    while (*e == ' ' || *e == '\t' || *e == '\r') ++e;
+    return *e == '\0';
+}
+}  // namespace
+
+TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
+    std::ifstream f(path);
+    if (!f) fail(path, "", "cannot open");
+    TimeSeries s;
+    s.source = path;
+    std::string line;
+    int lineno = 0;
+    bool header_allowed = true;
+    while (std::getline(f, line)) {
+        ++lineno;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const auto first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::vector<std::string> cols;
+        std::stringstream ss(line);
+        std::string c;
+        while (std::getline(ss, c, ',')) cols.push_back(c);
+        const std::string here = "line " + std::to_string(lineno);
+        double t = 0, v = 0;
+        const bool numeric = cols.size() == 2 && parse_double(cols[0], t) && parse_double(cols[1], v);
+        if (!numeric) {
+            if (header_allowed && cols.size() == 2) {  // a header such as "time,eta"
+                header_allowed = false;
+                continue;
+            }
+            if (cols.size() != 2) fail(path, here, "expected 2 comma-separated columns (time,value), found " + std::to_string(cols.size()));
+            fail(path, here, "not a number: '" + line + "'");
+        }
+        header_allowed = false;
+        if (!std::isfinite(t) || !std::isfinite(v)) fail(path, here, "NaN or infinite value");
+        if (!s.time.empty()) {
+            if (!(t > s.time.back()))
+                fail(path, here, "time " + std::to_string(t) + " s does not increase (previous " + std::to_string(s.time.back()) + " s)");
+            if (t - s.time.back() > max_gap)
+                fail(path, here, "gap of " + std::to_string(t - s.time.back()) + " s between samples (at most " + std::to_string(max_gap) + " s allowed)");
+        }
+        s.time.push_back(t);
+        s.value.push_back(v);
+    }
+    if (s.time.size() < 2) fail(path, "", "needs at least 2 samples, has " + std::to_string(s.time.size()));
+    return s;
+}
+
+void require_coverage(const TimeSeries& s, double t0, double t1) {
+    if (s.time.front() > t0 + 1e-9 || s.time.back() < t1 - 1e-9)
+        fail(s.source, "", "covers [" + std::to_string(s.time.front()) + ", " + std::to_string(s.time.back()) +
+                               "] s but the run needs [" + std::to_string(t0) + ", " + std::to_string(t1) + "] s");
+}
+
+void write_time_series_csv(const std::string& path, const TimeSeries& s, const std::string& value_name) {
+    std::string text = "time," + value_name + "\n";
+    char buf[96];
+    for (std::size_t k = 0; k < s.time.size(); ++k) {
+        std::snprintf(buf, sizeof buf, "%.10g,%.10g\n", s.time[k], s.value[k]);
+        text += buf;
+    }
+    write_text_atomic(path, text);
+}
+
+}  // namespace flotsam

@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "common/error.hpp"
+#include "common/scene.hpp"
+#include "common/sha256.hpp"
+#include "common/timeseries.hpp"
+#include "tests/test_support.hpp"
+
+using namespace flotsam;
+
+TEST(Sha256, KnownVectors) {
+    EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+    EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+    EXPECT_EQ(sha256_hex(std::string(1000, 'a')), "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
+}
+
+namespace {
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+    const std::string p = dir + "/" + name;
+    std::ofstream(p) << text;
+    return p;
+}
+std::string error_of(const std::function<void()>& f) {
+    try { f(); } catch (const Error& e) { return e.what(); }
+    return "";
+}
+}  // namespace
+
+TEST(TimeSeries, ReadsAndInterpolates) {
+    const auto dir = test::scratch_dir("ts");
+    const auto p = write_file(dir, "ok.csv", "time,eta\n0,0\n1,0.1\n# comment\n2,0.3\n");
+    const TimeSeries s = read_time_series_csv(p);
+    ASSERT_EQ(s.time.size(), 3u);
+    EXPECT_DOUBLE_EQ(s.at(0.5), 0.05);
+    EXPECT_DOUBLE_EQ(s.at(1.5), 0.2);
+    EXPECT_NE(error_of([&] { require_coverage(s, 0, 3); }).find("covers [0"), std::string::npos);
+}
+
+TEST(TimeSeries, BadFilesNameFileAndLine) {
+    const auto dir = test::scratch_dir("tsbad");
+    auto msg = error_of([&] { read_time_series_csv(write_file(dir, "a.csv", "time,eta\n0,0\n1,0.1\n1,0.2\n")); });
+    EXPECT_NE(msg.find("a.csv: line 4: time 1"), std::string::npos) << msg;
+    msg = error_of([&] { read_time_series_csv(write_file(dir, "b.csv", "0,0\n1,nan\n")); });
+    EXPECT_NE(msg.find("b.csv: line 2"), std::string::npos) << msg;
+    msg = error_of([&] { read_time_series_csv(write_file(dir, "c.csv", "0,0\n1,x\n")); });
+    EXPECT_NE(msg.find("c.csv: line 2: not a number"), std::string::npos) << msg;
+    msg = error_of([&] { read_time_series_csv(write_file(dir, "d.csv", "0,0\n100,1\n"), 10.0); });
+    EXPECT_NE(msg.find("d.csv: line 2: gap"), std::string::npos) << msg;
+    msg = error_of([&] { read_time_series_csv(write_file(dir, "e.csv", "0,0,1\n")); });
+    EXPECT_NE(msg.find("e.csv: line 1: expected 2"), std::string::npos) << msg;
+}
+
+TEST(Scene, RoundTripAndErrors) {
+    const auto dir = test::scratch_dir("scene");
+    Scene s;
+    s.grid = Grid{4, 3, -1.0, 2.0, 0.5, 0.25};
+    s.z = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+    s.manning_n.assign(12, 0.013);
+    s.building.assign(12, 0);
+    s.building[5] = 1;
+    s.points.push_back({"WG1", "gauge", -0.5, 2.1, 0.0});
+    s.sections.push_back({"S1", 0.0, 2.0, 2.5});
+    s.regions.push_back({"box", {{-1, 2}, {0, 2}, {0, 3}, {-1, 3}}});
+    s.title = "test";
+    s.synthetic = true;
+    write_scene(dir + "/s.nc", s, "test");
+    const Scene r = read_scene(dir + "/s.nc");
+    EXPECT_EQ(r.grid.nx, 4);
+    EXPECT_EQ(r.grid.ny, 3);
+    EXPECT_DOUBLE_EQ(r.grid.dy, 0.25);
+    EXPECT_DOUBLE_EQ(r.z[7], 7.0);
+    EXPECT_EQ(r.building[5], 1);
+    ASSERT_EQ(r.points.size(), 1u);
+    EXPECT_EQ(r.points[0].name, "WG1");
+    ASSERT_EQ(r.regions.size(), 1u);
+    EXPECT_TRUE(r.regions[0].contains(-0.5, 2.5));
+    EXPECT_FALSE(r.regions[0].contains(0.5, 2.5));
+    EXPECT_TRUE(r.synthetic);
+    EXPECT_NE(error_of([&] { read_scene(dir + "/missing.nc"); }).find("missing.nc"), std::string::npos);
+}

@@ -1,0 +1,38 @@
+#include "tests/test_support.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace flotsam::test {
+
+std::string scratch_dir(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / ("flotsam-test-" + std::to_string(::getpid()) + "-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+std::string shared_data(const std::string& file) {
+    const char* env = std::getenv("FLOTSAM_SHARED");
+    const std::filesystem::path root = env ? std::filesystem::path(env) : std::filesystem::path(FLOTSAM_SOURCE_DIR) / ".." / "shared";
+    const auto p = root / "data" / file;
+    return std::filesystem::exists(p) ? p.string() : std::string();
+}
+
+int run_cli(const std::string& args, std::string* output) {
+    const std::string cmd = std::string(FLOTSAM_BINARY) + " " + args + " 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return -1;
+    std::string out;
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+    const int st = ::pclose(p);
+    if (output) *output = out;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+}  // namespace flotsam::test

@@ -1,0 +1,15 @@
+// Helpers shared by the tests: scratch directories, the shared data folder, the CLI.
+#pragma once
+#include <string>
+
+namespace flotsam::test {
+
+// A fresh, empty directory under the build tree's scratch area, named after the test.
+std::string scratch_dir(const std::string& name);
+// ../shared/data/<file> beside the source tree (or $FLOTSAM_SHARED/data/<file>); empty
+// string when it is not there.
+std::string shared_data(const std::string& file);
+// Runs the flotsam binary with `args`; returns its exit status; stdout+stderr in *output.
+int run_cli(const std::string& args, std::string* output = nullptr);
+
+}  // namespace flotsam::test
