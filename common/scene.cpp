@@ -132,7 +132,7 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
             f.put_att(v, "long_name", std::string(ln));
             return v;
         };
-        const int vz = field("z", NC_FLOAT, "m", "bedrock_altitude", "bed and building elevation above still water level");
+        const int vz = field("z", NC_FLOAT, "m", "", "bed and building elevation above still water level");
         f.put_att(vz, "positive", std::string("up"));
         int vn = -1, vb = -1, ve = -1, vu = -1, vv = -1;
         if (!s.manning_n.empty()) vn = field("manning_n", NC_FLOAT, "s m-1/3", "", "Manning roughness coefficient");
