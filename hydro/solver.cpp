@@ -1,0 +1,396 @@
+#include "hydro/solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "hydro/swe_kernels.hpp"
+
+namespace flotsam::hydro {
+
+SolverDef default_solver_def() {
+    SolverDef d;
+    d.west.kind = BoundaryKind::level;
+    d.east.kind = BoundaryKind::transmissive;
+    d.south.kind = BoundaryKind::wall;
+    d.north.kind = BoundaryKind::wall;
+    return d;
+}
+
+namespace {
+constexpr int kGhost = 2;
+bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
+}  // namespace
+
+Solver::Solver(const Scene& scene, const SolverDef& def) : grid_(scene.grid), def_(def) {
+    if (def.order != 1 && def.order != 2) fail("", "--order", "must be 1 or 2");
+    if (!(def.cfl > 0.0 && def.cfl <= 0.5)) fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
+    if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
+    stride_ = std::size_t(grid_.nx + 2 * kGhost);
+    rows_ = std::size_t(grid_.ny + 2 * kGhost);
+    const std::size_t n = stride_ * rows_;
+    for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &dh_, &dhu_, &dhv_, &eta_, &u_, &v_, &sy_eta_, &sy_h_, &sy_u_, &sy_v_, &gy_mass_,
+                    &gy_lo_, &gy_hi_, &gy_tan_, &z_, &g_n2_})
+        v->assign(n, 0.0);
+
+    for (int j = 0; j < grid_.ny; ++j)
+        for (int i = 0; i < grid_.nx; ++i) {
+            const std::size_t k = grid_.index(i, j), p = at(i, j);
+            z_[p] = scene.z[k];
+            const double n_manning = scene.manning_n.empty() ? def.default_manning_n : scene.manning_n[k];
+            g_n2_[p] = def.gravity * n_manning * n_manning;
+            const double eta0 = scene.eta0.empty() ? 0.0 : scene.eta0[k];
+            const double h = std::max(0.0, eta0 - z_[p]);
+            h_[p] = h;
+            if (!scene.u0.empty() && h > def.dry_depth) {
+                hu_[p] = h * scene.u0[k];
+                hv_[p] = h * scene.v0[k];
+            }
+        }
+    // Bed in the ghost cells: mirrored at walls (a lake at rest stays exact), copied elsewhere.
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
+        const bool mirror = boundary(s).kind == BoundaryKind::wall || boundary(s).kind == BoundaryKind::pump;
+        if (is_x_side(s)) {
+            for (int j = 0; j < grid_.ny; ++j)
+                for (int g = 1; g <= kGhost; ++g) {
+                    const int ig = s == Side::west ? -g : grid_.nx - 1 + g;
+                    const int isrc = s == Side::west ? (mirror ? g - 1 : 0) : (mirror ? grid_.nx - g : grid_.nx - 1);
+                    z_[at(ig, j)] = z_[at(isrc, j)];
+                }
+        } else {
+            for (int i = 0; i < grid_.nx; ++i)
+                for (int g = 1; g <= kGhost; ++g) {
+                    const int jg = s == Side::south ? -g : grid_.ny - 1 + g;
+                    const int jsrc = s == Side::south ? (mirror ? g - 1 : 0) : (mirror ? grid_.ny - g : grid_.ny - 1);
+                    z_[at(i, jg)] = z_[at(i, jsrc)];
+                }
+        }
+    }
+    series_.resize(4);
+    still_depth_.assign(4, 0.0);
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
+        const BoundaryDef& b = boundary(s);
+        if (b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) {
+            if (b.series_file.empty())
+                fail("", std::string("boundary ") + to_string(b.kind), "needs a series file (time,value CSV)");
+            series_[int(s)] = read_time_series_csv(b.series_file);
+        }
+        if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");
+    }
+    if (def.west.kind == BoundaryKind::pump) {
+        const int ncol = std::max(1, int(std::lround(def.west.pump_length / grid_.dx)));
+        for (int j = 0; j < grid_.ny; ++j)
+            for (int i = 0; i < std::min(ncol, grid_.nx); ++i)
+                if (z_[at(i, j)] < 0.0) {
+                    pump_cells_.push_back(at(i, j));
+                    pump_area_ += grid_.dx * grid_.dy;
+                }
+        if (pump_area_ <= 0.0) fail("", "boundary pump", "no wet cells along the west side to put the pump's mass source in");
+    }
+}
+
+const BoundaryDef& Solver::boundary(Side s) const {
+    switch (s) {
+        case Side::west: return def_.west;
+        case Side::east: return def_.east;
+        case Side::south: return def_.south;
+        case Side::north: return def_.north;
+    }
+    return def_.west;
+}
+
+double Solver::x_velocity(int i, int j) const { return velocity(h_[at(i, j)], hu_[at(i, j)], def_.dry_depth); }
+double Solver::y_velocity(int i, int j) const { return velocity(h_[at(i, j)], hv_[at(i, j)], def_.dry_depth); }
+
+double Solver::volume() const {
+    double v = 0.0;  // serial: the same sum whatever the thread count
+    for (int j = 0; j < grid_.ny; ++j)
+        for (int i = 0; i < grid_.nx; ++i) v += h_[at(i, j)];
+    return v * grid_.dx * grid_.dy;
+}
+
+double Solver::stable_dt() const {
+    const double g = def_.gravity, dry = def_.dry_depth, idx = 1.0 / grid_.dx, idy = 1.0 / grid_.dy;
+    double amax = 0.0;
+#pragma omp parallel for reduction(max : amax) schedule(static)
+    for (int j = 0; j < grid_.ny; ++j) {
+        const std::size_t row = at(0, j);
+        const double* h = h_.data() + row;
+        const double* hu = hu_.data() + row;
+        const double* hv = hv_.data() + row;
+        double a = 0.0;
+        for (int i = 0; i < grid_.nx; ++i) {
+            const double c = std::sqrt(g * h[i]);
+            const double inv = h[i] > dry ? 1.0 / h[i] : 0.0;
+            a = std::max(a, (std::abs(hu[i]) * inv + c) * idx + (std::abs(hv[i]) * inv + c) * idy);
+        }
+        amax = std::max(amax, a);
+    }
+    return amax > 0.0 ? std::min(def_.max_dt, def_.cfl / amax) : def_.max_dt;
+}
+
+double Solver::pump_level(double t) {
+    const BoundaryDef& b = def_.west;
+    if (!pump_stopped_) {
+        // First call past the stop: remember the level the relaxation starts from.
+        double sum = 0.0;
+        for (std::size_t p : pump_cells_) sum += h_[p] + z_[p];
+        pump_level_at_stop_ = sum / double(pump_cells_.size());
+        pump_stopped_ = true;
+    }
+    return pump_level_at_stop_ * std::exp(-(t - b.pump_stop) / b.pump_relax_time);
+}
+
+void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
+    const BoundaryDef& b = boundary(s);
+    BoundaryKind kind = b.kind;
+    double given = 0.0;
+    LevelMode mode = b.level_mode;
+    if (kind == BoundaryKind::pump) {
+        if (t < b.pump_stop) {
+            kind = BoundaryKind::wall;
+        } else {
+            kind = BoundaryKind::level;
+            mode = LevelMode::total;
+            given = pump_level(t);
+        }
+    } else if (kind == BoundaryKind::level) {
+        given = series_[int(s)].at(t);
+    } else if (kind == BoundaryKind::discharge) {
+        const double length = is_x_side(s) ? grid_.ny * grid_.dy : grid_.nx * grid_.dx;
+        given = series_[int(s)].at(t) / length;  // [m^2/s] per unit length of the side
+    }
+    const bool xs = is_x_side(s);
+    const int n_along = xs ? grid_.ny : grid_.nx;
+    // Inward normal: +x at the west, -x at the east, +y at the south, -y at the north.
+    const double sign = (s == Side::west || s == Side::south) ? 1.0 : -1.0;
+    const double g = def_.gravity;
+    for (int k = 0; k < n_along; ++k) {
+        auto cell = [&](int depth) {  // depth 0 = edge cell, 1 = next; -1, -2 = ghosts
+            if (xs) return at(s == Side::west ? depth : grid_.nx - 1 - depth, k);
+            return at(k, s == Side::south ? depth : grid_.ny - 1 - depth);
+        };
+        std::vector<double>& qn = xs ? hu : hv;  // normal discharge
+        std::vector<double>& qt = xs ? hv : hu;  // tangential discharge
+        for (int g_layer = 1; g_layer <= kGhost; ++g_layer) {
+            const std::size_t ghost = cell(-g_layer);
+            switch (kind) {
+                case BoundaryKind::wall: {
+                    const std::size_t src = cell(g_layer - 1);
+                    h[ghost] = h[src];
+                    qn[ghost] = -qn[src];
+                    qt[ghost] = qt[src];
+                    break;
+                }
+                case BoundaryKind::transmissive: {
+                    const std::size_t src = cell(0);
+                    h[ghost] = h[src];
+                    qn[ghost] = qn[src];
+                    qt[ghost] = qt[src];
+                    break;
+                }
+                case BoundaryKind::level:
+                case BoundaryKind::discharge: {
+                    const std::size_t src = cell(0);
+                    const double h_in = h[src];
+                    const double un_in = sign * velocity(h_in, qn[src], def_.dry_depth);
+                    const double ut_in = velocity(h_in, qt[src], def_.dry_depth);
+                    double hb = 0.0, unb = 0.0;
+                    if (kind == BoundaryKind::level)
+                        level_ghost(h_in, un_in, std::max(0.0, -z_[src]), given, mode, g, hb, unb);
+                    else
+                        discharge_ghost(h_in, un_in, given, g, def_.dry_depth, hb, unb);
+                    h[ghost] = hb;
+                    qn[ghost] = sign * hb * unb;
+                    qt[ghost] = hb * ut_in;
+                    break;
+                }
+                case BoundaryKind::pump: break;  // resolved above
+            }
+        }
+    }
+}
+
+void Solver::fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) fill_side(s, h, hu, hv, t);
+}
+
+// x-direction: slopes, face fluxes and the cell rates of one interior row. Row buffers
+// keep everything in cache; the loops are branch-free so they vectorise.
+void Solver::x_sweep_row(int j, const std::vector<double>& h_all) {
+    const std::size_t row = std::size_t(j + kGhost) * stride_;
+    const int n = int(stride_);
+    const double* e = eta_.data() + row;
+    const double* h = h_all.data() + row;
+    const double* u = u_.data() + row;
+    const double* v = v_.data() + row;
+    double* dh = dh_.data() + row;
+    double* dhu = dhu_.data() + row;
+    double* dhv = dhv_.data() + row;
+    thread_local std::vector<double> se, sh, su, sv, fm, fl, fr, ft;
+    for (auto* b : {&se, &sh, &su, &sv, &fm, &fl, &fr, &ft})
+        if (b->size() != stride_) b->assign(stride_, 0.0);
+    const double theta = def_.limiter_theta, dry = def_.dry_depth, g = def_.gravity;
+    if (def_.order == 1) {
+        for (auto* b : {&se, &sh, &su, &sv}) std::fill(b->begin(), b->end(), 0.0);
+    } else {
+        for (int c = 1; c < n - 1; ++c) {
+            // First order next to a dry cell: keeps h >= 0 and the shoreline at rest.
+            const bool wet = h[c - 1] > dry && h[c] > dry && h[c + 1] > dry;
+            const double w = wet ? 1.0 : 0.0;
+            se[c] = w * limited_slope(e[c] - e[c - 1], e[c + 1] - e[c], theta);
+            sh[c] = w * limited_slope(h[c] - h[c - 1], h[c + 1] - h[c], theta);
+            su[c] = w * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], theta);
+            sv[c] = w * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], theta);
+        }
+    }
+    // Face c+1/2 between padded columns c and c+1; interior faces c = 1 .. nx+1.
+    for (int c = 1; c <= grid_.nx + 1; ++c) {
+        FaceFlux f;
+        face_flux(e[c] + 0.5 * se[c], h[c] + 0.5 * sh[c], u[c] + 0.5 * su[c], v[c] + 0.5 * sv[c], e[c + 1] - 0.5 * se[c + 1],
+                  h[c + 1] - 0.5 * sh[c + 1], u[c + 1] - 0.5 * su[c + 1], v[c + 1] - 0.5 * sv[c + 1], g, f);
+        fm[c] = f.mass;
+        fl[c] = f.normal_L;
+        fr[c] = f.normal_R;
+        ft[c] = f.tangential;
+    }
+    const double idx = 1.0 / grid_.dx;
+    for (int c = kGhost; c < grid_.nx + kGhost; ++c) {
+        const double hw = h[c] - 0.5 * sh[c], he = h[c] + 0.5 * sh[c];
+        const double zw = e[c] - 0.5 * se[c] - hw, ze = e[c] + 0.5 * se[c] - he;
+        dh[c] = -(fm[c] - fm[c - 1]) * idx;
+        dhu[c] = -(fl[c] - fr[c - 1]) * idx - g * 0.5 * (hw + he) * (ze - zw) * idx;
+        dhv[c] = -(ft[c] - ft[c - 1]) * idx;
+    }
+}
+
+void Solver::rates(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
+    fill_ghosts(h, hu, hv, t);
+    const double dry = def_.dry_depth, g = def_.gravity, theta = def_.limiter_theta;
+    const int nx = grid_.nx, ny = grid_.ny;
+    const int s = int(stride_);
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+        for (int r = 0; r < int(rows_); ++r) {
+            const std::size_t row = std::size_t(r) * stride_;
+            for (int c = 0; c < s; ++c) {
+                const std::size_t p = row + std::size_t(c);
+                eta_[p] = h[p] + z_[p];
+                u_[p] = velocity(h[p], hu[p], dry);
+                v_[p] = velocity(h[p], hv[p], dry);
+            }
+        }
+#pragma omp for schedule(static)
+        for (int j = 0; j < ny; ++j) x_sweep_row(j, h);
+
+        // y-slopes on cell rows -1 .. ny (padded rows 1 .. ny+2), interior columns.
+        if (def_.order == 2) {
+#pragma omp for schedule(static)
+            for (int r = 1; r <= ny + 2; ++r) {
+                const std::size_t p0 = std::size_t(r) * stride_ + kGhost;
+                for (int i = 0; i < nx; ++i) {
+                    const std::size_t p = p0 + std::size_t(i), pm = p - stride_, pp = p + stride_;
+                    const bool wet = h[pm] > dry && h[p] > dry && h[pp] > dry;
+                    const double w = wet ? 1.0 : 0.0;
+                    sy_eta_[p] = w * limited_slope(eta_[p] - eta_[pm], eta_[pp] - eta_[p], theta);
+                    sy_h_[p] = w * limited_slope(h[p] - h[pm], h[pp] - h[p], theta);
+                    sy_u_[p] = w * limited_slope(u_[p] - u_[pm], u_[pp] - u_[p], theta);
+                    sy_v_[p] = w * limited_slope(v_[p] - v_[pm], v_[pp] - v_[p], theta);
+                }
+            }
+        }
+        // y-faces: face stored at the upper cell's index, between padded rows r-1 and r.
+#pragma omp for schedule(static)
+        for (int r = kGhost; r <= ny + kGhost; ++r) {
+            const std::size_t p0 = std::size_t(r) * stride_ + kGhost;
+            for (int i = 0; i < nx; ++i) {
+                const std::size_t p = p0 + std::size_t(i), pm = p - stride_;
+                FaceFlux f;
+                face_flux(eta_[pm] + 0.5 * sy_eta_[pm], h[pm] + 0.5 * sy_h_[pm], v_[pm] + 0.5 * sy_v_[pm], u_[pm] + 0.5 * sy_u_[pm],
+                          eta_[p] - 0.5 * sy_eta_[p], h[p] - 0.5 * sy_h_[p], v_[p] - 0.5 * sy_v_[p], u_[p] - 0.5 * sy_u_[p], g, f);
+                gy_mass_[p] = f.mass;
+                gy_lo_[p] = f.normal_L;
+                gy_hi_[p] = f.normal_R;
+                gy_tan_[p] = f.tangential;
+            }
+        }
+        const double idy = 1.0 / grid_.dy;
+#pragma omp for schedule(static)
+        for (int r = kGhost; r < ny + kGhost; ++r) {
+            const std::size_t p0 = std::size_t(r) * stride_ + kGhost;
+            for (int i = 0; i < nx; ++i) {
+                const std::size_t p = p0 + std::size_t(i), pn = p + stride_;
+                const double hs = h[p] - 0.5 * sy_h_[p], hn = h[p] + 0.5 * sy_h_[p];
+                const double zs = eta_[p] - 0.5 * sy_eta_[p] - hs, zn = eta_[p] + 0.5 * sy_eta_[p] - hn;
+                dh_[p] -= (gy_mass_[pn] - gy_mass_[p]) * idy;
+                dhv_[p] -= (gy_lo_[pn] - gy_hi_[p]) * idy + g * 0.5 * (hs + hn) * (zn - zs) * idy;
+                dhu_[p] -= (gy_tan_[pn] - gy_tan_[p]) * idy;
+            }
+        }
+    }
+    add_sources(t);
+}
+
+void Solver::add_sources(double t) {
+    if (def_.west.kind != BoundaryKind::pump || t >= def_.west.pump_stop) return;
+    const double rate = def_.west.pump_discharge / pump_area_;  // [m/s] over the source strip
+    for (std::size_t p : pump_cells_) dh_[p] += rate;
+}
+
+void Solver::update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
+                    const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
+                    std::vector<double>& hu_out, std::vector<double>& hv_out) {
+    const double dry = def_.dry_depth;
+    const int nx = grid_.nx;
+    long fixes = 0;
+    double worst = 0.0;
+#pragma omp parallel for reduction(+ : fixes) reduction(min : worst) schedule(static)
+    for (int j = 0; j < grid_.ny; ++j) {
+        const std::size_t p0 = at(0, j);
+        for (int i = 0; i < nx; ++i) {
+            const std::size_t p = p0 + std::size_t(i);
+            double hn = h[p] + dt * dh_[p];
+            double qx = hu[p] + dt * dhu_[p];
+            double qy = hv[p] + dt * dhv_[p];
+            if (hn < 0.0) {  // only round-off under the CFL bound; counted, then removed
+                worst = std::min(worst, hn);
+                ++fixes;
+                hn = 0.0;
+            }
+            const double r = friction_factor(hn, qx, qy, g_n2_[p], dt, dry);
+            qx *= r;
+            qy *= r;
+            if (h0) {
+                hn = a * (*h0)[p] + (1.0 - a) * hn;
+                qx = a * (*hu0)[p] + (1.0 - a) * qx;
+                qy = a * (*hv0)[p] + (1.0 - a) * qy;
+                if (hn <= dry) qx = qy = 0.0;
+            }
+            h_out[p] = hn;
+            hu_out[p] = qx;
+            hv_out[p] = qy;
+        }
+    }
+    stats_.negative_depth_fixes += fixes;
+    stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
+}
+
+void Solver::step(double dt) {
+    if (def_.order == 1) {
+        rates(h_, hu_, hv_, time_);
+        update(dt, 0.0, nullptr, nullptr, nullptr, h_, hu_, hv_, h_, hu_, hv_);
+    } else {
+        rates(h_, hu_, hv_, time_);
+        update(dt, 0.0, nullptr, nullptr, nullptr, h_, hu_, hv_, h1_, hu1_, hv1_);
+        rates(h1_, hu1_, hv1_, time_ + dt);
+        // U = 1/2 U + 1/2 (U1 + dt L(U1)); each cell reads its own base value before writing it.
+        update(dt, 0.5, &h_, &hu_, &hv_, h1_, hu1_, hv1_, h_, hu_, hv_);
+    }
+    time_ += dt;
+    ++stats_.steps;
+}
+
+}  // namespace flotsam::hydro

@@ -1,0 +1,120 @@
+// The finite-volume shallow-water solver (equations and scheme: swe_kernels.hpp).
+//
+// Two-phase step as in TUM SWE: compute all face fluxes and sources into a rate of
+// change, then update. Heun's method (SSP-RK2) gives second order in time; each stage
+// is a convex combination of forward-Euler steps, so the positivity of the first-order
+// step carries over.
+//
+// Storage: h, hu, hv, z with two ghost layers on every side, row-major, x fastest:
+// the interior cell (i, j) sits at (j + 2) * (nx + 4) + (i + 2).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/scene.hpp"
+#include "common/timeseries.hpp"
+#include "hydro/boundary.hpp"
+
+namespace flotsam::hydro {
+
+struct SolverDef {
+    double gravity = 9.81;           // [m s^-2]
+    // The one dry tolerance: a cell with h <= dry_depth has no velocity and no friction.
+    // 1e-5 m is a hundredth of a millimetre, far below any depth that moves debris
+    // (draft 2.5 cm) and far above round-off on depths of order 1 m.
+    double dry_depth = 1e-5;         // [m]
+    double cfl = 0.45;               // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0
+    double max_dt = 0.05;            // [s] upper bound on the step
+    double limiter_theta = 1.3;      // 1 = minmod ... 2 = monotonised central
+    int order = 2;                   // 1: first order in space and time; 2: MUSCL + Heun
+    double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
+    BoundaryDef west, east, south, north;
+};
+SolverDef default_solver_def();
+
+// Counters that say how the run went.
+struct SolverStats {
+    long steps = 0;
+    long negative_depth_fixes = 0;   // cells where round-off made h < 0 (set to 0)
+    double min_depth_seen = 0.0;     // most negative h before the fix [m]
+};
+
+class Solver {
+public:
+    Solver(const Scene& scene, const SolverDef& def);
+
+    // Largest stable step for the current state [s] (CFL and max_dt).
+    double stable_dt() const;
+    // Advances the state by dt [s].
+    void step(double dt);
+
+    double time() const { return time_; }
+    void set_time(double t) { time_ = t; }
+    const Grid& grid() const { return grid_; }
+    const SolverDef& def() const { return def_; }
+    const SolverStats& stats() const { return stats_; }
+
+    // Interior cell accessors.
+    std::size_t at(int i, int j) const { return std::size_t(j + 2) * stride_ + std::size_t(i + 2); }
+    double depth(int i, int j) const { return h_[at(i, j)]; }
+    double x_discharge(int i, int j) const { return hu_[at(i, j)]; }
+    double y_discharge(int i, int j) const { return hv_[at(i, j)]; }
+    double bed(int i, int j) const { return z_[at(i, j)]; }
+    double level(int i, int j) const { return h_[at(i, j)] + z_[at(i, j)]; }
+    double x_velocity(int i, int j) const;
+    double y_velocity(int i, int j) const;
+    // Total water volume [m^3].
+    double volume() const;
+
+    // Padded state, for checkpoints and output (size (nx+4)*(ny+4)).
+    std::vector<double>& depth_data() { return h_; }
+    std::vector<double>& x_discharge_data() { return hu_; }
+    std::vector<double>& y_discharge_data() { return hv_; }
+    const std::vector<double>& depth_data() const { return h_; }
+    const std::vector<double>& x_discharge_data() const { return hu_; }
+    const std::vector<double>& y_discharge_data() const { return hv_; }
+    std::size_t stride() const { return stride_; }
+
+    // Level at the pump side when pumping stopped (restart state of the pump boundary).
+    double pump_level_at_stop() const { return pump_level_at_stop_; }
+    void set_pump_level_at_stop(double v) { pump_level_at_stop_ = v; pump_stopped_ = true; }
+
+private:
+    void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
+    void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
+    // Rate of change of (h, hu, hv) from fluxes and bed slope, into dh_, dhu_, dhv_.
+    void rates(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
+    void x_sweep_row(int j, const std::vector<double>& h);
+    // out = a * base + (1 - a) * friction(state + dt * rate), base optional.
+    void update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
+                const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
+                std::vector<double>& hu_out, std::vector<double>& hv_out);
+    void add_sources(double t);
+    const BoundaryDef& boundary(Side s) const;
+    double pump_level(double t);
+
+    Grid grid_;
+    SolverDef def_;
+    std::size_t stride_ = 0, rows_ = 0;
+    double time_ = 0.0;
+    SolverStats stats_;
+    // Hot state.
+    std::vector<double> h_, hu_, hv_;
+    std::vector<double> h1_, hu1_, hv1_;            // Heun's intermediate stage
+    std::vector<double> dh_, dhu_, dhv_;            // rates of change
+    std::vector<double> eta_, u_, v_;               // primitive values of the stage
+    std::vector<double> sy_eta_, sy_h_, sy_u_, sy_v_;  // limited y-slopes
+    std::vector<double> gy_mass_, gy_lo_, gy_hi_, gy_tan_;  // y-face fluxes, face row j below cell row j
+    // Cold data.
+    std::vector<double> z_;          // bed [m], ghosts filled once
+    std::vector<double> g_n2_;       // g * manning_n^2 per cell
+    std::vector<TimeSeries> series_; // per side (index Side), when used
+    std::vector<double> still_depth_;  // per side: mean still-water depth along it [m]
+    std::vector<std::size_t> pump_cells_;  // padded indices of the pump's source strip
+    double pump_area_ = 0.0;              // [m^2] area of the source strip
+    double pump_level_at_stop_ = 0.0;
+    bool pump_stopped_ = false;
+};
+
+}  // namespace flotsam::hydro
