@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "common/scene.hpp"
+#include "data/boundary_generator.hpp"
 #include "data/scene_generator.hpp"
 
 namespace flotsam {
@@ -29,12 +30,42 @@ void register_scene_generate(CLI::App* scene, const std::string& command_line) {
     });
 }
 
+void register_boundary_generate(CLI::App* boundary) {
+    auto def = std::make_shared<BoundaryGenDef>();
+    auto dir = std::make_shared<std::string>();
+    CLI::App* sub = boundary->add_subcommand("generate",
+        "Write synthetic WG1 water-level records (CSV time,eta in s, m) wg1_r00.csv ... for the west boundary: "
+        "one smooth leading wave (peak at the end of pumping, then return flow) plus smooth departures with "
+        "ensemble std --spread; deterministic from --seed. Prints a summary.");
+    sub->add_option("--out-dir", *dir, "directory for the CSV records")->required();
+    sub->add_option("--count", def->count, "number of realisations")->capture_default_str();
+    sub->add_option("--seed", def->seed, "seed of the departures")->capture_default_str();
+    sub->add_option("--duration", def->duration, "record length [s]")->capture_default_str();
+    sub->add_option("--dt", def->dt, "sample interval [s]")->capture_default_str();
+    sub->add_option("--peak", def->peak, "mean level at the end of pumping [m]")->capture_default_str();
+    sub->add_option("--spread", def->spread, "ensemble standard deviation of the departures [m]")->capture_default_str();
+    sub->add_option("--pump-end", def->pump_end, "end of pumping [s]")->capture_default_str();
+    sub->add_option("--return-time", def->return_time, "relaxation time of the return flow [s]")->capture_default_str();
+    add_config_option(sub);
+    sub->callback([def, dir] {
+        const auto records = generate_boundary_records(*def);
+        const auto paths = write_boundary_records(*dir, records);
+        const BoundarySummary s = summarise_boundary(records);
+        std::printf("boundary: %zu records in %s (%s ... %s)\n", paths.size(), dir->c_str(), paths.front().c_str(), paths.back().c_str());
+        std::printf("boundary summary: max ensemble mean %.4f m at %.1f s; ensemble std over t >= %.0f s: min %.3f mm, mean %.3f mm, max %.3f mm\n",
+                    s.max_mean, s.time_of_max, s.std_from, 1e3 * s.std_min, 1e3 * s.std_mean, 1e3 * s.std_max);
+    });
+}
+
 }  // namespace
 
 void register_data_commands(CLI::App& app, const std::string& command_line) {
     CLI::App* scene = app.add_subcommand("scene", "Scenes: generate the synthetic analogue or import a user DEM");
     scene->require_subcommand(1);
     register_scene_generate(scene, command_line);
+    CLI::App* boundary = app.add_subcommand("boundary", "West-boundary water-level records (WG1)");
+    boundary->require_subcommand(1);
+    register_boundary_generate(boundary);
 }
 
 }  // namespace flotsam
