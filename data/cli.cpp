@@ -6,6 +6,7 @@
 #include "app/commands.hpp"
 #include "common/scene.hpp"
 #include "data/boundary_generator.hpp"
+#include "data/dem_import.hpp"
 #include "data/scene_generator.hpp"
 
 namespace flotsam {
@@ -27,6 +28,29 @@ void register_scene_generate(CLI::App* scene, const std::string& command_line) {
         const GeneratedScene g = generate_scene(*def);
         write_scene(*out, g.scene, command_line);
         std::printf("scene: %s (%d x %d cells of %.4g m, synthetic)\n", out->c_str(), g.scene.grid.nx, g.scene.grid.ny, def->resolution);
+    });
+}
+
+void register_scene_import(CLI::App* scene, const std::string& command_line) {
+    auto def = std::make_shared<ImportDef>();
+    auto out = std::make_shared<std::string>();
+    CLI::App* sub = scene->add_subcommand("import",
+        "Import a user DEM (NetCDF with x, y, z(y, x), or ESRI ASCII grid .asc) as a scene: resampled to --resolution "
+        "(cell-area average when coarsening, bilinear when refining), with points, sections, regions, Manning rules and "
+        "a building rule from --features (TOML; see docs/scene.md). Without --features, a DEM with the Kainan extent "
+        "gets the Kainan defaults; any other DEM gets no features and no Manning field.");
+    sub->add_option("--dem", def->dem_path, "DEM file (.nc or .asc)")->required();
+    sub->add_option("--features", def->features_path, "features TOML file");
+    sub->add_option("--resolution", def->resolution, "grid spacing of the scene [m]")->capture_default_str();
+    sub->add_option("--out", *out, "output scene file (NetCDF)")->required();
+    add_config_option(sub);
+    sub->callback([def, out, command_line] {
+        const Scene s = import_scene(*def);
+        write_scene(*out, s, command_line);
+        std::size_t roofs = 0;
+        for (auto b : s.building) roofs += std::size_t(b);
+        std::printf("scene: %s (%d x %d cells of %.4g m; %zu building cells; %zu points, %zu sections, %zu regions)\n", out->c_str(),
+                    s.grid.nx, s.grid.ny, def->resolution, roofs, s.points.size(), s.sections.size(), s.regions.size());
     });
 }
 
@@ -63,6 +87,7 @@ void register_data_commands(CLI::App& app, const std::string& command_line) {
     CLI::App* scene = app.add_subcommand("scene", "Scenes: generate the synthetic analogue or import a user DEM");
     scene->require_subcommand(1);
     register_scene_generate(scene, command_line);
+    register_scene_import(scene, command_line);
     CLI::App* boundary = app.add_subcommand("boundary", "West-boundary water-level records (WG1)");
     boundary->require_subcommand(1);
     register_boundary_generate(boundary);
