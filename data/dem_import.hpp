@@ -1,0 +1,72 @@
+// Importing a user DEM as a scene: NetCDF (x, y, z) or ESRI ASCII grid, resampled to
+// the run's grid spacing, with points, sections, regions, Manning n and a building mask
+// from a small TOML features file (or the Kainan defaults when the extent matches).
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/grid.hpp"
+#include "common/scene.hpp"
+#include "data/kainan_features.hpp"
+
+namespace flotsam {
+
+// A DEM as read: elevation above still water on a uniform cell-centred grid.
+struct Dem {
+    Grid grid;
+    std::vector<double> z;  // [m], j * nx + i, j = 0 the southern row
+    std::string path;
+    std::string title;      // the file's title attribute, if any
+};
+
+// Reads `.asc` as an ESRI ASCII grid, anything else as NetCDF with variables x, y and
+// z(y, x) (y may decrease; rows are then flipped). Errors name the file and the variable,
+// header key or line.
+Dem read_dem(const std::string& path);
+Dem read_ascii_grid(const std::string& path);
+
+// Manning n inside optional bounds; rules apply in order, the first that holds wins.
+struct ManningRule {
+    double n = 0.013;                    // [s m^-1/3]
+    std::optional<double> x_min, x_max;  // [m], cell centre x in [x_min, x_max)
+    std::optional<double> y_min, y_max;  // [m]
+};
+
+// How cells become buildings: z above the local ground by more than min_height, where
+// local ground is the lowest max(z, 0) within `window` of the cell (so water next to a
+// building counts as ground at still-water level); or, when min_elevation is set,
+// simply z > min_elevation.
+struct BuildingRule {
+    double min_height = 0.03;              // [m] above local ground
+    double window = 0.25;                  // half-width of the ground search square [m]
+    std::optional<double> min_elevation;   // [m] above still water; replaces the above
+};
+
+// Everything a features file can set.
+struct ImportFeatures {
+    SceneFeatures features;
+    std::vector<ManningRule> manning;  // empty: no manning_n field (the run's default applies)
+    BuildingRule buildings;
+};
+
+// The Kainan defaults: kainan_features(), n = 0.025 for x < -0.66 and 0.013 elsewhere,
+// the default building rule.
+ImportFeatures kainan_import_features();
+
+// Reads a features TOML file. Tables it leaves out keep the values of `defaults`.
+ImportFeatures read_import_features(const std::string& path, const ImportFeatures& defaults);
+
+// What to import.
+struct ImportDef {
+    std::string dem_path;
+    std::string features_path;   // empty: Kainan defaults when the DEM's extent matches, else none
+    double resolution = 0.02;    // target grid spacing [m]
+};
+
+Scene import_scene(const ImportDef& def);
+
+// Building mask (0/1) of field z on grid g under `rule`.
+std::vector<std::int8_t> building_mask(const Grid& g, const std::vector<double>& z, const BuildingRule& rule);
+
+}  // namespace flotsam

@@ -1,0 +1,35 @@
+// The named points, sections and regions of the Kainan port-city flume (SCENE.md), in
+// the benchmark frame (x east, y north, metres). One definition serves both the
+// generated analogue and an import of the real layout, so statistics refer to the same
+// places in either scene.
+#pragma once
+#include <vector>
+
+#include "common/grid.hpp"
+#include "common/scene.hpp"
+
+namespace flotsam {
+
+// The feature tables a scene carries besides its fields.
+struct SceneFeatures {
+    std::vector<ScenePoint> points;   // gauges and debris starts [m, degrees]
+    std::vector<Section> sections;    // north-south passage lines [m]
+    std::vector<Region> regions;      // arrival-count polygons [m]
+};
+
+// Kainan extent (cell edges) [m]: the real file's 1 cm centres -12.36..8.00, -4.00..-0.01.
+inline constexpr double kainan_x_min_edge = -12.365;
+inline constexpr double kainan_x_max_edge = 8.005;
+inline constexpr double kainan_y_min_edge = -4.005;
+inline constexpr double kainan_y_max_edge = -0.005;
+
+// WG1, WG2, the FD and LD starts, the FD/LD/channel sections and the four regions.
+SceneFeatures kainan_features();
+
+// True when the grid's edges match the Kainan extent to within one cell of the grid.
+bool matches_kainan_extent(const Grid& g);
+
+// Copies the feature tables into a scene.
+void apply_features(Scene& scene, const SceneFeatures& f);
+
+}  // namespace flotsam

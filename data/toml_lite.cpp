@@ -1,0 +1,134 @@
+#include "data/toml_lite.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include "common/error.hpp"
+
+namespace flotsam {
+
+namespace {
+
+std::string trim(const std::string& s) {
+    const auto a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+    return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+// Drops a '#' comment that is not inside a string.
+std::string strip_comment(const std::string& s) {
+    bool quoted = false;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        if (s[k] == '"') quoted = !quoted;
+        if (s[k] == '#' && !quoted) return s.substr(0, k);
+    }
+    return s;
+}
+
+bool parse_number(const std::string& s, double& out) {
+    if (s.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+TomlValue parse_value(const std::string& path, int line, const std::string& key, const std::string& raw) {
+    const std::string here = "line " + std::to_string(line);
+    TomlValue v;
+    v.line = line;
+    if (raw.size() >= 2 && raw.front() == '"' && raw.back() == '"') {
+        v.kind = TomlValue::Kind::String;
+        v.text = raw.substr(1, raw.size() - 2);
+    } else if (raw == "true" || raw == "false") {
+        v.kind = TomlValue::Kind::Bool;
+        v.flag = raw == "true";
+    } else if (raw.size() >= 2 && raw.front() == '[' && raw.back() == ']') {
+        v.kind = TomlValue::Kind::NumberArray;
+        std::string body = raw.substr(1, raw.size() - 2), item;
+        std::size_t at = 0;
+        while (at <= body.size()) {
+            const std::size_t comma = std::min(body.find(',', at), body.size());
+            item = trim(body.substr(at, comma - at));
+            at = comma + 1;
+            if (item.empty() && at > body.size()) break;  // trailing comma or empty array
+            double x = 0.0;
+            if (!parse_number(item, x)) fail(path, here, "key '" + key + "': array element '" + item + "' is not a finite number");
+            v.numbers.push_back(x);
+        }
+    } else if (!parse_number(raw, v.number)) {
+        fail(path, here, "key '" + key + "': value '" + raw + "' is not a number, \"string\", true/false or [numbers]");
+    }
+    return v;
+}
+
+const TomlValue& need(const TomlDoc& doc, const TomlTable& t, const std::string& key, TomlValue::Kind kind, const char* what) {
+    const auto it = t.values.find(key);
+    const std::string table = t.name.empty() ? "top level" : "[" + t.name + "] at line " + std::to_string(t.line);
+    if (it == t.values.end()) fail(doc.path, table, "missing key '" + key + "'");
+    if (it->second.kind != kind) fail(doc.path, "line " + std::to_string(it->second.line), "key '" + key + "' must be " + what);
+    return it->second;
+}
+
+}  // namespace
+
+TomlDoc read_toml_lite(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) fail(path, "", "cannot open");
+    TomlDoc doc;
+    doc.path = path;
+    doc.tables.push_back({"", 0, {}});
+    std::string raw;
+    int line = 0;
+    while (std::getline(in, raw)) {
+        ++line;
+        const std::string s = trim(strip_comment(raw));
+        const std::string here = "line " + std::to_string(line);
+        if (s.empty()) continue;
+        if (s.starts_with("[[")) {
+            if (!s.ends_with("]]")) fail(path, here, "unterminated [[table]] header");
+            doc.tables.push_back({trim(s.substr(2, s.size() - 4)), line, {}});
+            continue;
+        }
+        if (s.front() == '[') {
+            if (s.back() != ']') fail(path, here, "unterminated [table] header");
+            const std::string name = trim(s.substr(1, s.size() - 2));
+            for (const auto& t : doc.tables)
+                if (t.name == name) fail(path, here, "table [" + name + "] defined twice (first at line " + std::to_string(t.line) + ")");
+            doc.tables.push_back({name, line, {}});
+            continue;
+        }
+        const auto eq = s.find('=');
+        if (eq == std::string::npos) fail(path, here, "expected 'key = value', '[table]' or '[[table]]'");
+        const std::string key = trim(s.substr(0, eq));
+        if (key.empty()) fail(path, here, "missing key before '='");
+        auto& values = doc.tables.back().values;
+        if (values.count(key)) fail(path, here, "key '" + key + "' given twice in the same table");
+        values[key] = parse_value(path, line, key, trim(s.substr(eq + 1)));
+    }
+    return doc;
+}
+
+double toml_number(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    return need(doc, t, key, TomlValue::Kind::Number, "a number").number;
+}
+
+std::string toml_string(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    return need(doc, t, key, TomlValue::Kind::String, "a \"string\"").text;
+}
+
+std::vector<double> toml_numbers(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    return need(doc, t, key, TomlValue::Kind::NumberArray, "an array of numbers").numbers;
+}
+
+void toml_allow_only(const TomlDoc& doc, const TomlTable& t, const std::vector<std::string>& allowed) {
+    for (const auto& [key, v] : t.values)
+        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+            std::string list;
+            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+            fail(doc.path, "line " + std::to_string(v.line),
+                 "unknown key '" + key + "'" + (t.name.empty() ? "" : " in [" + t.name + "]") + " (allowed: " + list + ")");
+        }
+}
+
+}  // namespace flotsam
