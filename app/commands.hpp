@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 namespace flotsam {
 
@@ -14,6 +15,11 @@ std::string join_command_line(int argc, char** argv);
 // Adds --config FILE (TOML, keys are the long option names, unknown keys rejected) to a
 // subcommand.
 void add_config_option(CLI::App* sub);
+
+// The arguments (without argv[0]) with a subcommand's --config FILE replaced by the
+// settings it holds; options given on the command line win over the file. Throws
+// flotsam::Error naming the file and key for an unknown setting.
+std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** argv);
 
 void register_hydro_commands(CLI::App& app, const std::string& command_line);     // hydro/cli.cpp
 void register_data_commands(CLI::App& app, const std::string& command_line);      // data/cli.cpp: scene, boundary

@@ -3,6 +3,7 @@
 // or from a TOML file given with --config, where unknown keys are an error.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 
@@ -20,7 +21,9 @@ int main(int argc, char** argv) {
     flotsam::register_debris_commands(app, command_line);
     flotsam::register_pipeline_commands(app, command_line);
     try {
-        app.parse(argc, argv);
+        std::vector<std::string> args = flotsam::expand_config_files(app, argc, argv);
+        std::reverse(args.begin(), args.end());  // CLI11 takes the vector last-first
+        app.parse(args);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const flotsam::Error& e) {

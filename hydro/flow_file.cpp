@@ -91,7 +91,7 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
             return v;
         };
         geta_ = gauge_var("gauge_eta", "sea_surface_height_above_mean_sea_level", "m", "water level above still water at the gauge (bed level where dry)");
-        gh_ = gauge_var("gauge_h", flow_names::depth, "m", "water depth at the gauge");
+        gh_ = gauge_var("gauge_h", "", "m", "water depth at the gauge");  // no standard_name: h alone carries it
         gu_ = gauge_var("gauge_u", "", "m s-1", "x velocity at the gauge");
         gv_ = gauge_var("gauge_v", "", "m s-1", "y velocity at the gauge");
 

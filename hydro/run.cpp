@@ -1,0 +1,361 @@
+#include "hydro/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/netcdf.hpp"
+#include "common/progress.hpp"
+#include "common/sha256.hpp"
+#include "common/version.hpp"
+
+namespace flotsam::hydro {
+
+std::string checkpoint_path(const std::string& out_file) { return out_file + ".checkpoint.nc"; }
+
+namespace {
+
+constexpr double kFill = 9.969209968386869e36;  // NetCDF's default float fill
+
+struct Window {
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // inclusive interior cell ranges
+    Grid grid;
+};
+
+Window make_window(const Grid& g, const std::optional<std::array<double, 4>>& w) {
+    Window out;
+    if (!w) {
+        out.i1 = g.nx - 1;
+        out.j1 = g.ny - 1;
+    } else {
+        const auto& b = *w;
+        if (!(b[0] < b[1] && b[2] < b[3])) fail("", "--output-window", "needs x_min < x_max and y_min < y_max");
+        out.i0 = g.cell_i(b[0]);
+        out.i1 = g.cell_i(b[1]);
+        out.j0 = g.cell_j(b[2]);
+        out.j1 = g.cell_j(b[3]);
+    }
+    out.grid = Grid{out.i1 - out.i0 + 1, out.j1 - out.j0 + 1, g.x(out.i0), g.y(out.j0), g.dx, g.dy};
+    return out;
+}
+
+std::vector<double> frame_times(double duration, double interval) {
+    if (!(interval > 0.0)) fail("", "--output-interval", "must be positive");
+    std::vector<double> t;
+    const long n = long(std::floor(duration / interval + 1e-9));
+    for (long k = 0; k <= n; ++k) t.push_back(double(k) * interval);
+    if (t.back() < duration - 1e-9) t.push_back(duration);
+    return t;
+}
+
+struct GaugeSample {
+    double eta, h, u, v;
+};
+
+// Accumulated over the run on the output window.
+struct Summary {
+    std::vector<float> max_depth, max_speed, arrival;
+};
+
+class Gauges {
+public:
+    Gauges(const std::vector<FlowGauge>& gauges, const Grid& g, double interval, double duration) : interval_(interval) {
+        for (const auto& p : gauges) {
+            if (!g.contains(p.x, p.y)) {
+                std::string at = std::to_string(p.x);
+                at += ", ";
+                at += std::to_string(p.y);
+                fail("", "gauge '" + p.name + "'", "position (" + at + ") is outside the grid");
+            }
+            cells_.push_back({g.cell_i(p.x), g.cell_j(p.y)});
+        }
+        samples_ = gauges.empty() ? 0 : std::size_t(std::floor(duration / interval + 1e-9)) + 1;
+    }
+    std::size_t samples() const { return samples_; }
+    std::size_t count() const { return cells_.size(); }
+    std::vector<GaugeSample> read(const Solver& s) const {
+        std::vector<GaugeSample> out;
+        for (auto [i, j] : cells_) out.push_back({s.level(i, j), s.depth(i, j), s.x_velocity(i, j), s.y_velocity(i, j)});
+        return out;
+    }
+    // Records every sample time in (t0, t1] by linear interpolation between the states.
+    void record(double t0, const std::vector<GaugeSample>& a, double t1, const std::vector<GaugeSample>& b) {
+        while (next_ < samples_) {
+            const double ts = double(next_) * interval_;
+            if (ts > t1 + 1e-12) break;
+            if (ts >= t0 - 1e-12) {
+                const double w = t1 > t0 ? std::clamp((ts - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+                time_.push_back(ts);
+                for (std::size_t g = 0; g < a.size(); ++g) {
+                    eta_.push_back(float((1 - w) * a[g].eta + w * b[g].eta));
+                    h_.push_back(float((1 - w) * a[g].h + w * b[g].h));
+                    u_.push_back(float((1 - w) * a[g].u + w * b[g].u));
+                    v_.push_back(float((1 - w) * a[g].v + w * b[g].v));
+                }
+            }
+            ++next_;
+        }
+    }
+    void flush(FlowWriter& w) {
+        w.write_gauges(flushed_, time_.size(), time_, eta_, h_, u_, v_);
+        flushed_ += time_.size();
+        time_.clear(); eta_.clear(); h_.clear(); u_.clear(); v_.clear();
+    }
+    std::size_t next() const { return next_; }
+    void resume_at(std::size_t next) { next_ = flushed_ = next; }
+
+private:
+    double interval_;
+    std::vector<std::pair<int, int>> cells_;
+    std::size_t samples_ = 0, next_ = 0, flushed_ = 0;
+    std::vector<double> time_;
+    std::vector<float> eta_, h_, u_, v_;
+};
+
+void write_frame(FlowWriter& w, std::size_t k, const Solver& s, const Window& win) {
+    const std::size_t n = win.grid.size();
+    std::vector<float> h(n), u(n), v(n);
+    for (int j = win.j0; j <= win.j1; ++j)
+        for (int i = win.i0; i <= win.i1; ++i) {
+            const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
+            h[q] = float(s.depth(i, j));
+            u[q] = float(s.x_velocity(i, j));
+            v[q] = float(s.y_velocity(i, j));
+        }
+    w.write_frame(k, h, u, v);
+}
+
+void accumulate(Summary& sum, const Solver& s, const Window& win, double t, double arrival_depth) {
+#pragma omp parallel for schedule(static)
+    for (int j = win.j0; j <= win.j1; ++j)
+        for (int i = win.i0; i <= win.i1; ++i) {
+            const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
+            const double h = s.depth(i, j);
+            const float speed = float(std::hypot(s.x_velocity(i, j), s.y_velocity(i, j)));
+            sum.max_depth[q] = std::max(sum.max_depth[q], float(h));
+            sum.max_speed[q] = std::max(sum.max_speed[q], speed);
+            if (h > arrival_depth && sum.arrival[q] == float(kFill)) sum.arrival[q] = float(t);
+        }
+}
+
+// ---- checkpoints ----
+
+struct Checkpoint {
+    double time = 0.0;
+    long steps = 0;
+    std::size_t next_frame = 0, next_gauge = 0;
+    double volume_start = 0.0;
+    double pump_level = 0.0;
+    bool pump_stopped = false;
+    std::string config_sha;
+};
+
+void write_checkpoint(const std::string& path, const Solver& s, const Summary& sum, const Checkpoint& c) {
+    AtomicOutput out(path);
+    {
+        nc::File f = nc::File::create(out.temp_path());
+        const int dp = f.def_dim("padded_cell", s.depth_data().size());
+        const int dw = f.def_dim("window_cell", sum.max_depth.size());
+        const int vh = f.def_var("h", NC_DOUBLE, {dp}), vhu = f.def_var("hu", NC_DOUBLE, {dp}), vhv = f.def_var("hv", NC_DOUBLE, {dp});
+        const int vmd = f.def_var("max_depth", NC_FLOAT, {dw}), vms = f.def_var("max_speed", NC_FLOAT, {dw}), va = f.def_var("arrival_time", NC_FLOAT, {dw});
+        f.put_att(NC_GLOBAL, "time", c.time);
+        f.put_att(NC_GLOBAL, "steps", double(c.steps));
+        f.put_att(NC_GLOBAL, "next_frame", double(c.next_frame));
+        f.put_att(NC_GLOBAL, "next_gauge", double(c.next_gauge));
+        f.put_att(NC_GLOBAL, "volume_start", c.volume_start);
+        f.put_att(NC_GLOBAL, "pump_level", c.pump_level);
+        f.put_att(NC_GLOBAL, "pump_stopped", c.pump_stopped ? 1 : 0);
+        f.put_att(NC_GLOBAL, "config_sha256", c.config_sha);
+        f.enddef();
+        f.put(vh, s.depth_data());
+        f.put(vhu, s.x_discharge_data());
+        f.put(vhv, s.y_discharge_data());
+        f.put(vmd, sum.max_depth);
+        f.put(vms, sum.max_speed);
+        f.put(va, sum.arrival);
+        f.close();
+    }
+    out.commit();
+}
+
+Checkpoint read_checkpoint(const std::string& path, Solver& s, Summary& sum) {
+    const nc::File f = nc::File::open_read(path);
+    auto need = [&](const char* name) {
+        auto v = f.att_double(NC_GLOBAL, name);
+        if (!v) fail(path, std::string("attribute '") + name + "'", "missing: not a flotsam checkpoint");
+        return *v;
+    };
+    Checkpoint c;
+    c.time = need("time");
+    c.steps = long(need("steps"));
+    c.next_frame = std::size_t(need("next_frame"));
+    c.next_gauge = std::size_t(need("next_gauge"));
+    c.volume_start = need("volume_start");
+    c.pump_level = need("pump_level");
+    c.pump_stopped = need("pump_stopped") != 0.0;
+    c.config_sha = f.att_text(NC_GLOBAL, "config_sha256").value_or("");
+    auto h = f.get_double(f.var("h"));
+    if (h.size() != s.depth_data().size()) fail(path, "variable 'h'", "size does not match this scene's grid");
+    s.depth_data() = std::move(h);
+    s.x_discharge_data() = f.get_double(f.var("hu"));
+    s.y_discharge_data() = f.get_double(f.var("hv"));
+    sum.max_depth = f.get_float(f.var("max_depth"));
+    sum.max_speed = f.get_float(f.var("max_speed"));
+    sum.arrival = f.get_float(f.var("arrival_time"));
+    return c;
+}
+
+std::string boundary_files(const SolverDef& d) {
+    std::string s;
+    const BoundaryDef* sides[4] = {&d.west, &d.east, &d.south, &d.north};
+    const char* names[4] = {"west", "east", "south", "north"};
+    for (int k = 0; k < 4; ++k)
+        if (!sides[k]->series_file.empty()) s += std::string(s.empty() ? "" : "; ") + names[k] + ": " + sides[k]->series_file;
+    return s;
+}
+
+std::string boundary_checksums(const SolverDef& d) {
+    std::string s;
+    for (const BoundaryDef* b : {&d.west, &d.east, &d.south, &d.north})
+        if (!b->series_file.empty()) s += std::string(s.empty() ? "" : "; ") + "sha256:" + sha256_file(b->series_file);
+    return s;
+}
+
+}  // namespace
+
+RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
+    if (run.out_file.empty()) fail("", "--out", "an output file is required");
+    if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
+    const Scene scene = read_scene(run.scene_file);
+    // Boundary series must cover the whole run before any work starts.
+    for (const BoundaryDef* b : {&solver_def.west, &solver_def.east, &solver_def.south, &solver_def.north})
+        if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
+    Solver solver(scene, solver_def);
+    const Window win = make_window(scene.grid, run.window);
+    const std::vector<double> times = frame_times(run.duration, run.output_interval);
+
+    std::vector<FlowGauge> gauge_points;
+    for (const auto& p : scene.points)
+        if (p.kind == "gauge") gauge_points.push_back({p.name, p.x, p.y});
+    for (const auto& g : run.gauges) gauge_points.push_back(g);
+    Gauges gauges(gauge_points, scene.grid, run.gauge_interval, run.duration);
+
+    Summary sum;
+    sum.max_depth.assign(win.grid.size(), 0.0f);
+    sum.max_speed.assign(win.grid.size(), 0.0f);
+    sum.arrival.assign(win.grid.size(), float(kFill));
+
+    const std::string config_sha = sha256_hex(run.config_text + "\n" + sha256_file(run.scene_file) + "\n" + boundary_checksums(solver_def));
+    AtomicOutput out(run.out_file);
+    const std::string ckpt = checkpoint_path(run.out_file);
+    std::optional<FlowWriter> writer;
+    Checkpoint state;
+    if (run.restart) {
+        if (!std::filesystem::exists(ckpt)) fail(ckpt, "", "no checkpoint to restart from");
+        if (!std::filesystem::exists(out.temp_path())) fail(out.temp_path(), "", "the partial output of the interrupted run is missing");
+        state = read_checkpoint(ckpt, solver, sum);
+        if (state.config_sha != config_sha)
+            fail(ckpt, "", "was written with other settings, scene or boundary files; rerun without --restart");
+        solver.set_time(state.time);
+        if (state.pump_stopped) solver.set_pump_level_at_stop(state.pump_level);
+        writer.emplace(FlowWriter::reopen(out.temp_path()));
+        gauges.resume_at(state.next_gauge);
+    } else {
+        FlowFileDef fd;
+        fd.window = win.grid;
+        fd.z.resize(win.grid.size());
+        for (int j = win.j0; j <= win.j1; ++j)
+            for (int i = win.i0; i <= win.i1; ++i) fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+        fd.frame_times = times;
+        fd.gauges = gauge_points;
+        fd.gauge_samples = gauges.samples();
+        fd.gauge_interval = run.gauge_interval;
+        fd.arrival_depth = run.arrival_depth;
+        fd.deflate_level = run.deflate_level;
+        fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
+        fd.attributes["source"] = version_string() + "; finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, implicit Manning";
+        fd.attributes["history"] = run.command_line;
+        fd.attributes["flotsam_config"] = run.config_text;
+        fd.attributes["scene_file"] = run.scene_file;
+        fd.attributes["scene_title"] = scene.title;
+        fd.attributes["realisation"] = std::to_string(run.realisation);
+        fd.attributes["boundary_file"] = boundary_files(solver_def);
+        fd.attributes["boundary_checksum"] = boundary_checksums(solver_def);
+        fd.attributes["dry_depth_m"] = std::to_string(solver_def.dry_depth);
+        writer.emplace(out.temp_path(), fd);
+        state.volume_start = solver.volume();
+        write_frame(*writer, 0, solver, win);
+        state.next_frame = 1;
+        accumulate(sum, solver, win, 0.0, run.arrival_depth);
+        gauges.record(0.0, gauges.read(solver), 0.0, gauges.read(solver));
+    }
+
+    Progress progress(run.label, run.duration, 10.0, run.quiet);
+    RunResult res;
+    const auto wall0 = std::chrono::steady_clock::now();
+    double next_checkpoint = run.checkpoint_interval > 0.0 ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval : 1e300;
+    long steps = state.steps;
+    auto before = gauges.read(solver);
+    bool stopped = false;
+    while (state.next_frame < times.size()) {
+        const double t0 = solver.time();
+        const double target = times[state.next_frame];
+        double dt = solver.stable_dt();
+        const bool reaches = t0 + dt >= target - 1e-12;
+        if (reaches) dt = target - t0;
+        solver.step(dt);
+        if (reaches) solver.set_time(target);  // land exactly on the frame time
+        ++steps;
+        const double t1 = solver.time();
+        auto after = gauges.read(solver);
+        gauges.record(t0, before, t1, after);
+        before = std::move(after);
+        accumulate(sum, solver, win, t1, run.arrival_depth);
+        if (reaches) {
+            write_frame(*writer, state.next_frame, solver, win);
+            ++state.next_frame;
+            gauges.flush(*writer);
+        }
+        if (t1 >= next_checkpoint - 1e-12 || (run.stop_after >= 0.0 && t1 >= run.stop_after)) {
+            gauges.flush(*writer);
+            writer->sync();
+            state.time = t1;
+            state.steps = steps;
+            state.next_gauge = gauges.next();
+            state.pump_stopped = solver_def.west.kind == BoundaryKind::pump && t1 >= solver_def.west.pump_stop;
+            state.pump_level = solver.pump_level_at_stop();
+            state.config_sha = config_sha;
+            write_checkpoint(ckpt, solver, sum, state);
+            next_checkpoint += run.checkpoint_interval;
+            if (run.stop_after >= 0.0 && t1 >= run.stop_after) { stopped = true; break; }
+        }
+        progress.update(t1, dt, steps);
+    }
+    res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    res.steps = steps - state.steps * (run.restart ? 1 : 0);
+    res.simulated = solver.time();
+    res.cell_updates_per_second = double(res.steps) * double(scene.grid.size()) / std::max(res.wall_seconds, 1e-9);
+    res.volume_start = state.volume_start;
+    res.volume_end = solver.volume();
+    res.negative_depth_fixes = solver.stats().negative_depth_fixes;
+    if (stopped) {
+        writer->close();
+        out.keep_partial();
+        res.completed = false;
+        return res;
+    }
+    gauges.flush(*writer);
+    writer->write_summary(sum.max_depth, sum.max_speed, sum.arrival);
+    writer->close();
+    out.commit();
+    std::filesystem::remove(ckpt);
+    progress.finish(solver.time(), steps);
+    res.completed = true;
+    res.file_bytes = std::filesystem::file_size(run.out_file);
+    return res;
+}
+
+}  // namespace flotsam::hydro

@@ -1,0 +1,51 @@
+// One hydrodynamic run: a scene, a solver configuration, and what to store. Writes the
+// flow file (flow_file.hpp) under a temporary name and renames it when complete;
+// checkpoints let an interrupted run continue to the same result.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hydro/flow_file.hpp"
+#include "hydro/solver.hpp"
+
+namespace flotsam::hydro {
+
+struct RunDef {
+    std::string scene_file;
+    std::string out_file;
+    double duration = 420.0;                 // [s] simulated time
+    double output_interval = 1.0;            // [s] between stored frames
+    std::optional<std::array<double, 4>> window;  // x_min, x_max, y_min, y_max [m] of stored frames
+    double gauge_interval = 0.05;            // [s] between gauge samples
+    std::vector<FlowGauge> gauges;           // added to the scene's gauge points
+    double arrival_depth = 0.025;            // [m] threshold of the arrival-time map (the draft)
+    double checkpoint_interval = 0.0;        // [s] simulated time between checkpoints; 0: none
+    bool restart = false;                    // continue from <out>.checkpoint.nc
+    double stop_after = -1.0;                // [s] stop (as if interrupted) once past this time; < 0: never
+    int realisation = -1;                    // boundary realisation id, recorded in the file
+    int deflate_level = 1;                   // 0..9
+    std::string command_line;                // for `history`
+    std::string config_text;                 // effective configuration (TOML), for `flotsam_config`
+    std::string label = "hydro";             // progress label
+    bool quiet = false;
+};
+
+struct RunResult {
+    bool completed = false;                  // false when stopped by stop_after
+    long steps = 0;
+    double simulated = 0.0;                  // [s]
+    double wall_seconds = 0.0;               // stepping only, excluding setup
+    double cell_updates_per_second = 0.0;    // interior cells x steps / wall_seconds
+    double volume_start = 0.0, volume_end = 0.0;  // [m^3]
+    long negative_depth_fixes = 0;
+    std::size_t file_bytes = 0;
+};
+
+RunResult run_hydro(const RunDef& run, const SolverDef& solver_def);
+
+// Path of the checkpoint that belongs to an output file.
+std::string checkpoint_path(const std::string& out_file);
+
+}  // namespace flotsam::hydro

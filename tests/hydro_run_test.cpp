@@ -1,0 +1,184 @@
+// Runs of the hydro driver: the stored file, restart, determinism, errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.hpp"
+#include "common/netcdf.hpp"
+#include "common/sha256.hpp"
+#include "hydro/run.hpp"
+#include "tests/test_support.hpp"
+
+using namespace flotsam;
+using namespace flotsam::hydro;
+
+namespace {
+
+// A 1 m x 0.4 m channel: a slope up to a shore with two 5 cm buildings, driven by a
+// level series on the west.
+std::string make_scene(const std::string& dir) {
+    Scene s;
+    s.grid = Grid{50, 20, 0.01, 0.01, 0.02, 0.02};
+    s.z.resize(s.grid.size());
+    s.building.assign(s.grid.size(), 0);
+    for (int j = 0; j < 20; ++j)
+        for (int i = 0; i < 50; ++i) {
+            double z = -0.05 + 0.07 * s.grid.x(i);
+            const bool bldg = (i >= 35 && i < 40 && j >= 4 && j < 8) || (i >= 42 && i < 46 && j >= 12 && j < 16);
+            if (bldg) z += 0.05;
+            s.z[s.grid.index(i, j)] = z;
+            s.building[s.grid.index(i, j)] = bldg ? 1 : 0;
+        }
+    s.points.push_back({"G1", "gauge", 0.3, 0.2, 0.0});
+    s.title = "test channel";
+    const std::string path = dir + "/scene.nc";
+    write_scene(path, s, "test");
+    return path;
+}
+
+std::string make_series(const std::string& dir) {
+    const std::string path = dir + "/level.csv";
+    std::ofstream f(path);
+    f << "time,eta\n";
+    for (int k = 0; k <= 200; ++k) f << k * 0.1 << "," << 0.03 * std::sin(0.1 * k * 0.1) << "\n";
+    return path;
+}
+
+RunDef base_run(const std::string& scene, const std::string& out) {
+    RunDef r;
+    r.scene_file = scene;
+    r.out_file = out;
+    r.duration = 6.0;
+    r.output_interval = 0.5;
+    r.gauge_interval = 0.1;
+    r.quiet = true;
+    r.config_text = "test";
+    r.command_line = "test";
+    return r;
+}
+
+SolverDef level_def(const std::string& series) {
+    SolverDef d = default_solver_def();
+    d.west.series_file = series;
+    return d;
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try { f(); } catch (const Error& e) { return e.what(); }
+    return "";
+}
+
+}  // namespace
+
+TEST(HydroRun, WritesAReadableCfFlowFile) {
+    const auto dir = test::scratch_dir("hydro_cf");
+    const auto scene = make_scene(dir);
+    const auto series = make_series(dir);
+    RunDef r = base_run(scene, dir + "/flow.nc");
+    r.window = std::array<double, 4>{0.2, 0.8, 0.0, 0.4};
+    const RunResult res = run_hydro(r, level_def(series));
+    ASSERT_TRUE(res.completed);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/flow.nc.part"));
+    EXPECT_FALSE(std::filesystem::exists(checkpoint_path(dir + "/flow.nc")));
+
+    const nc::File f = nc::File::open_read(dir + "/flow.nc");
+    EXPECT_EQ(f.att_text(NC_GLOBAL, "Conventions").value_or(""), "CF-1.11");
+    EXPECT_EQ(f.att_text(f.var("time"), "units").value_or(""), "seconds since 2000-01-01 00:00:00");
+    EXPECT_EQ(f.dim_length("time"), 13u);
+    EXPECT_EQ(f.dim_length("x"), 31u);  // cells 10..40 of the window
+    const auto h_var = f.find_by_standard_name("sea_floor_depth_below_sea_surface");
+    ASSERT_TRUE(h_var.has_value());
+    EXPECT_EQ(f.var_name(*h_var), "h");
+    EXPECT_EQ(f.att_text(*h_var, "units").value_or(""), "m");
+    EXPECT_TRUE(f.find_by_standard_name("sea_water_x_velocity").has_value());
+    EXPECT_NE(f.att_text(NC_GLOBAL, "boundary_checksum").value_or("").find("sha256:" + sha256_file(series)), std::string::npos);
+    const auto h = f.get_float(*h_var);
+    const auto u = f.get_float(f.var("u"));
+    const auto z = f.get_float(f.var("z"));
+    for (std::size_t k = 0; k < h.size(); ++k) {
+        ASSERT_TRUE(std::isfinite(h[k]) && std::isfinite(u[k]));
+        ASSERT_GE(h[k], 0.0f);
+        if (h[k] == 0.0f) { ASSERT_EQ(u[k], 0.0f); }
+    }
+    // Frame 0 is still water: h = max(0, -z).
+    for (std::size_t k = 0; k < z.size(); ++k) EXPECT_NEAR(h[k], std::max(0.0f, -z[k]), 1e-6f);
+    // The roofs (5 cm above the shore) stay dry all run; the wave wets the lower shore.
+    const auto maxd = f.get_float(f.var("max_depth"));
+    EXPECT_EQ(maxd[std::size_t(5 * 31 + (36 - 10))], 0.0f);
+    const auto eta = f.get_float(f.var("gauge_eta"));
+    EXPECT_EQ(f.dim_length("gauge_time"), 61u);
+    EXPECT_GT(*std::max_element(eta.begin(), eta.end()), 0.01f);
+}
+
+TEST(HydroRun, RestartContinuesToTheSameResultAndSameInputsGiveSameBytes) {
+    const auto dir = test::scratch_dir("hydro_restart");
+    const auto scene = make_scene(dir);
+    const auto series = make_series(dir);
+    const SolverDef d = level_def(series);
+    run_hydro(base_run(scene, dir + "/a.nc"), d);
+    run_hydro(base_run(scene, dir + "/b.nc"), d);
+    EXPECT_EQ(sha256_file(dir + "/a.nc"), sha256_file(dir + "/b.nc"));
+
+    RunDef r = base_run(scene, dir + "/c.nc");
+    r.checkpoint_interval = 1.0;
+    r.stop_after = 2.7;
+    const RunResult first = run_hydro(r, d);
+    EXPECT_FALSE(first.completed);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/c.nc"));  // nothing that looks finished
+    EXPECT_TRUE(std::filesystem::exists(dir + "/c.nc.part"));
+    r.stop_after = -1.0;
+    r.restart = true;
+    ASSERT_TRUE(run_hydro(r, d).completed);
+    const nc::File a = nc::File::open_read(dir + "/a.nc"), c = nc::File::open_read(dir + "/c.nc");
+    for (const char* name : {"h", "u", "v", "max_depth", "max_speed", "gauge_eta"})
+        EXPECT_EQ(a.get_float(a.var(name)), c.get_float(c.var(name))) << name;
+
+    // A restart with other settings is refused.
+    r.restart = false;
+    r.checkpoint_interval = 1.0;
+    r.stop_after = 1.5;
+    run_hydro(r, d);
+    r.restart = true;
+    r.stop_after = -1.0;
+    r.config_text = "other";
+    EXPECT_NE(error_of([&] { run_hydro(r, d); }).find("other settings"), std::string::npos);
+}
+
+TEST(HydroRun, BadInputsNameFileAndProblem) {
+    const auto dir = test::scratch_dir("hydro_bad");
+    const auto scene = make_scene(dir);
+    std::ofstream(dir + "/short.csv") << "time,eta\n0,0\n1,0.01\n";
+    auto msg = error_of([&] { run_hydro(base_run(scene, dir + "/x.nc"), level_def(dir + "/short.csv")); });
+    EXPECT_NE(msg.find("short.csv: covers [0"), std::string::npos) << msg;
+    // A scene with NaN in z.
+    Scene s = read_scene(scene);
+    s.z[7] = std::nan("");
+    {
+        nc::File f = nc::File::create(dir + "/nan.nc");
+        const int dx = f.def_dim("x", 50), dy = f.def_dim("y", 20);
+        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy}), vz = f.def_var("z", NC_DOUBLE, {dy, dx});
+        f.enddef();
+        f.put(vx, s.grid.xs());
+        f.put(vy, s.grid.ys());
+        f.put(vz, s.z);
+    }
+    msg = error_of([&] { run_hydro(base_run(dir + "/nan.nc", dir + "/y.nc"), level_def(make_series(dir))); });
+    EXPECT_NE(msg.find("nan.nc: variable 'z': value at flat index 7"), std::string::npos) << msg;
+    std::string out;
+    EXPECT_NE(test::run_cli("hydro --scene " + scene + " --out " + dir + "/z.nc --west bogus", &out), 0);
+    EXPECT_NE(out.find("--west: unknown boundary 'bogus'"), std::string::npos) << out;
+}
+
+TEST(HydroRun, XarrayDecodesTimeAndFindsStandardNames) {
+    const auto dir = test::scratch_dir("hydro_xr");
+    const auto scene = make_scene(dir);
+    run_hydro(base_run(scene, dir + "/flow.nc"), level_def(make_series(dir)));
+    const std::string cmd = "/usr/bin/python3 " FLOTSAM_SOURCE_DIR "/pipelines/inspect_flow.py " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
+    const int rc = std::system(cmd.c_str());
+    std::ifstream f(dir + "/out.txt");
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(rc, 0) << text;
+    EXPECT_NE(text.find("time decoded as datetime64"), std::string::npos) << text;
+}
