@@ -3,6 +3,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace flotsam {
