@@ -74,6 +74,7 @@ struct BodyState {
     double vx = 0.0, vy = 0.0;    // centre velocity [m/s]
     double omega = 0.0;           // yaw rate about the centre [rad/s]
     double pivot_rate = 0.0;      // yaw rate about the contact centroid while the axis is shifted [rad/s]
+    double pivot_ax = 0.0, pivot_ay = 0.0;  // that centroid relative to the centre [m]
     double torque_prev = 0.0;     // T' of the last step: flow torque without friction [N m]
     double ax_prev = 0.0, ay_prev = 0.0, alpha_prev = 0.0;  // last accelerations, explicit added mass only [m/s², rad/s²]
     double time = 0.0;            // [s]

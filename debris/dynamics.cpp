@@ -54,6 +54,10 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     const Inertia eff = effective_inertia(b, submerged, rho);
     const Box box = Box::make(xg, s.theta, def.length, def.width);
     const Vec2 V{s.vx, s.vy};
+    // Velocity of the body point at r from the centre: translation, rotation about the
+    // centre, and rotation about the pivot while the axis is shifted.
+    const Vec2 pivot_arm{s.pivot_ax, s.pivot_ay};
+    auto point_velocity = [&](Vec2 r) { return V + spin(s.omega, r) + spin(s.pivot_rate, r - pivot_arm); };
 
     // ---- hydrodynamic force F and its torque T' about the centre (no friction) ----
     Vec2 F = (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
@@ -72,7 +76,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
             const FlowPoint fp = ctx.flow.sample(xg.x + r.x, xg.y + r.y, t);
             const double wetted = std::min(b.draft, fp.depth);
             if (wetted <= 0.0) continue;
-            const Vec2 u_rel = Vec2{fp.u, fp.v} - (V + spin(s.omega, r));
+            const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);
             const Vec2 dF = face_drag(u_rel, n, segment * wetted, def.cd1, def.cd2, rho);
             F += dF;
             T += cross(r, dF);
@@ -130,6 +134,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     // ---- axis shift (LC): rotate about the contact centroid (paper Eqs. 6-10) ----
     Vec2 shift;
     double turn = 0.0, pivot_rate = 0.0;
+    Vec2 pivot_arm_new;
     if (def.contact == ContactModel::local && def.axis_shift && !patches.empty() && s.omega * omega_new <= 0.0 &&
         s.torque_prev * T >= 0.0 && norm(F) <= capacity) {
         Vec2 r_sub;  // contact-area centroid relative to the centre
@@ -148,6 +153,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
             pivot_rate = w;
             turn = w * dt;
             shift = (r_sub + rotate(arm, turn)) - arm;  // x_g* − x_g^n
+            pivot_arm_new = rotate(r_sub, turn);         // the axis stays put; seen from the moved centre
             if (w != 0.0) ++stats.axis_shifts;
         }
     }
@@ -161,6 +167,8 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     s.vy = V_new.y;
     s.omega = omega_new;
     s.pivot_rate = pivot_rate;
+    s.pivot_ax = pivot_rate != 0.0 ? pivot_arm_new.x : 0.0;
+    s.pivot_ay = pivot_rate != 0.0 ? pivot_arm_new.y : 0.0;
     s.x += dt * V_new.x + shift.x;
     s.y += dt * V_new.y + shift.y;
     s.theta += dt * omega_new + turn;

@@ -28,11 +28,11 @@ int find_field(const nc::File& f, const char* standard_name, const char* short_n
 }  // namespace
 
 FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file_(nc::File::open_read(path)), def_(def) {
-    for (const char* name : {"time", "x", "y", "z"})
-        if (!file_.has_var(name)) fail(path, "", std::string("not a flow file: no variable '") + name + "'");
     var_h_ = find_field(file_, flow_names::depth, "depth h");
     var_u_ = find_field(file_, flow_names::x_velocity, "x velocity u");
     var_v_ = find_field(file_, flow_names::y_velocity, "y velocity v");
+    for (const char* name : {"time", "x", "y", "z"})
+        if (!file_.has_var(name)) fail(path, "", std::string("not a flow file: no variable '") + name + "'");
     times_ = nc::read_finite(file_, "time");
     grid_ = grid_from_coordinates(nc::read_finite(file_, "x"), nc::read_finite(file_, "y"), path);
     if (grid_.nx < 2 || grid_.ny < 2) fail(path, "x, y", "a flow needs at least 2 x 2 cells");
