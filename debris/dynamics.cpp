@@ -113,47 +113,57 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     Vec2 V_new = V_trial;
     double omega_new = omega_trial;
     if (!patches.empty()) {
-        // Each patch resists the sliding of its own point (at the trial velocities). The
-        // result never reverses the motion within the step: a component that would change
-        // sign stops instead, which is also the static case (at rest and driving force
-        // below the capacity: the trial velocity is reversed, so the body stays).
+        // Each patch resists the sliding of its own point. Translation first, with the
+        // sliding at the trial velocities; then the torque, with the sliding at the new
+        // translation, so that a body friction has stopped is not turned by it (a static
+        // corner does not drive a rotation; a dragging one does). Neither reverses the
+        // motion within the step: a component that would change sign stops instead, which
+        // is also the static case (at rest with the driving force below the capacity, the
+        // trial velocity is reversed, so the body stays).
         Vec2 Ff;
-        double Tf = 0.0;
         for (const auto& p : patches) {
             capacity += p.capacity;
-            const Vec2 f = (-p.capacity) * unit_or_zero(V_trial + spin(omega_trial, p.r), sliding_epsilon);
-            Ff += f;
-            Tf += cross(p.r, f);
+            Ff += (-p.capacity) * unit_or_zero(V_trial + spin(omega_trial, p.r), sliding_epsilon);
         }
         V_new = V_trial + (dt / eff.mass) * Ff;
         if (dot(V_new, V_trial) <= 0.0) V_new = Vec2{};
+        double Tf = 0.0;
+        for (const auto& p : patches)
+            Tf += cross(p.r, (-p.capacity) * unit_or_zero(V_new + spin(omega_trial, p.r), sliding_epsilon));
         omega_new = omega_trial + dt / eff.inertia * Tf;
         if (omega_new * omega_trial <= 0.0) omega_new = 0.0;
     }
 
     // ---- axis shift (LC): rotate about the contact centroid (paper Eqs. 6-10) ----
+    // T' in the condition T'^n T'^(n+1) ≥ 0 is taken about the axis in use: the centre,
+    // or the contact centroid while the axis is shifted (choice: about the centre, T' of
+    // a body held at one corner in a uniform current is near zero and flips sign with
+    // round-off, which would end every pivot after a few steps).
     Vec2 shift;
-    double turn = 0.0, pivot_rate = 0.0;
+    double turn = 0.0, pivot_rate = 0.0, torque_ref = T;
+    bool shifted = false;
     Vec2 pivot_arm_new;
-    if (def.contact == ContactModel::local && def.axis_shift && !patches.empty() && s.omega * omega_new <= 0.0 &&
-        s.torque_prev * T >= 0.0 && norm(F) <= capacity) {
+    if (def.contact == ContactModel::local && def.axis_shift && !patches.empty()) {
         Vec2 r_sub;  // contact-area centroid relative to the centre
         double area = 0.0;
         for (const auto& p : patches) { r_sub += p.area * p.r; area += p.area; }
         r_sub = (1.0 / area) * r_sub;
-        const Vec2 arm = -1.0 * r_sub;  // centre relative to the axis
-        if (norm(arm) > 1e-9) {
+        const Vec2 arm = -1.0 * r_sub;                       // centre relative to the axis
+        const double torque_sub = T + cross(arm, F);         // flow force moved to the axis
+        const double torque_now = (s.flags & flag_pivoting) ? torque_sub : T;
+        if (norm(arm) > 1e-9 && s.omega * omega_new <= 0.0 && s.torque_prev * torque_now >= 0.0 && norm(F) <= capacity) {
+            shifted = true;
+            torque_ref = torque_sub;
             const double inertia_sub = eff.inertia + eff.mass * dot(arm, arm);  // parallel axis
-            const double torque_sub = T + cross(arm, F);                          // flow force moved to the axis
             double friction_torque = 0.0;
             for (const auto& p : patches) friction_torque += p.capacity * norm(p.r - r_sub);
             double w = s.pivot_rate + dt / inertia_sub * torque_sub;
-            const double brake = dt / inertia_sub * friction_torque;
+            const double brake = dt / inertia_sub * friction_torque;  // never reverses the pivot
             w = std::fabs(w) <= brake ? 0.0 : w - std::copysign(brake, w);
             pivot_rate = w;
             turn = w * dt;
-            shift = (r_sub + rotate(arm, turn)) - arm;  // x_g* − x_g^n
-            pivot_arm_new = rotate(r_sub, turn);         // the axis stays put; seen from the moved centre
+            shift = r_sub + rotate(arm, turn);   // x_g* − x_g^n = (x_sub − x_g^n) + R (x_g^n − x_sub)
+            pivot_arm_new = rotate(r_sub, turn); // the axis stays put; seen from the moved centre
             if (w != 0.0) ++stats.axis_shifts;
         }
     }
@@ -162,7 +172,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
         s.ay_prev = (V_new.y - V.y) / dt;
         s.alpha_prev = (omega_new - s.omega) / dt;
     }
-    s.torque_prev = T;
+    s.torque_prev = torque_ref;
     s.vx = V_new.x;
     s.vy = V_new.y;
     s.omega = omega_new;
@@ -180,7 +190,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
 
     std::uint8_t flags = s.flags & (flag_released | flag_colliding);
     if (!patches.empty()) flags |= flag_grounded;
-    if (pivot_rate != 0.0) flags |= flag_pivoting;
+    if (shifted) flags |= flag_pivoting;
     if (norm(V_new) > 0.0 || omega_new != 0.0 || pivot_rate != 0.0) flags |= flag_moving;
 
     // ---- obstacles ----
