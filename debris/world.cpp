@@ -59,7 +59,8 @@ void World::fit_window() {
 void World::advance_to(double t) {
     const long n = long(states_.size());
     std::vector<char> active(states_.size(), 1);
-    const int threads = def_.threads > 0 ? def_.threads : omp_get_max_threads();
+    // No more threads than bodies: an idle thread only adds a barrier per frame interval.
+    const int threads = std::max(1, std::min<int>(int(n), def_.threads > 0 ? def_.threads : omp_get_max_threads()));
     while (time_ < t) {
         const double next = flow_.next_frame_time(time_);
         const double t_next = next > time_ ? std::min(t, next) : t;  // past the last frame the flow is held
