@@ -1,6 +1,7 @@
 #include "debris/flow_reader.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -52,6 +53,7 @@ double FlowReader::next_frame_time(double t) const {
 }
 
 void FlowReader::load(std::size_t slot, std::size_t frame) {
+    const auto start_clock = std::chrono::steady_clock::now();
     const std::size_t ni = std::size_t(window_.i1 - window_.i0), nj = std::size_t(window_.j1 - window_.j0), n = ni * nj;
     const std::vector<std::size_t> start = {frame, std::size_t(window_.j0), std::size_t(window_.i0)}, count = {1, nj, ni};
     h_[slot].resize(n);
@@ -69,6 +71,7 @@ void FlowReader::load(std::size_t slot, std::size_t frame) {
     }
     slot_frame_[slot] = frame;
     ++frames_loaded_;
+    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
 }
 
 void FlowReader::prepare(double t) {

@@ -70,6 +70,7 @@ public:
     // The cells a box [x0, x1] × [y0, y1] needs for sampling (bilinear stencils included).
     CellWindow cells_for(double x0, double x1, double y0, double y1) const;
     std::size_t frames_loaded() const { return frames_loaded_; }
+    double load_seconds() const { return load_seconds_; }  // wall time spent reading frames [s]
 
     // Samples at time t in the prepared interval (clamped into it). The point must lie
     // in the window (cells_for of it contained in window()); outside, values are clamped.
@@ -96,6 +97,7 @@ private:
     std::size_t pair_ = 0;          // frames pair_ and pair_ + 1 (or pair_ twice at the end)
     bool loaded_ = false;
     std::size_t frames_loaded_ = 0;
+    double load_seconds_ = 0.0;
     // slot s: depth, x- and y-discharge on the window, row-major x fastest.
     std::vector<float> h_[2], qx_[2], qy_[2];
     std::size_t slot_frame_[2] = {std::size_t(-1), std::size_t(-1)};
