@@ -217,14 +217,19 @@ double stable_step(const StepContext& ctx, const BodyParams& b, const BodyState&
     return vertex_speed * ctx.def.dt_max > reach ? reach / vertex_speed : ctx.def.dt_max;
 }
 
+double window_pad(const StepContext& ctx, const BodyParams& b) {
+    const Grid& g = ctx.obstacles.grid();
+    const double reach = ctx.def.vertex_step_fraction * std::min(g.dx, g.dy);
+    return 0.5 * std::hypot(b.def.length, b.def.width) + 2.0 * reach + 2.0 * std::max(g.dx, g.dy);
+}
+
 bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double t_end, StepScratch& scratch) {
     const Grid& g = ctx.obstacles.grid();
     const double reach = ctx.def.vertex_step_fraction * std::min(g.dx, g.dy);
-    const double half_diagonal = 0.5 * std::hypot(b.def.length, b.def.width);
+    const double pad = window_pad(ctx, b);
     while (s.time < t_end) {
         double dt = std::min(stable_step(ctx, b, s), t_end - s.time);
         if (t_end - s.time - dt < 1e-9 * ctx.def.dt_max) dt = t_end - s.time;  // no sliver steps
-        const double pad = half_diagonal + 2.0 * reach + 2.0 * std::max(g.dx, g.dy);
         const CellWindow need = ctx.flow.cells_for(s.x - pad, s.x + pad, s.y - pad, s.y + pad);
         if (!ctx.flow.window().contains(need)) return false;
         // The limit is set from the velocity at the start of the step; if the flow

@@ -45,6 +45,10 @@ double step_body(const StepContext& ctx, const BodyParams& body, BodyState& stat
 // The step the vertex-speed limit allows at this state [s] (≤ def.dt_max).
 double stable_step(const StepContext& ctx, const BodyParams& body, const BodyState& state);
 
+// How far around the centre one step can need flow [m]: the body, the largest step
+// travel and the bilinear stencil. The loaded window must reach this far.
+double window_pad(const StepContext& ctx, const BodyParams& body);
+
 // Steps the body to t_end. Returns false, early, when the body would need flow outside
 // the reader's loaded window (the caller moves the window and calls again).
 bool advance_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double t_end, StepScratch& scratch);

@@ -44,8 +44,10 @@ void World::clear_event_flags() {
 
 void World::fit_window() {
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    const StepContext ctx{flow_, obstacles_, def_.step};
     for (std::size_t b = 0; b < states_.size(); ++b) {
-        const double r = 0.5 * std::hypot(params_[b].def.length, params_[b].def.width) + def_.window_margin;
+        // Beyond what one step needs (else a body could never be served), plus the margin.
+        const double r = window_pad(ctx, params_[b]) + def_.window_margin;
         x0 = std::min(x0, states_[b].x - r);
         x1 = std::max(x1, states_[b].x + r);
         y0 = std::min(y0, states_[b].y - r);
