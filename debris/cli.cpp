@@ -1,5 +1,156 @@
+// flotsam debris: replay one or more bodies through a stored flow and write their
+// trajectories (debris/trajectory_file.hpp).
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
 #include "app/commands.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "common/scene.hpp"
+#include "debris/trajectory_file.hpp"
+#include "debris/world.hpp"
 
 namespace flotsam {
-void register_debris_commands(CLI::App&, const std::string&) {}
+
+namespace {
+
+struct DebrisOptions {
+    std::string flow, scene, out = "trajectories.nc";
+    std::vector<std::string> starts, ats;
+    std::string contact = "local", collision = "multi", added_mass = "implicit";
+    debris::BodyDef body = debris::default_body_def();
+    bool no_axis_shift = false;
+    double output_interval = 0.5;  // [s]
+    double end_time = -1.0;        // [s]; < 0: the flow's last frame
+    double dt_max = debris::default_step_def().dt_max;
+    int threads = 0;
+    bool quiet = false;
+};
+
+// "x,y,heading_deg" → a body at that place.
+debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, int index) {
+    std::stringstream ss(text);
+    std::string part;
+    std::vector<double> v;
+    while (std::getline(ss, part, ',')) {
+        try {
+            std::size_t used = 0;
+            v.push_back(std::stod(part, &used));
+            if (used != part.size()) throw std::invalid_argument(part);
+        } catch (const std::exception&) {
+            fail("--at", text, "expected x,y,heading_deg (numbers)");
+        }
+    }
+    if (v.size() != 3) fail("--at", text, "expected x,y,heading_deg (three numbers)");
+    debris::BodyDef b = base;
+    b.name = "body" + std::to_string(index);
+    b.x = v[0];
+    b.y = v[1];
+    b.heading = v[2] * std::numbers::pi / 180.0;
+    return b;
+}
+
+void run_debris(const DebrisOptions& o, const std::string& command_line) {
+    debris::BodyDef base = o.body;
+    base.contact = debris::parse_contact_model(o.contact);
+    base.collision = debris::parse_collision_model(o.collision);
+    base.added_mass = debris::parse_added_mass(o.added_mass);
+    base.axis_shift = !o.no_axis_shift;
+    if (!(o.output_interval > 0)) fail("--output-interval", std::to_string(o.output_interval), "must be positive");
+    if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
+
+    std::unique_ptr<Scene> scene;
+    if (!o.scene.empty()) scene = std::make_unique<Scene>(read_scene(o.scene));
+    std::vector<debris::BodyDef> bodies;
+    std::vector<std::string> start_names;
+    for (const auto& name : o.starts) {
+        if (!scene) fail("--start", name, "needs --scene (the start points are named there)");
+        const ScenePoint* p = scene->find_point(name);
+        if (!p || p->kind != "start") fail(o.scene, "point '" + name + "'", "no start point of that name in the scene");
+        debris::BodyDef b = base;
+        b.name = name;
+        b.x = p->x;
+        b.y = p->y;
+        b.heading = p->heading_deg * std::numbers::pi / 180.0;
+        bodies.push_back(b);
+        start_names.push_back(name);
+    }
+    for (const auto& at : o.ats) {
+        bodies.push_back(parse_at(at, base, int(bodies.size())));
+        start_names.emplace_back();
+    }
+
+    debris::WorldDef wdef = debris::default_world_def();
+    wdef.step.dt_max = o.dt_max;
+    wdef.threads = o.threads;
+    std::vector<std::uint8_t> building;
+    {
+        const debris::FlowReader probe(o.flow, wdef.flow);  // only for its grid
+        if (scene) building = debris::buildings_on_grid(*scene, probe.grid());
+    }
+    debris::World world(o.flow, std::move(building), wdef);
+    for (const auto& b : bodies) {
+        if (!world.flow().grid().contains(b.x, b.y)) fail("body '" + b.name + "'", "position", "outside the flow grid");
+        world.add_body(b);
+    }
+    const double t0 = world.time();
+    const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
+    if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
+
+    debris::TrajectorySeries series;
+    debris::record(world, series);
+    Progress progress("debris", t_end, 10.0, o.quiet);
+    // Output times t0 + k Δ, computed from k (no accumulated round-off), ending at t_end.
+    for (long k = 1;; ++k) {
+        const double t = std::min(t0 + double(k) * o.output_interval, t_end);
+        world.advance_to(t);
+        debris::record(world, series);
+        long steps = 0;
+        for (const auto& s : world.stats()) steps += s.steps;
+        progress.update(t, o.output_interval, steps);
+        if (t >= t_end) break;
+    }
+    long steps = 0;
+    for (const auto& s : world.stats()) steps += s.steps;
+    progress.finish(t_end, steps);
+    debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names});
+}
+
+}  // namespace
+
+void register_debris_commands(CLI::App& app, const std::string& command_line) {
+    auto opts = std::make_shared<DebrisOptions>();
+    CLI::App* sub = app.add_subcommand("debris", "Replay debris bodies through a stored flow and write their trajectories");
+    add_config_option(sub);
+    sub->add_option("--flow", opts->flow, "flow file written by `flotsam hydro`")->required()->check(CLI::ExistingFile);
+    sub->add_option("--scene", opts->scene, "scene file: building mask and named start points")->check(CLI::ExistingFile);
+    sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
+    sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
+    sub->add_option("--out", opts->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
+    sub->add_option("--cd1", opts->body.cd1, "drag coefficient, flow toward a face")->capture_default_str();
+    sub->add_option("--cd2", opts->body.cd2, "drag coefficient, flow leaving a face")->capture_default_str();
+    sub->add_option("--cm", opts->body.cm, "inertia coefficient Cm = 1 + Ca")->capture_default_str();
+    sub->add_option("--mu", opts->body.mu, "friction coefficient with the ground")->capture_default_str();
+    sub->add_option("--restitution", opts->body.restitution, "coefficient of restitution against obstacles")->capture_default_str();
+    sub->add_option("--contact", opts->contact, "friction model: center (CC) or local (LC)")->capture_default_str();
+    sub->add_option("--collision", opts->collision, "collision model: single (SC) or multi (MC)")->capture_default_str();
+    sub->add_option("--added-mass", opts->added_mass, "implicit (stable) or explicit (for the stability study only)")->capture_default_str();
+    sub->add_flag("--no-axis-shift", opts->no_axis_shift, "local contact without the rotation about the contact centroid");
+    sub->add_option("--length", opts->body.length, "body length [m]")->capture_default_str();
+    sub->add_option("--width", opts->body.width, "body width [m]")->capture_default_str();
+    sub->add_option("--height", opts->body.height, "body height [m]")->capture_default_str();
+    sub->add_option("--specific-gravity", opts->body.specific_gravity, "body specific gravity")->capture_default_str();
+    sub->add_option("--samples-per-face", opts->body.samples_per_face, "drag sample points per side face")->capture_default_str();
+    sub->add_option("--step-tolerance", opts->body.step_tolerance, "ground above the bottom by more than this x draft blocks")
+        ->capture_default_str();
+    sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")->capture_default_str();
+    sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");
+    sub->add_option("--dt-max", opts->dt_max, "largest time step [s]")->capture_default_str();
+    sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
+    sub->add_flag("--quiet", opts->quiet, "no progress lines");
+    sub->callback([opts, command_line] { run_debris(*opts, command_line); });
+}
+
 }  // namespace flotsam

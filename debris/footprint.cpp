@@ -1,0 +1,81 @@
+#include "debris/footprint.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flotsam::debris {
+
+namespace {
+
+// A convex polygon of at most 8 vertices (a rectangle clipped by four half-planes).
+struct Poly {
+    Vec2 p[8];
+    int n = 0;
+};
+
+// Keeps the part of `in` where s * (coord - c) ≤ 0, coord = x (axis 0) or y (axis 1).
+Poly clip(const Poly& in, int axis, double c, double s) {
+    Poly out;
+    for (int k = 0; k < in.n; ++k) {
+        const Vec2 a = in.p[k], b = in.p[(k + 1) % in.n];
+        const double da = s * ((axis == 0 ? a.x : a.y) - c), db = s * ((axis == 0 ? b.x : b.y) - c);
+        if (da <= 0.0) out.p[out.n++] = a;
+        if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
+            const double f = da / (da - db);
+            out.p[out.n++] = a + f * (b - a);
+        }
+    }
+    return out;
+}
+
+// Area and centroid of a convex polygon (shoelace).
+void area_centroid(const Poly& q, double& area, Vec2& centroid) {
+    double a2 = 0.0, cx = 0.0, cy = 0.0;
+    for (int k = 0; k < q.n; ++k) {
+        const Vec2 p0 = q.p[k], p1 = q.p[(k + 1) % q.n];
+        const double c = cross(p0, p1);
+        a2 += c;
+        cx += (p0.x + p1.x) * c;
+        cy += (p0.y + p1.y) * c;
+    }
+    area = 0.5 * a2;
+    centroid = std::fabs(a2) > 0.0 ? Vec2{cx / (3.0 * a2), cy / (3.0 * a2)} : (q.n ? q.p[0] : Vec2{});
+}
+
+}  // namespace
+
+void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out) {
+    const auto corners = box.corners();
+    Poly body;
+    for (const Vec2& c : corners) body.p[body.n++] = c;
+    const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
+    const int j0 = std::max(0, int(std::floor((box.centre.y - box.extent_y() - grid.y0) / grid.dy + 0.5)));
+    const int j1 = std::min(grid.ny - 1, int(std::floor((box.centre.y + box.extent_y() - grid.y0) / grid.dy + 0.5)));
+    const int i0 = std::max(0, int(std::floor((box.centre.x - box.extent_x() - grid.x0) / grid.dx + 0.5)));
+    const int i1 = std::min(grid.nx - 1, int(std::floor((box.centre.x + box.extent_x() - grid.x0) / grid.dx + 0.5)));
+    for (int j = j0; j <= j1; ++j) {
+        const double yc = grid.y(j);
+        // The footprint cut to this row of cells, then to each cell of the row.
+        const Poly row = clip(clip(body, 1, yc - hy, -1.0), 1, yc + hy, 1.0);
+        if (row.n < 3) continue;
+        for (int i = i0; i <= i1; ++i) {
+            const double xc = grid.x(i);
+            const Vec2 cc{xc, yc};
+            FootprintPatch patch;
+            // Fast path: a cell whose four corners are inside the footprint is covered whole.
+            if (box.contains(cc + Vec2{hx, hy}) && box.contains(cc + Vec2{-hx, hy}) && box.contains(cc + Vec2{hx, -hy}) &&
+                box.contains(cc + Vec2{-hx, -hy})) {
+                patch.area = grid.dx * grid.dy;
+                patch.centroid = cc;
+            } else {
+                const Poly cell = clip(clip(row, 0, xc - hx, -1.0), 0, xc + hx, 1.0);
+                if (cell.n < 3) continue;
+                area_centroid(cell, patch.area, patch.centroid);
+                if (patch.area <= 0.0) continue;
+            }
+            out.push_back(patch);
+        }
+    }
+}
+
+}  // namespace flotsam::debris

@@ -1,0 +1,90 @@
+#include "debris/world.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace flotsam::debris {
+
+WorldDef default_world_def() { return WorldDef{}; }
+
+std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {
+    if (scene.building.empty()) return {};
+    std::vector<std::uint8_t> out(grid.size(), 0);
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            const double x = grid.x(i), y = grid.y(j);
+            if (!scene.grid.contains(x, y)) continue;
+            out[grid.index(i, j)] = scene.building[scene.grid.index(scene.grid.cell_i(x), scene.grid.cell_j(y))] ? 1 : 0;
+        }
+    return out;
+}
+
+World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def)
+    : def_(def), flow_(flow_path, def.flow) {
+    if (!building.empty() && building.size() != flow_.grid().size()) fail(flow_path, "building mask", "does not match the flow grid");
+    obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
+    time_ = flow_.start_time();
+}
+
+std::size_t World::add_body(const BodyDef& def) {
+    params_.push_back(make_body_params(def, def_.step.water_density));
+    states_.push_back(initial_state(def, time_));
+    window_fitted_ = false;
+    stats_.push_back({});
+    return states_.size() - 1;
+}
+
+void World::clear_event_flags() {
+    for (auto& s : states_) s.flags &= std::uint8_t(~flag_colliding);
+}
+
+void World::fit_window() {
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    const StepContext ctx{flow_, obstacles_, def_.step};
+    for (std::size_t b = 0; b < states_.size(); ++b) {
+        // Beyond what one step needs (else a body could never be served), plus the margin.
+        const double r = window_pad(ctx, params_[b]) + def_.window_margin;
+        x0 = std::min(x0, states_[b].x - r);
+        x1 = std::max(x1, states_[b].x + r);
+        y0 = std::min(y0, states_[b].y - r);
+        y1 = std::max(y1, states_[b].y + r);
+    }
+    if (x0 > x1) return;
+    flow_.set_window(flow_.cells_for(x0, x1, y0, y1));
+    window_fitted_ = true;
+}
+
+void World::advance_to(double t) {
+    const long n = long(states_.size());
+    std::vector<char> active(states_.size(), 1);
+    // No more threads than bodies: an idle thread only adds a barrier per frame interval.
+    const int threads = std::max(1, std::min<int>(int(n), def_.threads > 0 ? def_.threads : omp_get_max_threads()));
+    while (time_ < t) {
+        const double next = flow_.next_frame_time(time_);
+        const double t_next = next > time_ ? std::min(t, next) : t;  // past the last frame the flow is held
+        if (!window_fitted_) fit_window();
+        flow_.prepare(time_);
+        const StepContext ctx{flow_, obstacles_, def_.step};
+        std::fill(active.begin(), active.end(), 1);
+        for (;;) {
+#pragma omp parallel num_threads(threads)
+            {
+                StepScratch scratch;
+#pragma omp for schedule(dynamic, 1)
+                for (long b = 0; b < n; ++b) {
+                    if (!active[b]) continue;
+                    if (advance_body(ctx, params_[b], states_[b], stats_[b], t_next, scratch)) active[b] = 0;
+                }
+            }
+            if (std::none_of(active.begin(), active.end(), [](char a) { return a != 0; })) break;
+            fit_window();  // some body left the loaded window: move it (reloads the same two frames)
+        }
+        time_ = t_next;
+    }
+}
+
+}  // namespace flotsam::debris

@@ -1,0 +1,129 @@
+// Obstacles: walls, corners and thin walls against the two collision models.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "debris/world.hpp"
+#include "tests/debris_flows.hpp"
+#include "tests/test_support.hpp"
+
+using namespace flotsam;
+using namespace flotsam::debris;
+
+namespace {
+
+const Grid grid{120, 120, -0.595, -0.595, 0.01, 0.01};  // 1.2 m square, 1 cm cells
+
+// Building mask of cells whose centre satisfies `inside`.
+std::vector<std::uint8_t> mask(const std::function<bool(double, double)>& inside) {
+    std::vector<std::uint8_t> m(grid.size(), 0);
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) m[grid.index(i, j)] = inside(grid.x(i), grid.y(j)) ? 1 : 0;
+    return m;
+}
+
+// Deepest overlap of the body with a blocked cell right now [m].
+double overlap(const World& w, std::size_t b) {
+    const BodyState& s = w.states()[b];
+    const BodyParams& p = w.params()[b];
+    std::vector<ObstacleContact> cs;
+    const double bottom = 1e9;  // so that only the building mask blocks
+    w.obstacles().find_contacts(Box::make({s.x, s.y}, s.theta, p.def.length, p.def.width), bottom, p.step_height, cs, 0.0);
+    double d = 0.0;
+    for (const auto& c : cs) d = std::max(d, c.depth);
+    return d;
+}
+
+BodyDef body(double x, double y, double heading_deg, CollisionModel model) {
+    BodyDef b = default_body_def();
+    b.x = x;
+    b.y = y;
+    b.heading = heading_deg * M_PI / 180.0;
+    b.collision = model;
+    return b;
+}
+
+}  // namespace
+
+// Thrown at a straight wall on frictionless dry ground (no drag, no friction): the body
+// never overlaps the wall after a step, and its kinetic energy ½ m V² + ½ I ω² never
+// grows (e ≤ 1); with e = 1 and one contact at a time it is kept, with e = 0.5 it drops.
+TEST(DebrisCollision, StraightWallNoPenetrationNoEnergyGain) {
+    const auto dir = test::scratch_dir("coll_wall");
+    const auto path = test::uniform_flow(dir + "/dry.nc", grid, 5, 0.0, 0.0, 0.0);
+    for (double e : {1.0, 0.5}) {
+        World w(path, mask([](double x, double) { return x > 0.3; }));
+        BodyDef b = body(0.0, 0.0, 30.0, CollisionModel::multi);
+        b.mu = 0.0;
+        b.restitution = e;
+        w.add_body(b);
+        BodyState& s = w.states()[0];
+        s.flags |= flag_released;
+        s.vx = 0.8;
+        s.vy = 0.1;
+        s.omega = 0.5;
+        const BodyParams& p = w.params()[0];
+        auto energy = [&] { const BodyState& q = w.states()[0]; return 0.5 * p.mass * (q.vx * q.vx + q.vy * q.vy) + 0.5 * p.inertia * q.omega * q.omega; };
+        const double e0 = energy();
+        double previous = e0, worst_overlap = 0.0, min_vx = 1.0;
+        for (int k = 1; k <= 200; ++k) {
+            w.advance_to(0.01 * k);
+            min_vx = std::min(min_vx, w.states()[0].vx);
+            worst_overlap = std::max(worst_overlap, overlap(w, 0));
+            EXPECT_LE(energy(), previous * (1 + 1e-12)) << "step " << k;
+            previous = energy();
+        }
+        EXPECT_GT(w.stats()[0].collisions, 0);
+        EXPECT_LT(min_vx, 0.0);  // bounced
+        EXPECT_LT(worst_overlap, 1e-8);
+        if (e < 1.0) {
+            EXPECT_LT(previous, 0.9 * e0);
+        }
+    }
+}
+
+// Driven diagonally into a corner by a strong current: each step pushes the body into
+// both walls. Multi-collision clears both every step; single collision clears only the
+// deepest and leaves the other overlapping.
+TEST(DebrisCollision, MultiKeepsBodyOutOfCornerWhereSingleDoesNot) {
+    const auto dir = test::scratch_dir("coll_corner");
+    const auto path = test::uniform_flow(dir + "/f.nc", grid, 4, 0.1, 0.6, 0.6);
+    auto corner = mask([](double x, double y) { return x > 0.25 || y > 0.2; });
+    World mc(path, corner), sc(path, corner);
+    mc.add_body(body(0.0, 0.0, 0.0, CollisionModel::multi));
+    sc.add_body(body(0.0, 0.0, 0.0, CollisionModel::single));
+    double mc_worst = 0.0, sc_worst = 0.0;
+    for (int k = 1; k <= 300; ++k) {
+        mc.advance_to(0.01 * k);
+        sc.advance_to(0.01 * k);
+        mc_worst = std::max(mc_worst, overlap(mc, 0));
+        sc_worst = std::max(sc_worst, overlap(sc, 0));
+    }
+    EXPECT_GT(mc.stats()[0].collisions, 10);
+    EXPECT_EQ(mc.stats()[0].unresolved, 0);
+    EXPECT_LT(mc_worst, 1e-8);
+    EXPECT_LT(mc.stats()[0].max_residual_overlap, 1e-8);
+    EXPECT_GT(sc_worst, 1e-4) << "single collision should leave an overlap in a corner";
+    EXPECT_GT(sc.stats()[0].max_residual_overlap, 1e-4);
+}
+
+// A wall one cell thick and a fast current (3 m/s, 3 cm per 0.01 s step): the vertex
+// speed limit keeps each corner within a quarter cell per step (so more steps than
+// dt_max alone would take), the wall is always seen and the body stays on the near side.
+TEST(DebrisCollision, NoTunnellingThroughOneCellWall) {
+    const auto dir = test::scratch_dir("coll_tunnel");
+    const auto path = test::uniform_flow(dir + "/f.nc", grid, 2, 0.1, 3.0, 0.0);
+    auto wall = mask([](double x, double) { return std::fabs(x - 0.305) < 0.004; });  // the one column at x = 0.305
+    World w(path, wall);
+    w.add_body(body(0.0, 0.0, 20.0, CollisionModel::multi));
+    w.states()[0].vx = 3.0;  // already at the current's speed
+    double max_x = -1.0, worst = 0.0;
+    for (int k = 1; k <= 100; ++k) {
+        w.advance_to(0.02 * k);
+        max_x = std::max(max_x, w.states()[0].x);
+        worst = std::max(worst, overlap(w, 0));
+    }
+    EXPECT_LT(max_x, 0.3);
+    EXPECT_LT(worst, 1e-8);
+    EXPECT_GT(w.stats()[0].steps, 300);  // dt_max = 0.01 s alone would take 200 steps: the vertex limit set them
+}
