@@ -134,7 +134,8 @@ void accumulate(Summary& sum, const Solver& s, const Window& win, double t, doub
         for (int i = win.i0; i <= win.i1; ++i) {
             const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
             const double h = s.depth(i, j);
-            const float speed = float(std::hypot(s.x_velocity(i, j), s.y_velocity(i, j)));
+            const double u = s.x_velocity(i, j), v = s.y_velocity(i, j);
+            const float speed = float(std::sqrt(u * u + v * v));
             sum.max_depth[q] = std::max(sum.max_depth[q], float(h));
             sum.max_speed[q] = std::max(sum.max_speed[q], speed);
             if (h > arrival_depth && sum.arrival[q] == float(kFill)) sum.arrival[q] = float(t);

@@ -107,8 +107,6 @@ const BoundaryDef& Solver::boundary(Side s) const {
     return def_.west;
 }
 
-double Solver::x_velocity(int i, int j) const { return velocity(h_[at(i, j)], hu_[at(i, j)], def_.dry_depth); }
-double Solver::y_velocity(int i, int j) const { return velocity(h_[at(i, j)], hv_[at(i, j)], def_.dry_depth); }
 
 double Solver::volume() const {
     double v = 0.0;  // serial: the same sum whatever the thread count
@@ -127,6 +125,7 @@ double Solver::stable_dt() const {
         const double* hu = hu_.data() + row;
         const double* hv = hv_.data() + row;
         double a = 0.0;
+#pragma omp simd reduction(max : a)
         for (int i = 0; i < grid_.nx; ++i) {
             const double c = std::sqrt(g * h[i]);
             const double inv = h[i] > dry ? 1.0 / h[i] : 0.0;
@@ -228,31 +227,38 @@ void Solver::fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::v
 void Solver::x_sweep_row(int j, const std::vector<double>& h_all) {
     const std::size_t row = std::size_t(j + kGhost) * stride_;
     const int n = int(stride_);
-    const double* e = eta_.data() + row;
-    const double* h = h_all.data() + row;
-    const double* u = u_.data() + row;
-    const double* v = v_.data() + row;
-    double* dh = dh_.data() + row;
-    double* dhu = dhu_.data() + row;
-    double* dhv = dhv_.data() + row;
-    thread_local std::vector<double> se, sh, su, sv, fm, fl, fr, ft;
-    for (auto* b : {&se, &sh, &su, &sv, &fm, &fl, &fr, &ft})
-        if (b->size() != stride_) b->assign(stride_, 0.0);
+    const double* __restrict e = eta_.data() + row;
+    const double* __restrict h = h_all.data() + row;
+    const double* __restrict u = u_.data() + row;
+    const double* __restrict v = v_.data() + row;
+    double* __restrict dh = dh_.data() + row;
+    double* __restrict dhu = dhu_.data() + row;
+    double* __restrict dhv = dhv_.data() + row;
+    thread_local std::vector<double> buffer;
+    if (buffer.size() != 8 * stride_) buffer.assign(8 * stride_, 0.0);
+    double* __restrict se = buffer.data();
+    double* __restrict sh = se + stride_;
+    double* __restrict su = sh + stride_;
+    double* __restrict sv = su + stride_;
+    double* __restrict fm = sv + stride_;
+    double* __restrict fl = fm + stride_;
+    double* __restrict fr = fl + stride_;
+    double* __restrict ft = fr + stride_;
     const double theta = def_.limiter_theta, dry = def_.dry_depth, g = def_.gravity;
-    if (def_.order == 1) {
-        for (auto* b : {&se, &sh, &su, &sv}) std::fill(b->begin(), b->end(), 0.0);
-    } else {
-        for (int c = 1; c < n - 1; ++c) {
-            // First order next to a dry cell: keeps h >= 0 and the shoreline at rest.
-            const bool wet = h[c - 1] > dry && h[c] > dry && h[c + 1] > dry;
-            const double w = wet ? 1.0 : 0.0;
-            se[c] = w * limited_slope(e[c] - e[c - 1], e[c + 1] - e[c], theta);
-            sh[c] = w * limited_slope(h[c] - h[c - 1], h[c + 1] - h[c], theta);
-            su[c] = w * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], theta);
-            sv[c] = w * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], theta);
-        }
+    // Slopes; zero (first order) next to a dry cell, which keeps h >= 0 and the
+    // shoreline at rest. Order 1: the weight is zero everywhere.
+    const double order_weight = def_.order == 2 ? 1.0 : 0.0;
+    #pragma omp simd
+    for (int c = 1; c < n - 1; ++c) {
+        const bool wet = (h[c - 1] > dry) & (h[c] > dry) & (h[c + 1] > dry);
+        const double w = wet ? order_weight : 0.0;
+        se[c] = w * limited_slope(e[c] - e[c - 1], e[c + 1] - e[c], theta);
+        sh[c] = w * limited_slope(h[c] - h[c - 1], h[c + 1] - h[c], theta);
+        su[c] = w * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], theta);
+        sv[c] = w * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], theta);
     }
     // Face c+1/2 between padded columns c and c+1; interior faces c = 1 .. nx+1.
+    #pragma omp simd
     for (int c = 1; c <= grid_.nx + 1; ++c) {
         FaceFlux f;
         face_flux(e[c] + 0.5 * se[c], h[c] + 0.5 * sh[c], u[c] + 0.5 * su[c], v[c] + 0.5 * sv[c], e[c + 1] - 0.5 * se[c + 1],
@@ -263,6 +269,7 @@ void Solver::x_sweep_row(int j, const std::vector<double>& h_all) {
         ft[c] = f.tangential;
     }
     const double idx = 1.0 / grid_.dx;
+    #pragma omp simd
     for (int c = kGhost; c < grid_.nx + kGhost; ++c) {
         const double hw = h[c] - 0.5 * sh[c], he = h[c] + 0.5 * sh[c];
         const double zw = e[c] - 0.5 * se[c] - hw, ze = e[c] + 0.5 * se[c] - he;
@@ -283,11 +290,13 @@ void Solver::rates(std::vector<double>& h, std::vector<double>& hu, std::vector<
 #pragma omp for schedule(static)
         for (int r = 0; r < int(rows_); ++r) {
             const std::size_t row = std::size_t(r) * stride_;
+            #pragma omp simd
             for (int c = 0; c < s; ++c) {
                 const std::size_t p = row + std::size_t(c);
                 eta_[p] = h[p] + z_[p];
-                u_[p] = velocity(h[p], hu[p], dry);
-                v_[p] = velocity(h[p], hv[p], dry);
+                const double inv = h[p] > dry ? 1.0 / h[p] : 0.0;  // zero velocity where dry
+                u_[p] = hu[p] * inv;
+                v_[p] = hv[p] * inv;
             }
         }
 #pragma omp for schedule(static)
@@ -298,6 +307,7 @@ void Solver::rates(std::vector<double>& h, std::vector<double>& hu, std::vector<
 #pragma omp for schedule(static)
             for (int r = 1; r <= ny + 2; ++r) {
                 const std::size_t p0 = std::size_t(r) * stride_ + kGhost;
+                #pragma omp simd
                 for (int i = 0; i < nx; ++i) {
                     const std::size_t p = p0 + std::size_t(i), pm = p - stride_, pp = p + stride_;
                     const bool wet = h[pm] > dry && h[p] > dry && h[pp] > dry;
@@ -313,6 +323,7 @@ void Solver::rates(std::vector<double>& h, std::vector<double>& hu, std::vector<
 #pragma omp for schedule(static)
         for (int r = kGhost; r <= ny + kGhost; ++r) {
             const std::size_t p0 = std::size_t(r) * stride_ + kGhost;
+            #pragma omp simd
             for (int i = 0; i < nx; ++i) {
                 const std::size_t p = p0 + std::size_t(i), pm = p - stride_;
                 FaceFlux f;
@@ -328,6 +339,7 @@ void Solver::rates(std::vector<double>& h, std::vector<double>& hu, std::vector<
 #pragma omp for schedule(static)
         for (int r = kGhost; r < ny + kGhost; ++r) {
             const std::size_t p0 = std::size_t(r) * stride_ + kGhost;
+            #pragma omp simd
             for (int i = 0; i < nx; ++i) {
                 const std::size_t p = p0 + std::size_t(i), pn = p + stride_;
                 const double hs = h[p] - 0.5 * sy_h_[p], hn = h[p] + 0.5 * sy_h_[p];
@@ -357,6 +369,7 @@ void Solver::update(double dt, double a, const std::vector<double>* h0, const st
 #pragma omp parallel for reduction(+ : fixes) reduction(min : worst) schedule(static)
     for (int j = 0; j < grid_.ny; ++j) {
         const std::size_t p0 = at(0, j);
+#pragma omp simd reduction(+ : fixes) reduction(min : worst)
         for (int i = 0; i < nx; ++i) {
             const std::size_t p = p0 + std::size_t(i);
             double hn = h[p] + dt * dh_[p];

@@ -15,6 +15,7 @@
 #include "common/scene.hpp"
 #include "common/timeseries.hpp"
 #include "hydro/boundary.hpp"
+#include "hydro/swe_kernels.hpp"
 
 namespace flotsam::hydro {
 
@@ -62,8 +63,8 @@ public:
     double y_discharge(int i, int j) const { return hv_[at(i, j)]; }
     double bed(int i, int j) const { return z_[at(i, j)]; }
     double level(int i, int j) const { return h_[at(i, j)] + z_[at(i, j)]; }
-    double x_velocity(int i, int j) const;
-    double y_velocity(int i, int j) const;
+    double x_velocity(int i, int j) const { return velocity(h_[at(i, j)], hu_[at(i, j)], def_.dry_depth); }
+    double y_velocity(int i, int j) const { return velocity(h_[at(i, j)], hv_[at(i, j)], def_.dry_depth); }
     // Total water volume [m^3].
     double volume() const;
 
