@@ -9,6 +9,8 @@
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
+using test::error_of;
+using test::write_file;
 
 TEST(Sha256, KnownVectors) {
     EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
@@ -17,15 +19,6 @@ TEST(Sha256, KnownVectors) {
 }
 
 namespace {
-std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
-    const std::string p = dir + "/" + name;
-    std::ofstream(p) << text;
-    return p;
-}
-std::string error_of(const std::function<void()>& f) {
-    try { f(); } catch (const Error& e) { return e.what(); }
-    return "";
-}
 }  // namespace
 
 TEST(TimeSeries, ReadsAndInterpolates) {

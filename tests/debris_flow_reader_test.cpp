@@ -9,13 +9,11 @@
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
+using test::error_of;
+using test::write_file;
 using namespace flotsam::debris;
 
 namespace {
-std::string error_of(const std::function<void()>& f) {
-    try { f(); } catch (const Error& e) { return e.what(); }
-    return "";
-}
 const Grid grid{20, 12, -1.0, 2.0, 0.1, 0.05};
 }  // namespace
 

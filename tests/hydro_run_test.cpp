@@ -12,6 +12,8 @@
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
+using test::error_of;
+using test::write_file;
 using namespace flotsam::hydro;
 
 namespace {
@@ -65,10 +67,6 @@ SolverDef level_def(const std::string& series) {
     return d;
 }
 
-std::string error_of(const std::function<void()>& f) {
-    try { f(); } catch (const Error& e) { return e.what(); }
-    return "";
-}
 
 }  // namespace
 

@@ -16,19 +16,12 @@
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
+using test::error_of;
+using test::write_file;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-    try { f(); } catch (const Error& e) { return e.what(); }
-    return "(no error)";
-}
 
-std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
-    const std::string p = dir + "/" + name;
-    std::ofstream(p) << text;
-    return p;
-}
 
 double at(const Scene& s, const std::vector<double>& f, double x, double y) { return f[s.grid.index(s.grid.cell_i(x), s.grid.cell_j(y))]; }
 

@@ -1,5 +1,6 @@
 // Helpers shared by the tests: scratch directories, the shared data folder, the CLI.
 #pragma once
+#include <functional>
 #include <string>
 
 namespace flotsam::test {
@@ -11,5 +12,9 @@ std::string scratch_dir(const std::string& name);
 std::string shared_data(const std::string& file);
 // Runs the flotsam binary with `args`; returns its exit status; stdout+stderr in *output.
 int run_cli(const std::string& args, std::string* output = nullptr);
+// The message of the flotsam::Error that f throws, or "(no error)".
+std::string error_of(const std::function<void()>& f);
+// Writes `text` to dir/name and returns the path.
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text);
 
 }  // namespace flotsam::test
