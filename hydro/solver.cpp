@@ -75,7 +75,6 @@ Solver::Solver(const Scene& scene, const SolverDef& def) : grid_(scene.grid), de
         }
     }
     series_.resize(4);
-    still_depth_.assign(4, 0.0);
     for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
         const BoundaryDef& b = boundary(s);
         if (b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) {

@@ -111,7 +111,6 @@ private:
     std::vector<double> z_;          // bed [m], ghosts filled once
     std::vector<double> g_n2_;       // g * manning_n^2 per cell
     std::vector<TimeSeries> series_; // per side (index Side), when used
-    std::vector<double> still_depth_;  // per side: mean still-water depth along it [m]
     std::vector<std::size_t> pump_cells_;  // padded indices of the pump's source strip
     double pump_area_ = 0.0;              // [m^2] area of the source strip
     double pump_level_at_stop_ = 0.0;
