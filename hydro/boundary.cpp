@@ -28,6 +28,7 @@ const char* to_string(BoundaryKind k) {
         case BoundaryKind::level: return "level";
         case BoundaryKind::discharge: return "discharge";
         case BoundaryKind::pump: return "pump";
+        case BoundaryKind::nested: return "nested";
     }
     return "?";
 }

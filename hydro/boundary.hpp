@@ -2,6 +2,7 @@
 // fill two layers of ghost cells before each flux evaluation.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "common/timeseries.hpp"
 
@@ -16,6 +17,7 @@ enum class BoundaryKind {
     discharge,     // inflow discharge from a series [m^3/s over the whole side]
     pump,          // the public benchmark forcing: a wall with a mass source in the
                    // first cells until pump_stop, then a level relaxing to still water
+    nested,        // ghost cells given by the other grid of a nested pair (hydro/nesting.hpp)
 };
 
 enum class LevelMode {
@@ -32,6 +34,12 @@ struct BoundaryDef {
     double pump_stop = 300.0;                 // [s] end of pumping
     double pump_relax_time = 50.0;            // [s] e-folding time of the level after pumping
     double pump_length = 0.2;                 // [m] width of the strip of source cells along the side
+};
+
+// Ghost values handed to a `nested` side: layer 1 (next to the edge) then layer 2, each
+// n_along values (south to north on an x side). Conserved variables h [m], hu, hv [m^2/s].
+struct GhostState {
+    std::vector<double> h, hu, hv;
 };
 
 BoundaryKind parse_boundary_kind(const std::string& s, const std::string& option);

@@ -83,7 +83,11 @@ Solver::Solver(const Scene& scene, const SolverDef& def) : grid_(scene.grid), de
             series_[int(s)] = read_time_series_csv(b.series_file);
         }
         if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");
+        if (b.kind == BoundaryKind::nested && !is_x_side(s)) fail("", "boundary nested", "is only available on the west and east sides");
+        if (b.kind == BoundaryKind::nested) track_transfer_ = true;
     }
+    for (auto* v : {&west_face_mass_, &east_face_mass_, &west_stage1_, &east_stage1_, &west_transfer_, &east_transfer_})
+        v->assign(std::size_t(grid_.ny), 0.0);
     if (def.west.kind == BoundaryKind::pump) {
         const int ncol = std::max(1, int(std::lround(def.west.pump_length / grid_.dx)));
         for (int j = 0; j < grid_.ny; ++j)
@@ -168,6 +172,20 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
     }
     const bool xs = is_x_side(s);
     const int n_along = xs ? grid_.ny : grid_.nx;
+    if (kind == BoundaryKind::nested) {
+        const NestedGhosts& ng = nested_[s == Side::west ? 0 : 1];
+        if (ng.a.h.size() != std::size_t(kGhost * n_along)) fail("", "boundary nested", "ghost values were not set before stepping");
+        const double w = ng.t1 > ng.t0 ? std::clamp((t - ng.t0) / (ng.t1 - ng.t0), 0.0, 1.0) : 0.0;
+        for (int layer = 1; layer <= kGhost; ++layer)
+            for (int k = 0; k < n_along; ++k) {
+                const std::size_t ghost = at(s == Side::west ? -layer : grid_.nx - 1 + layer, k);
+                const std::size_t q = std::size_t((layer - 1) * n_along + k);
+                h[ghost] = (1.0 - w) * ng.a.h[q] + w * ng.b.h[q];
+                hu[ghost] = (1.0 - w) * ng.a.hu[q] + w * ng.b.hu[q];
+                hv[ghost] = (1.0 - w) * ng.a.hv[q] + w * ng.b.hv[q];
+            }
+        return;
+    }
     // Inward normal: +x at the west, -x at the east, +y at the south, -y at the north.
     const double sign = (s == Side::west || s == Side::south) ? 1.0 : -1.0;
     const double g = def_.gravity;
@@ -211,7 +229,8 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
                     qt[ghost] = hb * ut_in;
                     break;
                 }
-                case BoundaryKind::pump: break;  // resolved above
+                case BoundaryKind::pump:
+                case BoundaryKind::nested: break;  // resolved above
             }
         }
     }
@@ -267,6 +286,8 @@ void Solver::x_sweep_row(int j, const std::vector<double>& h_all) {
         fr[c] = f.normal_R;
         ft[c] = f.tangential;
     }
+    west_face_mass_[std::size_t(j)] = fm[1];
+    east_face_mass_[std::size_t(j)] = fm[grid_.nx + 1];
     const double idx = 1.0 / grid_.dx;
     #pragma omp simd
     for (int c = kGhost; c < grid_.nx + kGhost; ++c) {
@@ -397,14 +418,53 @@ void Solver::update(double dt, double a, const std::vector<double>* h0, const st
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
 }
 
+void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {
+    if (!is_x_side(side) || boundary(side).kind != BoundaryKind::nested) fail("", "boundary nested", "ghosts given for a side that is not nested");
+    const std::size_t n = std::size_t(kGhost * grid_.ny);
+    for (const GhostState* g : {&a, &b})
+        if (g->h.size() != n || g->hu.size() != n || g->hv.size() != n) fail("", "boundary nested", "ghost arrays of the wrong size");
+    NestedGhosts& ng = nested_[side == Side::west ? 0 : 1];
+    ng.t0 = t0;
+    ng.t1 = t1;
+    ng.a = a;
+    ng.b = b;
+}
+
+void Solver::set_ghost_bed(Side side, const std::vector<double>& z) {
+    if (!is_x_side(side) || z.size() != std::size_t(kGhost * grid_.ny)) fail("", "boundary nested", "ghost bed of the wrong size or side");
+    for (int layer = 1; layer <= kGhost; ++layer)
+        for (int j = 0; j < grid_.ny; ++j)
+            z_[at(side == Side::west ? -layer : grid_.nx - 1 + layer, j)] = z[std::size_t((layer - 1) * grid_.ny + j)];
+}
+
+void Solver::reset_side_transfer() {
+    std::fill(west_transfer_.begin(), west_transfer_.end(), 0.0);
+    std::fill(east_transfer_.begin(), east_transfer_.end(), 0.0);
+}
+
 void Solver::step(double dt) {
+    // Boundary mass transfer with the stepper's weights: Heun's U^{n+1} = U^n + dt/2 (L(U^n) + L(U^1)).
     if (def_.order == 1) {
         rates(h_, hu_, hv_, time_);
+        if (track_transfer_)
+            for (std::size_t j = 0; j < west_transfer_.size(); ++j) {
+                west_transfer_[j] += dt * west_face_mass_[j];
+                east_transfer_[j] += dt * east_face_mass_[j];
+            }
         update(dt, 0.0, nullptr, nullptr, nullptr, h_, hu_, hv_, h_, hu_, hv_);
     } else {
         rates(h_, hu_, hv_, time_);
+        if (track_transfer_) {
+            west_stage1_ = west_face_mass_;
+            east_stage1_ = east_face_mass_;
+        }
         update(dt, 0.0, nullptr, nullptr, nullptr, h_, hu_, hv_, h1_, hu1_, hv1_);
         rates(h1_, hu1_, hv1_, time_ + dt);
+        if (track_transfer_)
+            for (std::size_t j = 0; j < west_transfer_.size(); ++j) {
+                west_transfer_[j] += 0.5 * dt * (west_stage1_[j] + west_face_mass_[j]);
+                east_transfer_[j] += 0.5 * dt * (east_stage1_[j] + east_face_mass_[j]);
+            }
         // U = 1/2 U + 1/2 (U1 + dt L(U1)); each cell reads its own base value before writing it.
         update(dt, 0.5, &h_, &hu_, &hv_, h1_, hu1_, hv1_, h_, hu_, hv_);
     }

@@ -77,6 +77,19 @@ public:
     const std::vector<double>& y_discharge_data() const { return hv_; }
     std::size_t stride() const { return stride_; }
 
+    // Nesting (hydro/nesting.hpp), west and east sides only. Ghost values of a `nested`
+    // side: the state `a` at time t0 and `b` at t1, interpolated linearly in time
+    // (held outside [t0, t1]).
+    void set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b);
+    // Bed [m] in the ghost cells of a side, layout as GhostState (replaces the copy of
+    // the edge cells, so that a nested side sees the other grid's ground).
+    void set_ghost_bed(Side side, const std::vector<double>& z);
+    // Volume per unit length that crossed each face of a west/east side since the last
+    // reset, positive toward +x, per cell row [m^2]: the time integral of the mass flux
+    // with the weights of the time stepper (for refluxing between nested grids).
+    const std::vector<double>& side_transfer(Side side) const { return side == Side::west ? west_transfer_ : east_transfer_; }
+    void reset_side_transfer();
+
     // Level at the pump side when pumping stopped (restart state of the pump boundary).
     double pump_level_at_stop() const { return pump_level_at_stop_; }
     void set_pump_level_at_stop(double v) { pump_level_at_stop_ = v; pump_stopped_ = true; }
@@ -115,6 +128,16 @@ private:
     double pump_area_ = 0.0;              // [m^2] area of the source strip
     double pump_level_at_stop_ = 0.0;
     bool pump_stopped_ = false;
+    // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
+    struct NestedGhosts {
+        double t0 = 0.0, t1 = 0.0;
+        GhostState a, b;
+    };
+    NestedGhosts nested_[2];
+    bool track_transfer_ = false;
+    std::vector<double> west_face_mass_, east_face_mass_;      // mass flux of the current stage [m^2/s]
+    std::vector<double> west_stage1_, east_stage1_;            // Heun's first-stage fluxes [m^2/s]
+    std::vector<double> west_transfer_, east_transfer_;        // [m^2]
 };
 
 }  // namespace flotsam::hydro

@@ -1,0 +1,238 @@
+#include "hydro/nesting.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace flotsam::hydro {
+
+NestDef default_nest_def() { return NestDef{}; }
+
+namespace {
+constexpr int kLayers = 2;  // ghost layers of hydro::Solver
+
+int snapped_interface(const Scene& s, const NestDef& n) {
+    if (n.ratio < 2) fail(s.path, "--nest-ratio", "must be 2 or more for a nested run");
+    if (s.grid.ny % n.ratio != 0)
+        fail(s.path, "--nest-ratio", "the scene's " + std::to_string(s.grid.ny) + " rows are not a multiple of " + std::to_string(n.ratio));
+    const int i = int(std::floor((n.x - s.grid.x_min_edge()) / s.grid.dx + 1e-9));
+    const int snapped = (i / n.ratio) * n.ratio;
+    if (snapped < 2 * n.ratio || s.grid.nx - snapped < 2 * n.ratio)
+        fail(s.path, "--nest-x", "the interface must leave at least 2 coarse and " + std::to_string(2 * n.ratio) + " fine columns");
+    return snapped;
+}
+
+// Block averages of the scene west of the interface.
+Scene coarse_scene(const Scene& s, int r, int i_nest) {
+    Scene c;
+    c.path = s.path;
+    c.grid.nx = i_nest / r;
+    c.grid.ny = s.grid.ny / r;
+    c.grid.dx = s.grid.dx * r;
+    c.grid.dy = s.grid.dy * r;
+    c.grid.x0 = s.grid.x0 + 0.5 * (r - 1) * s.grid.dx;
+    c.grid.y0 = s.grid.y0 + 0.5 * (r - 1) * s.grid.dy;
+    auto average = [&](const std::vector<double>& f) {
+        std::vector<double> out;
+        if (f.empty()) return out;
+        out.assign(c.grid.size(), 0.0);
+        for (int J = 0; J < c.grid.ny; ++J)
+            for (int I = 0; I < c.grid.nx; ++I) {
+                double sum = 0.0;
+                for (int b = 0; b < r; ++b)
+                    for (int a = 0; a < r; ++a) sum += f[s.grid.index(I * r + a, J * r + b)];
+                out[c.grid.index(I, J)] = sum / double(r * r);
+            }
+        return out;
+    };
+    c.z = average(s.z);
+    c.manning_n = average(s.manning_n);
+    c.eta0 = average(s.eta0);
+    c.u0 = average(s.u0);
+    c.v0 = average(s.v0);
+    return c;
+}
+
+// The scene east of the interface, cell for cell.
+Scene fine_scene(const Scene& s, int i_nest) {
+    Scene f;
+    f.path = s.path;
+    f.grid = s.grid;
+    f.grid.nx = s.grid.nx - i_nest;
+    f.grid.x0 = s.grid.x(i_nest);
+    auto crop = [&](const auto& v) {
+        std::remove_cvref_t<decltype(v)> out;
+        if (v.empty()) return out;
+        out.reserve(f.grid.size());
+        for (int j = 0; j < f.grid.ny; ++j)
+            for (int i = 0; i < f.grid.nx; ++i) out.push_back(v[s.grid.index(i + i_nest, j)]);
+        return out;
+    };
+    f.z = crop(s.z);
+    f.manning_n = crop(s.manning_n);
+    f.building = crop(s.building);
+    f.eta0 = crop(s.eta0);
+    f.u0 = crop(s.u0);
+    f.v0 = crop(s.v0);
+    return f;
+}
+
+SolverDef side_def(SolverDef d, Side nested_side) {
+    (nested_side == Side::east ? d.east : d.west).kind = BoundaryKind::nested;
+    return d;
+}
+}  // namespace
+
+NestedSolver::NestedSolver(const Scene& scene, const SolverDef& def, const NestDef& nest)
+    : grid_(scene.grid),
+      def_(def),
+      ratio_(nest.ratio),
+      i_nest_(snapped_interface(scene, nest)),
+      z_(scene.z),
+      coarse_(coarse_scene(scene, nest.ratio, i_nest_), side_def(def, Side::east)),
+      fine_(fine_scene(scene, i_nest_), side_def(def, Side::west)) {
+    const int r = ratio_, ny = grid_.ny, ncy = ny / r;
+    // Ghost ground: the fine grid's west ghosts stand on the scene's own cells west of
+    // the interface; the coarse grid's east ghosts on block averages east of it.
+    std::vector<double> zf(std::size_t(kLayers * ny)), zc(std::size_t(kLayers * ncy));
+    for (int L = 1; L <= kLayers; ++L) {
+        for (int j = 0; j < ny; ++j) zf[std::size_t((L - 1) * ny + j)] = z_[grid_.index(i_nest_ - L, j)];
+        for (int J = 0; J < ncy; ++J) {
+            double sum = 0.0;
+            for (int b = 0; b < r; ++b)
+                for (int a = 0; a < r; ++a) sum += z_[grid_.index(i_nest_ + (L - 1) * r + a, J * r + b)];
+            zc[std::size_t((L - 1) * ncy + J)] = sum / double(r * r);
+        }
+    }
+    fine_.set_ghost_bed(Side::west, zf);
+    coarse_.set_ghost_bed(Side::east, zc);
+}
+
+void NestedSolver::set_time(double t) {
+    time_ = t;
+    coarse_.set_time(t);
+    fine_.set_time(t);
+}
+
+SolverStats NestedSolver::stats() const {
+    SolverStats s = coarse_.stats();
+    s.negative_depth_fixes += fine_.stats().negative_depth_fixes;
+    s.min_depth_seen = std::min(s.min_depth_seen, fine_.stats().min_depth_seen);
+    return s;
+}
+
+GhostState NestedSolver::coarse_ghosts_from_fine() const {
+    const int r = ratio_, ncy = grid_.ny / r;
+    GhostState g;
+    for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ncy), 0.0);
+    for (int L = 1; L <= kLayers; ++L)
+        for (int J = 0; J < ncy; ++J) {
+            double h = 0.0, hu = 0.0, hv = 0.0;
+            for (int b = 0; b < r; ++b)
+                for (int a = 0; a < r; ++a) {
+                    const int i = (L - 1) * r + a, j = J * r + b;
+                    h += fine_.depth(i, j);
+                    hu += fine_.x_discharge(i, j);
+                    hv += fine_.y_discharge(i, j);
+                }
+            const std::size_t q = std::size_t((L - 1) * ncy + J);
+            const double inv = 1.0 / double(r * r);
+            g.h[q] = h * inv;
+            g.hu[q] = hu * inv;
+            g.hv[q] = hv * inv;
+        }
+    return g;
+}
+
+GhostState NestedSolver::fine_ghosts_from_coarse() const {
+    const Grid& cg = coarse_.grid();
+    const int ny = grid_.ny, I = cg.nx - 1;  // the coarse column along the interface
+    const double dry = def_.dry_depth;
+    GhostState g;
+    for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ny), 0.0);
+    for (int j = 0; j < ny; ++j) {
+        // Linear in y between the coarse row centres (held beyond the first and last);
+        // from a single cell where a neighbour is dry.
+        const double fy = std::clamp((grid_.y(j) - cg.y0) / cg.dy, 0.0, double(cg.ny - 1));
+        const int J0 = std::min(int(fy), cg.ny - 2 < 0 ? 0 : cg.ny - 2);
+        const int J1 = std::min(J0 + 1, cg.ny - 1);
+        double w = fy - J0;
+        if (coarse_.depth(I, J0) <= dry || coarse_.depth(I, J1) <= dry) w = w < 0.5 ? 0.0 : 1.0;
+        const double eta = (1 - w) * coarse_.level(I, J0) + w * coarse_.level(I, J1);
+        const double u = (1 - w) * coarse_.x_velocity(I, J0) + w * coarse_.x_velocity(I, J1);
+        const double v = (1 - w) * coarse_.y_velocity(I, J0) + w * coarse_.y_velocity(I, J1);
+        for (int L = 1; L <= kLayers; ++L) {
+            const std::size_t q = std::size_t((L - 1) * ny + j);
+            const double h = std::max(0.0, eta - z_[grid_.index(i_nest_ - L, j)]);
+            g.h[q] = h;
+            g.hu[q] = h > dry ? h * u : 0.0;
+            g.hv[q] = h > dry ? h * v : 0.0;
+        }
+    }
+    return g;
+}
+
+void NestedSolver::reflux() {
+    const int r = ratio_, ncy = grid_.ny / r, I = coarse_.grid().nx - 1;
+    const std::vector<double>& tc = coarse_.side_transfer(Side::east);
+    const std::vector<double>& tf = fine_.side_transfer(Side::west);
+    const double dxc = coarse_.grid().dx;
+    std::vector<double>& h = coarse_.depth_data();
+    for (int J = 0; J < ncy; ++J) {
+        double fine_sum = 0.0;  // the fine faces along coarse row J, per unit length of it
+        for (int b = 0; b < r; ++b) fine_sum += tf[std::size_t(J * r + b)];
+        fine_sum /= double(r);
+        double& hc = h[coarse_.at(I, J)];
+        hc += (tc[std::size_t(J)] - fine_sum) / dxc;
+        if (hc < 0.0) {
+            hc = 0.0;
+            ++reflux_clamps_;
+        }
+    }
+}
+
+void NestedSolver::step(double dt) {
+    const double t0 = time_, t1 = time_ + dt;
+    const GhostState from_fine = coarse_ghosts_from_fine();
+    coarse_.set_nested_ghosts(Side::east, t0, from_fine, t0, from_fine);
+    const GhostState before = fine_ghosts_from_coarse();
+    coarse_.reset_side_transfer();
+    fine_.reset_side_transfer();
+
+    coarse_.step(dt);
+    cell_updates_ += double(coarse_.grid().size());
+    fine_.set_nested_ghosts(Side::west, t0, before, t1, fine_ghosts_from_coarse());
+    // Sub-steps: as few as the fine CFL allows, of equal length over what is left.
+    while (fine_.time() < t1 - 1e-12 * std::max(1.0, t1)) {
+        const double left = t1 - fine_.time();
+        const double n = std::ceil(left / fine_.stable_dt() - 1e-9);
+        const double dts = n <= 1.0 ? left : left / n;
+        fine_.step(dts);
+        ++fine_steps_;
+        cell_updates_ += double(fine_.grid().size());
+    }
+    fine_.set_time(t1);
+    coarse_.set_time(t1);
+    reflux();
+    time_ = t1;
+}
+
+double NestedSolver::depth(int i, int j) const {
+    if (i >= i_nest_) return fine_.depth(i - i_nest_, j);
+    const int I = i / ratio_, J = j / ratio_;
+    if (coarse_.depth(I, J) <= def_.dry_depth) return 0.0;
+    return std::max(0.0, coarse_.level(I, J) - z_[grid_.index(i, j)]);
+}
+
+double NestedSolver::x_velocity(int i, int j) const {
+    if (i >= i_nest_) return fine_.x_velocity(i - i_nest_, j);
+    return depth(i, j) > def_.dry_depth ? coarse_.x_velocity(i / ratio_, j / ratio_) : 0.0;
+}
+
+double NestedSolver::y_velocity(int i, int j) const {
+    if (i >= i_nest_) return fine_.y_velocity(i - i_nest_, j);
+    return depth(i, j) > def_.dry_depth ? coarse_.y_velocity(i / ratio_, j / ratio_) : 0.0;
+}
+
+}  // namespace flotsam::hydro

@@ -1,0 +1,99 @@
+// The nested pair of grids (hydro/nesting.hpp): at rest stays at rest, volume is
+// conserved across the interface, a wave crossing it arrives as on the uniform fine grid,
+// and the pair does a fraction of the fine grid's work.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hydro/nesting.hpp"
+#include "test_support.hpp"
+
+using namespace flotsam;
+using namespace flotsam::hydro;
+
+namespace {
+
+// A flume in miniature: 0.5 m deep in the west, a 1:10 slope from x = 2 m up to a shelf
+// 2 cm deep at x ≥ 6.8 m, with a 5 cm block on the shelf. 2 cm cells.
+Scene mini_flume(double hump) {
+    Scene s;
+    const double dx = 0.02;
+    s.grid = Grid{400, 16, 0.5 * dx, 0.5 * dx, dx, dx};
+    s.z.assign(s.grid.size(), 0.0);
+    s.eta0.assign(s.grid.size(), 0.0);
+    for (int j = 0; j < s.grid.ny; ++j)
+        for (int i = 0; i < s.grid.nx; ++i) {
+            const double x = s.grid.x(i);
+            double z = x < 2.0 ? -0.5 : std::min(-0.02, -0.5 + 0.1 * (x - 2.0));
+            if (i >= 370 && i < 376 && j >= 5 && j < 11) z = 0.05;
+            s.z[s.grid.index(i, j)] = z;
+            s.eta0[s.grid.index(i, j)] = hump * std::exp(-std::pow((x - 1.0) / 0.3, 2));
+        }
+    return s;
+}
+
+SolverDef closed() {
+    SolverDef d;
+    d.west.kind = d.east.kind = d.south.kind = d.north.kind = BoundaryKind::wall;
+    d.default_manning_n = 0.0;
+    return d;
+}
+
+template <class S>
+void run_to(S& s, double t_end) {
+    while (s.time() < t_end - 1e-12) s.step(std::min(s.stable_dt(), t_end - s.time()));
+}
+
+}  // namespace
+
+TEST(Nesting, LakeAtRestStaysAtRestAcrossTheInterface) {
+    const Scene scene = mini_flume(0.0);
+    NestedSolver s(scene, closed(), NestDef{4.0, 4});
+    run_to(s, 1.0);
+    double drift = 0.0, speed = 0.0;
+    for (int j = 0; j < scene.grid.ny; ++j)
+        for (int i = 0; i < scene.grid.nx; ++i) {
+            if (s.depth(i, j) <= 0.0) continue;
+            drift = std::max(drift, std::abs(s.level(i, j)));
+            speed = std::max(speed, std::hypot(s.x_velocity(i, j), s.y_velocity(i, j)));
+        }
+    EXPECT_LT(drift, 1e-12);
+    EXPECT_LT(speed, 1e-12);
+}
+
+TEST(Nesting, VolumeIsConservedToRoundOff) {
+    const Scene scene = mini_flume(0.05);
+    NestedSolver s(scene, closed(), NestDef{4.0, 4});
+    const double v0 = s.volume();
+    run_to(s, 4.0);  // the wave crosses the interface, reflects on the shelf, comes back
+    EXPECT_LT(std::abs(s.volume() - v0) / v0, 1e-12);
+    EXPECT_EQ(s.reflux_clamps(), 0);
+}
+
+TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
+    const Scene scene = mini_flume(0.05);
+    Solver fine(scene, closed());
+    NestedSolver nested(scene, closed(), NestDef{4.0, 4});
+    // The first crest on the shelf (x = 7.2 m), within 6 s.
+    const int gi = scene.grid.cell_i(7.2), gj = 3;
+    double peak_fine = 0.0, peak_nested = 0.0, peak_coarse_time = 0.0, peak_fine_time = 0.0;
+    for (double t = 0.05; t <= 6.0 + 1e-9; t += 0.05) {
+        run_to(fine, t);
+        run_to(nested, t);
+        if (fine.level(gi, gj) > peak_fine) { peak_fine = fine.level(gi, gj); peak_fine_time = t; }
+        if (nested.level(gi, gj) > peak_nested) { peak_nested = nested.level(gi, gj); peak_coarse_time = t; }
+    }
+    ASSERT_GT(peak_fine, 0.02);
+    std::printf("peak fine %.5f at %.2f s, nested %.5f at %.2f s, work ratio %.3f\n", peak_fine, peak_fine_time, peak_nested, peak_coarse_time, nested.cell_updates() / (double(fine.stats().steps) * double(scene.grid.size())));
+    EXPECT_LT(std::abs(peak_nested - peak_fine) / peak_fine, 0.03);
+    EXPECT_LE(std::abs(peak_coarse_time - peak_fine_time), 0.051);
+    // Work: the deep half on 16x fewer cells at a 4x longer step.
+    const double fine_updates = double(fine.stats().steps) * double(scene.grid.size());
+    EXPECT_LT(nested.cell_updates() / fine_updates, 0.7);
+}
+
+TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
+    const Scene scene = mini_flume(0.0);
+    EXPECT_NE(test::error_of([&] { NestedSolver(scene, closed(), NestDef{4.0, 3}); }).find("--nest-ratio"), std::string::npos);
+    EXPECT_NE(test::error_of([&] { NestedSolver(scene, closed(), NestDef{7.95, 4}); }).find("--nest-x"), std::string::npos);
+}
