@@ -1,0 +1,199 @@
+#!/usr/bin/python3
+"""The pictures people look at, from flows, trajectories and statistics.
+
+    charts.py --scene SCENE.nc --flows FLOW.nc ... [--trajectories TRAJ.nc ...]
+              [--stats STATS.nc] --out DIR
+
+Writes PNGs into DIR (each skipped, with a line saying why, when its input is missing):
+
+  trajectories.png      debris paths over the scene with a vorticity snapshot
+  wg2.png               WG2 level, ensemble mean ± std against time
+  time_to_draft.png     time at which the depth first exceeds the 2.5 cm draft (Fig. 8)
+  sections.png          passage position per cross-section (mean, median, std)
+  speed_density.png     passage speed kernel densities per section
+  yaw.png               largest yaw in the first 30 s after motion starts
+  relative_error.png    R(t) per parameter against the control
+  probability.png       probability that debris passes each cell
+  max_speed.png         largest debris speed per cell
+
+Uses only Debian's python3-matplotlib, python3-xarray and python3-netcdf4.
+"""
+import argparse
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+VARIANT_STYLE = {"center+single": ("tab:orange", "CC+SC"), "local+multi": ("tab:blue", "LC+MC")}
+
+
+def by_standard_name(ds, name):
+    for v in ds.data_vars:
+        if ds[v].attrs.get("standard_name") == name:
+            return ds[v]
+    raise SystemExit(f"charts.py: {ds.encoding.get('source', '?')}: no variable with standard_name '{name}'")
+
+
+def scene_background(ax, scene, extent=None):
+    """Ground (grey, buildings dark) with still water in light blue."""
+    z = scene["z"].values
+    x, y = scene["x"].values, scene["y"].values
+    land = np.ma.masked_where(z < 0, z)
+    water = np.ma.masked_where(z >= 0, z)
+    ext = [x[0], x[-1], y[0], y[-1]]
+    ax.imshow(water, origin="lower", extent=ext, cmap="Blues_r", vmin=-0.3, vmax=0.05, aspect="equal")
+    ax.imshow(land, origin="lower", extent=ext, cmap="Greys", vmin=-0.02, vmax=0.08, aspect="equal")
+    if extent:
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+    ax.set_xlabel("x [m] (east)")
+    ax.set_ylabel("y [m] (north)")
+
+
+def save(fig, out, name):
+    path = os.path.join(out, name)
+    fig.savefig(path + ".part.png", dpi=130, bbox_inches="tight")
+    os.replace(path + ".part.png", path)
+    plt.close(fig)
+    print(f"charts.py: wrote {path}")
+
+
+def city_extent(scene):
+    x = scene["x"].values
+    return [max(x[0], -0.8), x[-1], scene["y"].values[0], scene["y"].values[-1]]
+
+
+def chart_trajectories(scene, flows, trajs, out, snapshot_time):
+    if not trajs:
+        print("charts.py: trajectories.png skipped (no --trajectories)")
+        return
+    fig, ax = plt.subplots(figsize=(12, 5.6))
+    scene_background(ax, scene, city_extent(scene))
+    if flows:
+        f = xr.open_dataset(flows[0])
+        h = by_standard_name(f, "sea_floor_depth_below_sea_surface")
+        u = by_standard_name(f, "sea_water_x_velocity")
+        v = by_standard_name(f, "sea_water_y_velocity")
+        t = (f["time"] - f["time"][0]) / np.timedelta64(1, "s")
+        k = int(np.argmin(np.abs(t.values - snapshot_time)))
+        dx = float(f["x"][1] - f["x"][0])
+        dy = float(f["y"][1] - f["y"][0])
+        uu, vv, hh = u[k].values, v[k].values, h[k].values
+        vort = np.gradient(vv, dx, axis=1) - np.gradient(uu, dy, axis=0)
+        vort = np.ma.masked_where(hh < 0.005, vort)
+        xs, ys = f["x"].values, f["y"].values
+        im = ax.imshow(vort, origin="lower", extent=[xs[0], xs[-1], ys[0], ys[-1]], cmap="RdBu_r", vmin=-5, vmax=5,
+                       alpha=0.75, aspect="equal")
+        fig.colorbar(im, ax=ax, shrink=0.8, label=f"vorticity at t = {t.values[k]:.0f} s [1/s] (depth > 5 mm)")
+    seen = set()
+    for path in trajs:
+        d = xr.open_dataset(path)
+        for n in range(d.sizes["trajectory"]):
+            key = f"{str(d['contact_model'].values[n])}+{str(d['collision_model'].values[n])}"
+            color, label = VARIANT_STYLE.get(key, ("k", key))
+            x, y = d["x"].values[n], d["y"].values[n]
+            ax.plot(x, y, color=color, lw=1.4, label=label if label not in seen else None)
+            seen.add(label)
+            ax.plot(x[0], y[0], "o", color="k", ms=4)
+            ax.plot(x[-1], y[-1], "s", color=color, ms=4)
+            name = str(d["start_name"].values[n]) if "start_name" in d else ""
+            if name:
+                ax.annotate(name, (x[0], y[0]), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title("Debris paths (circle: start, square: end) over the ground")
+    save(fig, out, "trajectories.png")
+
+
+def chart_wg2(flows, out):
+    series = []
+    for path in flows:
+        f = xr.open_dataset(path)
+        if "gauge_eta" not in f or "gauge_name" not in f:
+            continue
+        names = [str(s) for s in f["gauge_name"].values]
+        if "WG2" not in names:
+            continue
+        g = names.index("WG2")
+        t = (f["gauge_time"] - f["time"][0]) / np.timedelta64(1, "s") if np.issubdtype(f["gauge_time"].dtype, np.datetime64) else f["gauge_time"]
+        series.append((np.asarray(t), f["gauge_eta"].values[:, g]))
+    if not series:
+        print("charts.py: wg2.png skipped (no flow with a WG2 gauge)")
+        return
+    n = min(len(s[0]) for s in series)
+    t = series[0][0][:n]
+    eta = np.stack([s[1][:n] for s in series])
+    mean, std = eta.mean(axis=0), eta.std(axis=0)
+    fig, ax = plt.subplots(figsize=(8, 4))
+    ax.fill_between(t, (mean - std) * 100, (mean + std) * 100, color="tab:blue", alpha=0.3, label="± 1 std")
+    ax.plot(t, mean * 100, color="tab:blue", label=f"mean of {len(series)} flows")
+    ax.axhline(6.3, color="k", ls=":", lw=1, label="paper's maximum ≈ 6.3 cm")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("water level at WG2 [cm]")
+    ax.set_title("WG2 (port entrance)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    save(fig, out, "wg2.png")
+
+
+def chart_time_to_draft(scene, flows, out):
+    if not flows:
+        print("charts.py: time_to_draft.png skipped (no --flows)")
+        return
+    f = xr.open_dataset(flows[0], decode_timedelta=False)
+    if "arrival_time" not in f:
+        print("charts.py: time_to_draft.png skipped (no arrival_time in the flow)")
+        return
+    a = f["arrival_time"]
+    vals = a.values.astype(float)
+    if np.issubdtype(a.dtype, np.timedelta64):
+        vals = a.values / np.timedelta64(1, "s")
+    vals = np.ma.masked_invalid(np.where(vals < 0, np.nan, vals))
+    xs, ys = f["x"].values, f["y"].values
+    fig, ax = plt.subplots(figsize=(12, 5.6))
+    scene_background(ax, scene, city_extent(scene))
+    im = ax.imshow(vals, origin="lower", extent=[xs[0], xs[-1], ys[0], ys[-1]], cmap="viridis_r", vmin=0, vmax=300,
+                   aspect="equal", alpha=0.9)
+    fig.colorbar(im, ax=ax, shrink=0.8, label="time the depth first exceeds 2.5 cm [s]")
+    for p in ("FD", "LD"):
+        pts = point_positions(scene)
+        if p in pts:
+            ax.plot(*pts[p], "r*", ms=10)
+            ax.annotate(p, pts[p], textcoords="offset points", xytext=(5, 5), color="r")
+    ax.set_title("Time to the debris draft (paper's Fig. 8)")
+    save(fig, out, "time_to_draft.png")
+
+
+def point_positions(scene):
+    out = {}
+    if "point_name" in scene and "point_x" in scene:
+        for n, x, y in zip(scene["point_name"].values, scene["point_x"].values, scene["point_y"].values):
+            out[str(n)] = (float(x), float(y))
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--flows", nargs="*", default=[])
+    ap.add_argument("--trajectories", nargs="*", default=[])
+    ap.add_argument("--stats")
+    ap.add_argument("--snapshot-time", type=float, default=250.0, help="time of the vorticity snapshot [s]")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    for p in [a.scene] + a.flows + a.trajectories + ([a.stats] if a.stats else []):
+        if not os.path.exists(p):
+            sys.exit(f"charts.py: {p}: no such file")
+    scene = xr.open_dataset(a.scene)
+    chart_trajectories(scene, a.flows, a.trajectories, a.out, a.snapshot_time)
+    chart_wg2(a.flows, a.out)
+    chart_time_to_draft(scene, a.flows, a.out)
+
+
+if __name__ == "__main__":
+    main()
