@@ -87,6 +87,10 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")->capture_default_str();
     sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")->check(CLI::Range(1.0, 2.0))->capture_default_str();
     sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
+    sub->add_option("--nest-ratio", r.nest.ratio,
+                    "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
+        ->check(CLI::Range(1, 16))->capture_default_str();
+    sub->add_option("--nest-x", r.nest.x, "x of the nesting interface [m]; keep it in water that stays wet")->capture_default_str();
     sub->add_option("--manning-n", s.default_manning_n, "Manning n where the scene has no manning_n [s m^-1/3]")->capture_default_str();
     // Boundaries.
     const std::string kinds = "wall, transmissive, level, discharge or pump";

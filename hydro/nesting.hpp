@@ -30,7 +30,7 @@ namespace flotsam::hydro {
 
 struct NestDef {
     double x = -2.0;   // interface [m]; moved west to the nearest multiple of `ratio` cells
-    int ratio = 4;     // coarse spacing / scene spacing (2, 3, 4 ...); 1 or less: no nesting
+    int ratio = 1;     // coarse spacing / scene spacing (2, 3, 4 ...); 1: one uniform grid, no nesting
 };
 NestDef default_nest_def();
 
@@ -69,6 +69,11 @@ public:
 
     double pump_level_at_stop() const { return coarse_.pump_level_at_stop(); }
     void set_pump_level_at_stop(double v) { coarse_.set_pump_level_at_stop(v); }
+    // h, hu, hv of the coarse then the fine grid (padded layouts), for checkpoints.
+    std::vector<std::vector<double>*> state_arrays() {
+        return {&coarse_.depth_data(), &coarse_.x_discharge_data(), &coarse_.y_discharge_data(),
+                &fine_.depth_data(),   &fine_.x_discharge_data(),   &fine_.y_discharge_data()};
+    }
     long reflux_clamps() const { return reflux_clamps_; }  // interface cells refluxed below h = 0
 
 private:

@@ -76,7 +76,8 @@ public:
     }
     std::size_t samples() const { return samples_; }
     std::size_t count() const { return cells_.size(); }
-    std::vector<GaugeSample> read(const Solver& s) const {
+    template <class S>
+    std::vector<GaugeSample> read(const S& s) const {
         std::vector<GaugeSample> out;
         for (auto [i, j] : cells_) out.push_back({s.level(i, j), s.depth(i, j), s.x_velocity(i, j), s.y_velocity(i, j)});
         return out;
@@ -115,7 +116,8 @@ private:
     std::vector<float> eta_, h_, u_, v_;
 };
 
-void write_frame(FlowWriter& w, std::size_t k, const Solver& s, const Window& win) {
+template <class S>
+void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
     const std::size_t n = win.grid.size();
     std::vector<float> h(n), u(n), v(n);
     for (int j = win.j0; j <= win.j1; ++j)
@@ -128,7 +130,8 @@ void write_frame(FlowWriter& w, std::size_t k, const Solver& s, const Window& wi
     w.write_frame(k, h, u, v);
 }
 
-void accumulate(Summary& sum, const Solver& s, const Window& win, double t, double arrival_depth) {
+template <class S>
+void accumulate(Summary& sum, const S& s, const Window& win, double t, double arrival_depth) {
 #pragma omp parallel for schedule(static)
     for (int j = win.j0; j <= win.j1; ++j)
         for (int i = win.i0; i <= win.i1; ++i) {
@@ -154,13 +157,22 @@ struct Checkpoint {
     std::string config_sha;
 };
 
-void write_checkpoint(const std::string& path, const Solver& s, const Summary& sum, const Checkpoint& c) {
+// The conserved state of a solver, as arrays: h, hu, hv of each grid (padded layout).
+std::vector<std::vector<double>*> state_arrays(Solver& s) { return {&s.depth_data(), &s.x_discharge_data(), &s.y_discharge_data()}; }
+std::vector<std::vector<double>*> state_arrays(NestedSolver& s) { return s.state_arrays(); }
+
+template <class S>
+void write_checkpoint(const std::string& path, S& s, const Summary& sum, const Checkpoint& c) {
     AtomicOutput out(path);
     {
         nc::File f = nc::File::create(out.temp_path());
-        const int dp = f.def_dim("padded_cell", s.depth_data().size());
+        const auto arrays = state_arrays(s);
+        std::vector<int> vs;
+        for (std::size_t k = 0; k < arrays.size(); ++k) {
+            const int d = f.def_dim("state_" + std::to_string(k) + "_cell", arrays[k]->size());
+            vs.push_back(f.def_var("state_" + std::to_string(k), NC_DOUBLE, {d}));
+        }
         const int dw = f.def_dim("window_cell", sum.max_depth.size());
-        const int vh = f.def_var("h", NC_DOUBLE, {dp}), vhu = f.def_var("hu", NC_DOUBLE, {dp}), vhv = f.def_var("hv", NC_DOUBLE, {dp});
         const int vmd = f.def_var("max_depth", NC_FLOAT, {dw}), vms = f.def_var("max_speed", NC_FLOAT, {dw}), va = f.def_var("arrival_time", NC_FLOAT, {dw});
         f.put_att(NC_GLOBAL, "time", c.time);
         f.put_att(NC_GLOBAL, "steps", double(c.steps));
@@ -171,9 +183,7 @@ void write_checkpoint(const std::string& path, const Solver& s, const Summary& s
         f.put_att(NC_GLOBAL, "pump_stopped", c.pump_stopped ? 1 : 0);
         f.put_att(NC_GLOBAL, "config_sha256", c.config_sha);
         f.enddef();
-        f.put(vh, s.depth_data());
-        f.put(vhu, s.x_discharge_data());
-        f.put(vhv, s.y_discharge_data());
+        for (std::size_t k = 0; k < arrays.size(); ++k) f.put(vs[k], *arrays[k]);
         f.put(vmd, sum.max_depth);
         f.put(vms, sum.max_speed);
         f.put(va, sum.arrival);
@@ -182,7 +192,8 @@ void write_checkpoint(const std::string& path, const Solver& s, const Summary& s
     out.commit();
 }
 
-Checkpoint read_checkpoint(const std::string& path, Solver& s, Summary& sum) {
+template <class S>
+Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     const nc::File f = nc::File::open_read(path);
     auto need = [&](const char* name) {
         auto v = f.att_double(NC_GLOBAL, name);
@@ -198,11 +209,13 @@ Checkpoint read_checkpoint(const std::string& path, Solver& s, Summary& sum) {
     c.pump_level = need("pump_level");
     c.pump_stopped = need("pump_stopped") != 0.0;
     c.config_sha = f.att_text(NC_GLOBAL, "config_sha256").value_or("");
-    auto h = f.get_double(f.var("h"));
-    if (h.size() != s.depth_data().size()) fail(path, "variable 'h'", "size does not match this scene's grid");
-    s.depth_data() = std::move(h);
-    s.x_discharge_data() = f.get_double(f.var("hu"));
-    s.y_discharge_data() = f.get_double(f.var("hv"));
+    const auto arrays = state_arrays(s);
+    for (std::size_t k = 0; k < arrays.size(); ++k) {
+        const std::string name = "state_" + std::to_string(k);
+        auto v = f.get_double(f.var(name));
+        if (v.size() != arrays[k]->size()) fail(path, "variable '" + name + "'", "size does not match this scene's grid and solver");
+        *arrays[k] = std::move(v);
+    }
     sum.max_depth = f.get_float(f.var("max_depth"));
     sum.max_speed = f.get_float(f.var("max_speed"));
     sum.arrival = f.get_float(f.var("arrival_time"));
@@ -225,16 +238,18 @@ std::string boundary_checksums(const SolverDef& d) {
     return s;
 }
 
-}  // namespace
 
-RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
-    if (run.out_file.empty()) fail("", "--out", "an output file is required");
-    if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
-    const Scene scene = read_scene(run.scene_file);
-    // Boundary series must cover the whole run before any work starts.
-    for (const BoundaryDef* b : {&solver_def.west, &solver_def.east, &solver_def.south, &solver_def.north})
-        if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
-    Solver solver(scene, solver_def);
+double cell_updates(const Solver& s, long steps) { return double(steps) * double(s.grid().size()); }
+double cell_updates(const NestedSolver& s, long) { return s.cell_updates(); }
+
+std::string scheme_description(const Solver&) { return "finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, implicit Manning"; }
+std::string scheme_description(const NestedSolver& s) {
+    return "finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, implicit Manning; nested: " + std::to_string(s.coarse().grid().dx) +
+           " m west of x = " + std::to_string(s.grid().x_min_edge() + s.interface_column() * s.grid().dx) + " m, sub-cycled, refluxed";
+}
+
+template <class S>
+RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const SolverDef& solver_def) {
     const Window win = make_window(scene.grid, run.window);
     const std::vector<double> times = frame_times(run.duration, run.output_interval);
 
@@ -277,7 +292,7 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
         fd.arrival_depth = run.arrival_depth;
         fd.deflate_level = run.deflate_level;
         fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
-        fd.attributes["source"] = version_string() + "; finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, implicit Manning";
+        fd.attributes["source"] = version_string() + "; " + scheme_description(solver);
         fd.attributes["history"] = run.command_line;
         fd.attributes["flotsam_config"] = run.config_text;
         fd.attributes["scene_file"] = run.scene_file;
@@ -338,7 +353,7 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
     res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     res.steps = steps - state.steps * (run.restart ? 1 : 0);
     res.simulated = solver.time();
-    res.cell_updates_per_second = double(res.steps) * double(scene.grid.size()) / std::max(res.wall_seconds, 1e-9);
+    res.cell_updates_per_second = cell_updates(solver, res.steps) / std::max(res.wall_seconds, 1e-9);
     res.volume_start = state.volume_start;
     res.volume_end = solver.volume();
     res.negative_depth_fixes = solver.stats().negative_depth_fixes;
@@ -359,4 +374,22 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
     return res;
 }
 
+}  // namespace
+
+RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
+    if (run.out_file.empty()) fail("", "--out", "an output file is required");
+    if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
+    const Scene scene = read_scene(run.scene_file);
+    // Boundary series must cover the whole run before any work starts.
+    for (const BoundaryDef* b : {&solver_def.west, &solver_def.east, &solver_def.south, &solver_def.north})
+        if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
+    if (run.nest.ratio > 1) {
+        NestedSolver solver(scene, solver_def, run.nest);
+        return run_with(solver, scene, run, solver_def);
+    }
+    Solver solver(scene, solver_def);
+    return run_with(solver, scene, run, solver_def);
+}
+
 }  // namespace flotsam::hydro
+

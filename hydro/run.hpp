@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hydro/flow_file.hpp"
+#include "hydro/nesting.hpp"
 #include "hydro/solver.hpp"
 
 namespace flotsam::hydro {
@@ -20,6 +21,7 @@ struct RunDef {
     std::optional<std::array<double, 4>> window;  // x_min, x_max, y_min, y_max [m] of stored frames
     double gauge_interval = 0.05;            // [s] between gauge samples
     std::vector<FlowGauge> gauges;           // added to the scene's gauge points
+    NestDef nest = default_nest_def();       // ratio > 1: coarse grid in the flume (hydro/nesting.hpp)
     double arrival_depth = 0.025;            // [m] threshold of the arrival-time map (the draft)
     double checkpoint_interval = 0.0;        // [s] simulated time between checkpoints; 0: none
     bool restart = false;                    // continue from <out>.checkpoint.nc

@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""Error of flows against a reference flow, at the points debris cares about.
+
+Usage: flow_error.py SCENE.nc REFERENCE.nc FLOW.nc [FLOW.nc ...]
+
+For each flow, against the reference (typically the finest run), over their common time:
+  wg2_rms_m          RMS difference of the WG2 level (gauge series)
+  wg2_max_err_m      difference of the WG2 maximum
+  FD_depth_rms_m     RMS difference of the depth at the FD start (stored frames)
+  LD_depth_rms_m     the same at the LD start
+  FD_draft_err_s     difference of the time the depth first exceeds the draft at FD
+  LD_draft_err_s     the same at LD
+Grids may differ: values are taken at the cell holding each point. Prints CSV.
+"""
+import sys
+
+import numpy as np
+import xarray as xr
+
+
+def seconds(t, t0):
+    return (t - t0) / np.timedelta64(1, "s")
+
+
+def by_standard_name(ds, name, path):
+    for v in ds.data_vars:
+        if ds[v].attrs.get("standard_name") == name:
+            return ds[v]
+    sys.exit(f"flow_error.py: {path}: no variable with standard_name '{name}'")
+
+
+def gauge(ds, name, path):
+    names = [str(n) for n in ds.gauge_name.values]
+    if name not in names:
+        sys.exit(f"flow_error.py: {path}: no gauge '{name}'")
+    return seconds(ds.gauge_time.values, ds.time.values[0]), ds.gauge_eta.isel(gauge=names.index(name)).values
+
+
+def point_series(ds, path, x, y):
+    h = by_standard_name(ds, "sea_floor_depth_below_sea_surface", path)
+    return seconds(ds.time.values, ds.time.values[0]), h.sel(x=x, y=y, method="nearest").values
+
+
+def arrival(ds, x, y):
+    a = ds.arrival_time
+    v = a.sel(x=x, y=y, method="nearest").values
+    if np.issubdtype(np.asarray(v).dtype, np.timedelta64):
+        v = v / np.timedelta64(1, "s")
+    return float(v)
+
+
+def errors(scene, ref_path, ref, path):
+    ds = xr.open_dataset(path)
+    out = {}
+    tr, er = gauge(ref, "WG2", ref_path)
+    tf, ef = gauge(ds, "WG2", path)
+    t_end = min(tr[-1], tf[-1])
+    t = tf[tf <= t_end + 1e-9]
+    ri = np.interp(t, tr, er)
+    out["wg2_rms_m"] = float(np.sqrt(np.mean((ef[: len(t)] - ri) ** 2)))
+    out["wg2_max_err_m"] = float(ef[: len(t)].max() - ri.max())
+    names = [str(n) for n in scene.point_name.values]
+    for p in ("FD", "LD"):
+        k = names.index(p)
+        x, y = float(scene.point_x[k]), float(scene.point_y[k])
+        t_f, h_f = point_series(ds, path, x, y)
+        t_r, h_r = point_series(ref, ref_path, x, y)
+        keep = t_f <= min(t_f[-1], t_r[-1]) + 1e-9
+        out[f"{p}_depth_rms_m"] = float(np.sqrt(np.mean((h_f[keep] - np.interp(t_f[keep], t_r, h_r)) ** 2)))
+        out[f"{p}_draft_err_s"] = arrival(ds, x, y) - arrival(ref, x, y)
+    return out
+
+
+def main(argv):
+    if len(argv) < 4:
+        print(__doc__, file=sys.stderr)
+        return 2
+    scene = xr.open_dataset(argv[1])
+    ref = xr.open_dataset(argv[2], decode_timedelta=False)
+    rows = [(p, errors(scene, argv[2], ref, p)) for p in argv[3:]]
+    keys = list(rows[0][1].keys())
+    print("flow," + ",".join(keys))
+    for p, r in rows:
+        print(p + "," + ",".join(f"{r[k]:.4g}" for k in keys))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
