@@ -3,19 +3,21 @@
 
     accuracy_hydro.py --dem DEM.nc --runs DIR --csv OUT.csv [--duration 420]
                       [--configs 0.08:fv:1,0.04:fv:1,...] [--reference 0.02:fv:1]
-                      [--flotsam build/flotsam] [--threads 2]
+                      [--flotsam build/flotsam] [--threads 1]
 
 Each configuration is RES:SCHEME:NEST_RATIO (nest ratio 1 = one uniform grid). Every run
 is the benchmark forcing (--west pump) for --duration seconds; a run whose flow and
 timing file already exist is not repeated (delete them to redo). The CSV has one row per
-run: its wall time on this machine, steps, file size, and the errors of
-pipelines/flow_error.py against the reference run (the finest one affordable).
-Wall times are comparable within one CSV only (same machine, same load).
+run: its CPU time (user + system, on one thread by default, so that other work on a
+shared machine inflates it far less than wall time), wall time, steps, file size, and
+the errors of pipelines/flow_error.py against the reference run (the finest one
+affordable). Times are comparable within one CSV only.
 """
 import argparse
 import csv
 import os
 import re
+import resource
 import subprocess
 import sys
 
@@ -47,17 +49,20 @@ def run(args, cfg):
         if int(nest) > 1:
             cmd += ["--nest-ratio", nest, "--nest-x", str(NEST_X)]
         print("accuracy_hydro:", " ".join(cmd), flush=True)
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, stderr=subprocess.PIPE, text=True)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         if p.returncode != 0:
             sys.exit(f"accuracy_hydro: {tag(cfg)} failed:\n{p.stderr[-2000:]}")
         m = re.search(r"after (\d+) steps in ([0-9.]+) s wall", p.stderr)
         if not m:
             sys.exit(f"accuracy_hydro: {tag(cfg)}: no timing line in the output")
         with open(timing + ".part", "w") as f:
-            f.write(f"{m.group(1)},{m.group(2)}\n")
+            f.write(f"{m.group(1)},{m.group(2)},{cpu:.1f}\n")
         os.replace(timing + ".part", timing)
-    steps, wall = open(timing).read().strip().split(",")
-    return scene, flow, int(steps), float(wall)
+    steps, wall, cpu = open(timing).read().strip().split(",")
+    return scene, flow, int(steps), float(wall), float(cpu)
 
 
 def main():
@@ -66,22 +71,22 @@ def main():
     ap.add_argument("--runs", required=True)
     ap.add_argument("--csv", required=True)
     ap.add_argument("--duration", type=float, default=420.0)
-    ap.add_argument("--configs", default="0.08:fv:1,0.08:fv:4,0.04:fv:1,0.04:fv:4,0.02:fv:4,"
+    ap.add_argument("--configs", default="0.08:fv:1,0.08:fv:2,0.04:fv:1,0.04:fv:2,0.04:fv:4,0.02:fv:2,0.02:fv:4,"
                                          "0.08:leapfrog:1,0.04:leapfrog:1,0.02:leapfrog:1")
     ap.add_argument("--reference", default="0.02:fv:1")
     ap.add_argument("--flotsam", default="build/flotsam")
-    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--threads", type=int, default=1)
     a = ap.parse_args()
     os.makedirs(a.runs, exist_ok=True)
     ref_cfg = tuple(a.reference.split(":"))
-    ref_scene, ref_flow, ref_steps, ref_wall = run(a, ref_cfg)
+    ref_scene, ref_flow, _, _, _ = run(a, ref_cfg)
     scene = xr.open_dataset(ref_scene)
     ref = xr.open_dataset(ref_flow, decode_timedelta=False)
     rows = []
     for c in [ref_cfg] + [tuple(s.split(":")) for s in a.configs.split(",") if s]:
-        _, flow, steps, wall = run(a, c)
+        _, flow, steps, wall, cpu = run(a, c)
         err = flow_error.errors(scene, ref_flow, ref, flow)
-        rows.append({"config": tag(c), "resolution_m": c[0], "scheme": c[1], "nest_ratio": c[2], "wall_s": f"{wall:.1f}",
+        rows.append({"config": tag(c), "resolution_m": c[0], "scheme": c[1], "nest_ratio": c[2], "cpu_s": f"{cpu:.1f}", "wall_s": f"{wall:.1f}", "threads": a.threads,
                      "steps": steps, "file_bytes": os.path.getsize(flow), **{k: f"{v:.4g}" for k, v in err.items()}})
     with open(a.csv + ".part", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
