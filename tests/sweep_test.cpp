@@ -174,6 +174,29 @@ TEST(SweepSpec, MembersPerturbationsAndVariantsFromTheFile) {
     EXPECT_NEAR(std::sqrt(sh / 2000), 5.0, 0.5);
 }
 
+TEST(SweepSpec, PatternListsFlowsSortedAndSampledDesignsAddTheControl) {
+    const auto dir = test::scratch_dir("sweep_pattern");
+    two_flows(dir);
+    const std::string path = test::write_file(dir, "p.toml",
+                                              "[flows]\npattern = \"" + dir + "/f*.nc\"\n[[body]]\nat = [0.3, 0.3, 0]\n"
+                                              "[parameters]\ndesign = \"latin_hypercube\"\nsamples = 4\nseed = 2\ncm = [1.5, 3.0]\nmu = 0.3\n");
+    const SweepSpec spec = read_sweep_spec(path);
+    ASSERT_EQ(spec.flows.size(), 2u);
+    EXPECT_EQ(spec.flows[0], dir + "/f0.nc");
+    EXPECT_EQ(spec.flows[1], dir + "/f1.nc");
+    ASSERT_EQ(spec.params.size(), 5u);
+    EXPECT_TRUE(spec.params[0].is_control);
+    EXPECT_DOUBLE_EQ(spec.params[0].values[2], 2.0);  // the paper's Cm
+    EXPECT_DOUBLE_EQ(spec.params[0].values[3], 0.3);  // a scalar sets the control and fixed value
+    for (std::size_t k = 1; k < 5; ++k) {
+        EXPECT_EQ(spec.params[k].label, "lhs0" + std::to_string(k - 1));
+        EXPECT_DOUBLE_EQ(spec.params[k].values[3], 0.3);
+        EXPECT_DOUBLE_EQ(spec.params[k].values[0], 0.8);
+        EXPECT_GE(spec.params[k].values[2], 1.5);
+        EXPECT_LT(spec.params[k].values[2], 3.0);
+    }
+}
+
 TEST(SweepSpec, ErrorsNameTheFileLineAndKey) {
     const auto dir = test::scratch_dir("sweep_errors");
     const auto flows = two_flows(dir);
