@@ -8,6 +8,7 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "common/scene.hpp"
 #include "common/sha256.hpp"
 #include "pipelines/sweep.hpp"
 #include "pipelines/sweep_spec.hpp"
@@ -195,6 +196,28 @@ TEST(SweepSpec, PatternListsFlowsSortedAndSampledDesignsAddTheControl) {
         EXPECT_GE(spec.params[k].values[2], 1.5);
         EXPECT_LT(spec.params[k].values[2], 3.0);
     }
+}
+
+// The shipped example is the paper's sweep: FD and LD, both variants, nine sets.
+TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
+    const auto dir = test::scratch_dir("sweep_example");
+    const auto flows = two_flows(dir);
+    Scene scene;
+    scene.grid = grid;
+    scene.z.assign(grid.size(), -0.1);
+    scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}, {"WG2", "gauge", 0.1, 0.1, 0.0}};
+    write_scene(dir + "/scene.nc", scene, "test");
+    const SweepSpec spec = read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/pipelines/examples/paper_sensitivity.toml", dir + "/scene.nc", flows);
+    ASSERT_EQ(spec.bodies.size(), 2u);
+    EXPECT_EQ(spec.bodies[1].name, "LD");
+    EXPECT_DOUBLE_EQ(spec.bodies[1].x, 0.6);
+    EXPECT_DOUBLE_EQ(spec.bodies[1].heading_deg, 90.0);
+    ASSERT_EQ(spec.variants.size(), 2u);
+    EXPECT_EQ(spec.variants[0].name, "CC+SC");
+    EXPECT_EQ(spec.params.size(), 9u);
+    EXPECT_EQ(spec.perturbation.count, 0);
+    EXPECT_DOUBLE_EQ(spec.end_time, 420.0);
+    EXPECT_EQ(enumerate_members(spec).size(), 2u * 2u * 2u * 9u);
 }
 
 TEST(SweepSpec, ErrorsNameTheFileLineAndKey) {
