@@ -29,6 +29,14 @@ std::vector<T> column(const std::vector<MemberRecord>& ms, F f) {
     return out;
 }
 
+// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
 }  // namespace
 
 std::string summary_path_for(const std::string& nc_path) {
@@ -341,10 +349,9 @@ void write_summary_csv(const std::string& path, const SweepResult& r) {
             }
         }
         const bool any = !t.x.empty();
-        std::snprintf(buf, sizeof buf, "%d,%d,%s,%s,%s,%s,%d,%s,%d", m.id, m.flow, r.flows[std::size_t(m.flow)].c_str(), m.body_name.c_str(),
-                      m.start_name.c_str(), m.variant_name.c_str(), m.param_set, r.params[std::size_t(m.param_set)].label.c_str(),
-                      m.perturbation);
-        s += buf;
+        s += std::to_string(m.id) + "," + std::to_string(m.flow) + "," + csv_field(r.flows[std::size_t(m.flow)]) + "," + csv_field(m.body_name) +
+             "," + csv_field(m.start_name) + "," + m.variant_name + "," + std::to_string(m.param_set) + "," +
+             csv_field(r.params[std::size_t(m.param_set)].label) + "," + std::to_string(m.perturbation);
         for (double p : m.params) {
             std::snprintf(buf, sizeof buf, ",%.10g", p);
             s += buf;
