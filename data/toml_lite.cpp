@@ -44,20 +44,37 @@ TomlValue parse_value(const std::string& path, int line, const std::string& key,
         v.kind = TomlValue::Kind::Bool;
         v.flag = raw == "true";
     } else if (raw.size() >= 2 && raw.front() == '[' && raw.back() == ']') {
-        v.kind = TomlValue::Kind::NumberArray;
-        std::string body = raw.substr(1, raw.size() - 2), item;
-        std::size_t at = 0;
-        while (at <= body.size()) {
-            const std::size_t comma = std::min(body.find(',', at), body.size());
-            item = trim(body.substr(at, comma - at));
-            at = comma + 1;
-            if (item.empty() && at > body.size()) break;  // trailing comma or empty array
-            double x = 0.0;
-            if (!parse_number(item, x)) fail(path, here, "key '" + key + "': array element '" + item + "' is not a finite number");
-            v.numbers.push_back(x);
+        const std::string body = raw.substr(1, raw.size() - 2);
+        const bool strings = trim(body).starts_with("\"");
+        v.kind = strings ? TomlValue::Kind::StringArray : TomlValue::Kind::NumberArray;
+        // Split at commas outside quotes.
+        std::vector<std::string> items;
+        std::string item;
+        bool quoted = false;
+        for (char c : body) {
+            if (c == '"') quoted = !quoted;
+            if (c == ',' && !quoted) {
+                items.push_back(trim(item));
+                item.clear();
+            } else {
+                item += c;
+            }
+        }
+        items.push_back(trim(item));
+        if (items.back().empty()) items.pop_back();  // trailing comma or empty array
+        for (const auto& it : items) {
+            if (strings) {
+                if (it.size() < 2 || it.front() != '"' || it.back() != '"')
+                    fail(path, here, "key '" + key + "': array element '" + it + "' is not a \"string\" (arrays hold one kind)");
+                v.texts.push_back(it.substr(1, it.size() - 2));
+            } else {
+                double x = 0.0;
+                if (!parse_number(it, x)) fail(path, here, "key '" + key + "': array element '" + it + "' is not a finite number");
+                v.numbers.push_back(x);
+            }
         }
     } else if (!parse_number(raw, v.number)) {
-        fail(path, here, "key '" + key + "': value '" + raw + "' is not a number, \"string\", true/false or [numbers]");
+        fail(path, here, "key '" + key + "': value '" + raw + "' is not a number, \"string\", true/false, [numbers] or [\"strings\"]");
     }
     return v;
 }
@@ -104,7 +121,16 @@ TomlDoc read_toml_lite(const std::string& path) {
         if (key.empty()) fail(path, here, "missing key before '='");
         auto& values = doc.tables.back().values;
         if (values.count(key)) fail(path, here, "key '" + key + "' given twice in the same table");
-        values[key] = parse_value(path, line, key, trim(s.substr(eq + 1)));
+        std::string value = trim(s.substr(eq + 1));
+        // An array that is not closed on this line continues on the next ones.
+        const int first_line = line;
+        while (value.starts_with("[") && !value.ends_with("]")) {
+            if (!std::getline(in, raw)) fail(path, here, "key '" + key + "': array not closed with ']'");
+            ++line;
+            value += " " + trim(strip_comment(raw));
+            value = trim(value);
+        }
+        values[key] = parse_value(path, first_line, key, value);
     }
     return doc;
 }
@@ -129,6 +155,20 @@ void toml_allow_only(const TomlDoc& doc, const TomlTable& t, const std::vector<s
             fail(doc.path, "line " + std::to_string(v.line),
                  "unknown key '" + key + "'" + (t.name.empty() ? "" : " in [" + t.name + "]") + " (allowed: " + list + ")");
         }
+}
+
+std::vector<std::string> toml_strings(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    return need(doc, t, key, TomlValue::Kind::StringArray, "an array of \"strings\"").texts;
+}
+
+bool toml_bool(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    return need(doc, t, key, TomlValue::Kind::Bool, "true or false").flag;
+}
+
+std::string toml_where(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    const auto it = t.values.find(key);
+    const int line = it != t.values.end() ? it->second.line : t.line;
+    return doc.path + ": line " + std::to_string(line);
 }
 
 }  // namespace flotsam

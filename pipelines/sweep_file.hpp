@@ -1,0 +1,60 @@
+// The sweep file: every member's trajectory in one CF-1.11 trajectory file (orthogonal
+// multidimensional representation, all members on one time axis), with what each member
+// is (flow, body, start perturbation, model variant, parameter set) as per-trajectory
+// variables, and the sweep's tables (flows, parameter sets) on their own dimensions.
+// Variable names are listed in docs/sweep.md.
+//
+// A shard holds a contiguous block of member ids; merge_sweeps() joins blocks into the
+// whole sweep, and writes the same bytes as an unsharded run (nothing in the file
+// depends on how the sweep was split, on the command line or on the clock).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "debris/trajectory_file.hpp"
+#include "pipelines/sweep_spec.hpp"
+
+namespace flotsam::sweep {
+
+struct MemberRecord {
+    int id = 0, flow = 0, body = 0, perturbation = 0, variant = 0, param_set = 0;
+    std::string body_name, start_name, variant_name, contact, collision;
+    ParamValues params{};                            // cd1, cd2, cm, mu, restitution [-]
+    double length = 0, width = 0, height = 0;        // [m]
+    double specific_gravity = 0;                     // [-]
+    double x0 = 0, y0 = 0, heading0_deg = 0;         // start [m, m, degree]
+    int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
+    debris::Track track;                             // on SweepResult::time
+};
+
+struct SweepResult {
+    // The sweep as a whole (identical in every shard).
+    std::string spec_file, spec_sha256, scene_file, design;
+    std::vector<std::string> flows, bodies, variants;
+    std::vector<ParameterSet> params;
+    PerturbationDef perturbation;
+    int member_count = 0;            // members in the whole sweep
+    double output_interval = 0.0;    // [s]
+    double dt_max = 0.0;             // [s]
+    std::vector<double> time;        // output times [s]
+    // This part.
+    Shard shard;                     // {0, 1}: the whole sweep
+    std::vector<MemberRecord> members;  // by increasing id
+};
+
+// Writes atomically.
+void write_sweep_file(const std::string& path, const SweepResult& r);
+// Reads a sweep file (a shard or the whole); errors name the file and variable.
+SweepResult read_sweep_file(const std::string& path);
+
+// Joins shards of one sweep (same spec hash and member count; every member exactly
+// once). Errors name the offending part.
+SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vector<std::string>& paths);
+
+// One row per trajectory (columns in docs/sweep.md); written atomically.
+void write_summary_csv(const std::string& path, const SweepResult& r);
+
+// out.nc → out.csv
+std::string summary_path_for(const std::string& nc_path);
+
+}  // namespace flotsam::sweep

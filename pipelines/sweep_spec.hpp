@@ -1,0 +1,116 @@
+// A sweep: flows × bodies × start perturbations × model variants × parameter sets,
+// read from a TOML spec (docs/sweep.md). The parameter designs and the perturbations
+// are pure functions of the spec (seeded, platform-independent random numbers), so
+// every shard of a sweep builds the same member list.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "debris/body.hpp"
+
+namespace flotsam::sweep {
+
+// The parameters a design varies, in this order everywhere (files, CSV, grids).
+inline constexpr std::array<const char*, 5> parameter_names = {"cd1", "cd2", "cm", "mu", "restitution"};
+using ParamValues = std::array<double, 5>;  // cd1, cd2, cm, mu [-], restitution [-]
+
+struct ParameterSet {
+    std::string label;      // "control", "cd1x1.5", "cm/1.5", "grid3", "lhs07", ...
+    ParamValues values{};   // [-]
+    bool is_control = false;
+};
+
+// The paper's control case: Cd1 0.8, Cd2 0.4, Cm 2.0, Fc (mu) 0.4, e 0.5.
+ParamValues paper_control();
+
+// Control, then each varied parameter times `factor` and divided by it: 1 + 2 n sets.
+std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::vector<int>& varied, double factor);
+// Every combination of the levels (levels[p] empty: the control value), last parameter
+// fastest.
+std::vector<ParameterSet> factorial(const ParamValues& control, const std::array<std::vector<double>, 5>& levels);
+// Uniform samples over [lo, hi] per parameter (lo == hi: fixed).
+std::vector<ParameterSet> random_samples(const std::array<std::array<double, 2>, 5>& ranges, int count, std::uint64_t seed);
+// Latin hypercube: each parameter's range cut into `count` equal strata, each stratum
+// used exactly once, a uniform point inside it.
+std::vector<ParameterSet> latin_hypercube(const std::array<std::array<double, 2>, 5>& ranges, int count, std::uint64_t seed);
+
+// Deterministic random numbers (SplitMix64): same values on every platform and library.
+struct Rng {
+    std::uint64_t state;
+    explicit Rng(std::uint64_t seed) : state(seed) {}
+    std::uint64_t next();
+    double uniform();   // [0, 1)
+    double normal();    // standard normal (Box–Muller)
+};
+
+// "CC+SC", "LC+MC" (also CC+MC, LC+SC): friction model + collision model.
+struct Variant {
+    std::string name;
+    debris::ContactModel contact = debris::ContactModel::local;
+    debris::CollisionModel collision = debris::CollisionModel::multi;
+};
+Variant parse_variant(const std::string& name);  // throws naming the bad text
+
+struct BodySpec {
+    std::string name;        // label ("FD", or the [[body]] name)
+    std::string start;       // scene start point, or "" when at = [x, y, heading]
+    double x = 0.0, y = 0.0; // [m], from the scene point or `at`
+    double heading_deg = 0.0;// long axis from +x, counter-clockwise [degree]
+    debris::BodyDef shape = debris::default_body_def();  // length, width, height, specific gravity
+};
+
+struct PerturbationDef {
+    int count = 0;              // perturbed starts per body besides the exact one [-]
+    double position_std = 0.0;  // Gaussian offset of x and y [m]
+    double heading_std = 0.0;   // Gaussian offset of the heading [degree]
+    std::uint64_t seed = 1;
+};
+
+struct SweepSpec {
+    std::string path;                 // the spec file (for messages)
+    std::string sha256;               // of the spec file's bytes
+    std::string scene;                // scene file: start points and building mask ("" : none)
+    std::vector<std::string> flows;   // flow files, in order
+    std::vector<BodySpec> bodies;
+    std::vector<Variant> variants;
+    std::vector<ParameterSet> params;
+    std::string design;               // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
+    PerturbationDef perturbation;
+    double output_interval = 1.0;     // trajectory sample spacing [s]
+    double end_time = -1.0;           // [s]; < 0: the earliest last frame of the flows
+    double dt_max = -1.0;             // largest debris step [s]; < 0: the debris default
+};
+
+// Reads and checks a spec. Bodies given by a scene start name are placed from the scene
+// (the spec's `scene`, or `scene_override` when not empty); flows come from the spec
+// unless `flow_override` is not empty. Errors name the spec file, line and key.
+SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_override = "",
+                          const std::vector<std::string>& flow_override = {});
+
+// One trajectory of the sweep.
+struct Member {
+    int id = 0;            // position in the full member list
+    int flow = 0;          // index into spec.flows
+    int body = 0;          // index into spec.bodies
+    int perturbation = 0;  // 0: the exact start; k > 0: the k-th perturbed start
+    int variant = 0;       // index into spec.variants
+    int param_set = 0;     // index into spec.params
+    debris::BodyDef def;   // the body as run (name = the body's name)
+};
+
+// All members, flow outermost, then body, perturbation, variant, parameter set.
+std::vector<Member> enumerate_members(const SweepSpec& spec);
+
+// The start of body `b`'s k-th perturbed start (k = 0: unperturbed): x, y [m], heading [rad].
+std::array<double, 3> perturbed_start(const SweepSpec& spec, int body, int k);
+
+// Shard i of n: the contiguous member ids [first, last).
+struct Shard {
+    int index = 0, count = 1;
+};
+Shard parse_shard(const std::string& text);  // "i/n", 0 <= i < n
+std::array<int, 2> shard_range(int members, const Shard& shard);
+
+}  // namespace flotsam::sweep

@@ -1,0 +1,275 @@
+// flotsam stats on synthetic trajectories whose statistics are known exactly: straight
+// lines crossing a section at known y and speed, a known yaw history, bodies inside
+// known regions at 300 s, distances in a known ratio to the control, and paths over
+// known map cells.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+
+#include "common/netcdf.hpp"
+#include "common/sha256.hpp"
+#include "pipelines/sweep_file.hpp"
+#include "pipelines/sweep_stats.hpp"
+#include "pipelines/trajectory_kernels.hpp"
+#include "tests/test_support.hpp"
+
+using namespace flotsam;
+using namespace flotsam::sweep;
+
+namespace {
+
+struct Sample {
+    double x, y, yaw_deg, u, v;
+};
+using Motion = std::function<Sample(double t)>;
+
+// A sweep of hand-made trajectories on times 0, dt, ..., t_end.
+struct SyntheticSweep {
+    SweepResult r;
+    SyntheticSweep(double dt, double t_end, int param_sets = 1) {
+        r.spec_file = "synthetic.toml";
+        r.spec_sha256 = "0";
+        r.design = "one_at_a_time";
+        r.flows = {"f0.nc", "f1.nc"};
+        r.bodies = {"FD", "LD"};
+        r.variants = {"CC+SC", "LC+MC"};
+        for (int p = 0; p < param_sets; ++p) r.params.push_back({p == 0 ? "control" : "set" + std::to_string(p), paper_control(), p == 0});
+        r.output_interval = dt;
+        r.dt_max = 0.01;
+        for (int k = 0; dt * k <= t_end + 1e-9; ++k) r.time.push_back(dt * k);
+    }
+    int add(int body, int variant, int param_set, int flow, const Motion& m) {
+        MemberRecord rec;
+        rec.id = int(r.members.size());
+        rec.body = body;
+        rec.variant = variant;
+        rec.param_set = param_set;
+        rec.flow = flow;
+        rec.body_name = r.bodies[std::size_t(body)];
+        rec.variant_name = r.variants[std::size_t(variant)];
+        rec.contact = variant ? "local" : "center";
+        rec.collision = variant ? "multi" : "single";
+        rec.params = paper_control();
+        for (double t : r.time) {
+            const Sample s = m(t);
+            rec.track.x.push_back(s.x);
+            rec.track.y.push_back(s.y);
+            rec.track.yaw_deg.push_back(s.yaw_deg);
+            rec.track.u.push_back(s.u);
+            rec.track.v.push_back(s.v);
+            rec.track.omega.push_back(0.0);
+            rec.track.status.push_back(3);
+        }
+        rec.x0 = rec.track.x[0];
+        rec.y0 = rec.track.y[0];
+        rec.heading0_deg = rec.track.yaw_deg[0];
+        r.members.push_back(rec);
+        r.member_count = int(r.members.size());
+        return rec.id;
+    }
+};
+
+// Constant velocity from (x0, y0) with a fixed heading.
+Motion line(double x0, double y0, double u, double v, double yaw = 0.0) {
+    return [=](double t) { return Sample{x0 + u * t, y0 + v * t, yaw, u, v}; };
+}
+
+Scene scene_with(const Grid& g) {
+    Scene s;
+    s.grid = g;
+    s.z.assign(g.size(), 0.0);
+    return s;
+}
+
+}  // namespace
+
+// Five bodies leave x = 0 at 0.1 m/s east with northward speeds 0.01 k: they cross
+// x = 1.05 at t = 10.5 s, y = 0.105 k, speed √(0.1² + (0.01 k)²).
+TEST(SweepStats, SectionPassagePositionSpeedAndDensity) {
+    SyntheticSweep sw(1.0, 20.0);
+    for (int k = 1; k <= 5; ++k) sw.add(0, 1, 0, 0, line(0.0, 0.0, 0.1, 0.01 * k));
+    sw.add(0, 1, 0, 1, line(0.0, 3.0, 0.1, 0.0));   // crosses north of the section's end: not counted
+    sw.add(0, 1, 0, 1, line(0.0, 0.0, 0.01, 0.0));  // never reaches it
+    Scene scene = scene_with(Grid{30, 20, 0.05, -0.45, 0.1, 0.1});
+    scene.sections = {{"s1", 1.05, -1.0, 1.0}};
+    const SweepStats s = compute_stats(sw.r, scene);
+    ASSERT_EQ(s.groups.size(), 1u);
+    EXPECT_EQ(s.groups[0].body, "FD");
+    EXPECT_EQ(s.groups[0].variant, "LC+MC");
+    const SectionSummary& q = s.section[0][0];
+    EXPECT_EQ(q.count, 5);
+    EXPECT_NEAR(q.y_mean, 0.315, 1e-12);
+    EXPECT_NEAR(q.y_median, 0.315, 1e-12);
+    EXPECT_NEAR(q.y_std, 0.105 * std::sqrt(2.5), 1e-12);  // sample std of 1..5 is √2.5
+    std::vector<double> speeds;
+    for (int k = 1; k <= 5; ++k) speeds.push_back(std::hypot(0.1, 0.01 * k));
+    EXPECT_NEAR(q.speed_mean, mean_of(speeds), 1e-12);
+    EXPECT_NEAR(q.speed_median, speeds[2], 1e-12);
+    EXPECT_NEAR(s.passage_time[0][0], 10.5, 1e-12);
+    EXPECT_NEAR(s.passage_y[2][0], 0.315, 1e-12);
+    EXPECT_TRUE(std::isnan(s.passage_y[5][0]));
+    EXPECT_TRUE(std::isnan(s.passage_y[6][0]));
+    // Silverman's bandwidth by hand: σ, IQR from type-7 quartiles (2nd and 4th values).
+    const double sigma = std_of(speeds), iqr = speeds[3] - speeds[1];
+    EXPECT_NEAR(q.bandwidth, 0.9 * std::min(sigma, iqr / 1.34) * std::pow(5.0, -0.2), 1e-15);
+    // The density integrates to one (trapezoid over the axis, which spans 3 h past the largest).
+    double area = 0.0;
+    for (std::size_t k = 1; k < s.speed.size(); ++k) area += 0.5 * (q.kde[k] + q.kde[k - 1]) * (s.speed[k] - s.speed[k - 1]);
+    EXPECT_NEAR(area, 1.0, 0.01);
+}
+
+TEST(SweepStats, KernelDensityOfOneValueIsTheGaussian) {
+    const double h = silverman_bandwidth({0.2}, 1e-3);
+    EXPECT_DOUBLE_EQ(h, 0.02);  // no spread: 10 % of the value
+    EXPECT_NEAR(gaussian_kde({0.2}, h, 0.2), 1.0 / (0.02 * std::sqrt(2 * M_PI)), 1e-12);
+    EXPECT_NEAR(gaussian_kde({0.2}, h, 0.24), std::exp(-2.0) / (0.02 * std::sqrt(2 * M_PI)), 1e-12);
+    // Values 1..5: σ = √2.5, IQR = 2 → h = 0.9 · (2 / 1.34) · 5^(−1/5).
+    EXPECT_NEAR(silverman_bandwidth({5, 3, 1, 4, 2}, 1e-3), 0.9 * (2 / 1.34) * std::pow(5.0, -0.2), 1e-14);
+}
+
+// A body that starts moving at t = 1 s (0.01 m/s east), turns to +30° by t = 15 s, back
+// to −10° by 25 s and to −60° only at 32 s, after the 30 s window: largest rotation +30°.
+TEST(SweepStats, LargestYawInTheFirstThirtySeconds) {
+    SyntheticSweep sw(1.0, 60.0);
+    auto yaw = [](double t) {
+        if (t <= 5) return 0.0;
+        if (t <= 15) return 3.0 * (t - 5);
+        if (t <= 25) return 30.0 - 4.0 * (t - 15);
+        return t <= 31 ? -10.0 : -60.0;
+    };
+    sw.add(0, 0, 0, 0, [&](double t) { return Sample{0.01 * t, 0.0, yaw(t), 0.01, 0.0}; });
+    sw.add(0, 0, 0, 0, line(0.0, 1.0, 0.05, 0.0, 20.0));    // axis 20° from the motion
+    sw.add(0, 0, 0, 0, line(0.0, 2.0, 0.05, 0.05, 0.0));    // moving at 45°, axis along x: −45°
+    sw.add(0, 0, 0, 0, line(0.0, 3.0, 0.05, 0.0, 170.0));   // 170° is the same line as −10°
+    sw.add(0, 0, 0, 0, line(0.0, 4.0, 0.0, 0.0, 0.0));      // never moves
+    const SweepStats s = compute_stats(sw.r, scene_with(Grid{10, 10, 0.5, 0.5, 1, 1}));
+    EXPECT_DOUBLE_EQ(s.motion_start[0], 1.0);               // 0.01 m ≥ 5 mm first at t = 1 s
+    EXPECT_DOUBLE_EQ(s.max_rotation[0], 30.0);
+    EXPECT_DOUBLE_EQ(s.max_yaw_to_motion[0], 30.0);
+    EXPECT_NEAR(s.max_yaw_to_motion[1], 20.0, 1e-12);
+    EXPECT_NEAR(s.max_yaw_to_motion[2], -45.0, 1e-12);
+    EXPECT_NEAR(s.max_yaw_to_motion[3], -10.0, 1e-12);
+    EXPECT_DOUBLE_EQ(s.max_rotation[1], 0.0);
+    EXPECT_NEAR(s.motion_direction[2], 45.0, 1e-12);
+    EXPECT_NEAR(s.motion_direction[0], 0.0, 1e-12);
+    EXPECT_TRUE(std::isnan(s.motion_start[4]));
+    EXPECT_TRUE(std::isnan(s.max_rotation[4]));
+    // 10° bins from −180: +30 falls in [30, 40), 0 in [0, 10), −45 in [−50, −40).
+    ASSERT_EQ(s.yaw_edges.size(), 37u);
+    const auto& h = s.rotation_hist[0];
+    EXPECT_EQ(h[21], 1);
+    EXPECT_EQ(h[18], 3);
+    int total = 0;
+    for (int c : h) total += c;
+    EXPECT_EQ(total, 4);  // the body that never moved has no rotation
+    EXPECT_EQ(s.yaw_motion_hist[0][13], 1);  // −45
+    EXPECT_EQ(s.yaw_motion_hist[0][17], 1);  // −10
+}
+
+// Region counts use the position at 300 s, not the last one.
+TEST(SweepStats, ArrivalCountsPerRegionAtThreeHundredSeconds) {
+    SyntheticSweep sw(10.0, 400.0);
+    Scene scene = scene_with(Grid{40, 10, 0.05, 0.05, 0.1, 0.1});
+    scene.regions = {{"a", {{{0, 0}}, {{1, 0}}, {{1, 1}}, {{0, 1}}}}, {"b", {{{2, 0}}, {{3, 0}}, {{3, 1}}, {{2, 1}}}}};
+    sw.add(0, 0, 0, 0, line(0.5, 0.5, 0.0, 0.0));      // stays in a
+    sw.add(0, 0, 0, 0, line(-0.5, 0.5, 0.01, 0.0));    // x = 2.5 at 300 s (b), 3.5 at 400 s
+    sw.add(0, 0, 0, 1, line(-0.5, 0.5, 0.0035, 0.0));  // x = 0.55 at 300 s (a)
+    sw.add(1, 0, 0, 0, line(2.5, 2.0, 0.0, 0.0));      // LD, in neither
+    const SweepStats s = compute_stats(sw.r, scene);
+    ASSERT_EQ(s.groups.size(), 2u);
+    EXPECT_EQ(s.region_count[0][0], 2);
+    EXPECT_EQ(s.region_count[0][1], 1);
+    EXPECT_EQ(s.region_count[1][0] + s.region_count[1][1], 0);
+    EXPECT_EQ(s.region_at_arrival[1], 1);
+    EXPECT_EQ(s.region_at_arrival[3], -1);
+}
+
+// Control bodies move 0.1 m/s on both flows; set 1 at 0.12 (R = 0.2); set 2 at 0.05 and
+// 0.15 (mean as the control: R = 0, spread 0.05√2 t).
+TEST(SweepStats, DistanceFromStartAndRelativeErrorToTheControl) {
+    SyntheticSweep sw(1.0, 50.0, 3);
+    for (int f = 0; f < 2; ++f) {
+        sw.add(0, 1, 0, f, line(0.0, 0.0, 0.1, 0.0));
+        sw.add(0, 1, 1, f, line(0.0, 0.0, 0.0, 0.12));
+    }
+    sw.add(0, 1, 2, 0, line(0.0, 0.0, 0.05, 0.0));
+    sw.add(0, 1, 2, 1, line(0.0, 0.0, -0.15, 0.0));
+    const SweepStats s = compute_stats(sw.r, scene_with(Grid{10, 10, 0.5, 0.5, 1, 1}));
+    ASSERT_EQ(s.control, 0);
+    EXPECT_TRUE(std::isnan(s.relative_error[0][1][0]));  // control distance 0 at t = 0: undefined
+    for (std::size_t k = 1; k < s.time.size(); ++k) {
+        const double t = s.time[k];
+        EXPECT_NEAR(s.distance_mean[0][0][k], 0.1 * t, 1e-12);
+        EXPECT_NEAR(s.distance_mean[0][1][k], 0.12 * t, 1e-12);
+        EXPECT_NEAR(s.relative_error[0][1][k], 0.2, 1e-12);
+        EXPECT_NEAR(s.relative_error[0][2][k], 0.0, 1e-12);
+        EXPECT_NEAR(s.relative_error[0][0][k], 0.0, 1e-12);
+        EXPECT_NEAR(s.distance_std[0][2][k], 0.05 * std::sqrt(2.0) * t, 1e-12);
+    }
+    EXPECT_EQ(s.param_members[0][2], 2);
+}
+
+// Two bodies along the row y = 1.5 of a 1 m grid: one to x = 9.8 at 1 m/s, one to 4.8 at
+// 2 m/s (then still). Cells 0-4 of that row: probability 1, largest speed 2; cells
+// 5-9: 0.5 and 1; every other cell: 0 and no speed.
+TEST(SweepStats, PassProbabilityAndLargestSpeedPerCell) {
+    SyntheticSweep sw(0.1, 10.0);
+    sw.add(0, 0, 0, 0, [](double t) { return t <= 9.6 ? Sample{0.2 + t, 1.5, 0, 1, 0} : Sample{9.8, 1.5, 0, 0, 0}; });
+    sw.add(0, 0, 0, 1, [](double t) { return t <= 2.3 ? Sample{0.2 + 2 * t, 1.5, 0, 2, 0} : Sample{4.8, 1.5, 0, 0, 0}; });
+    const SweepStats s = compute_stats(sw.r, scene_with(Grid{10, 5, 0.5, 0.5, 1, 1}));
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 10; ++i) {
+            const std::size_t c = s.map.index(i, j);
+            if (j != 1) {
+                EXPECT_EQ(s.pass_probability[0][c], 0.0f);
+                EXPECT_TRUE(std::isnan(s.max_speed[0][c]));
+                continue;
+            }
+            EXPECT_EQ(s.pass_probability[0][c], i < 5 ? 1.0f : 0.5f) << i;
+            EXPECT_NEAR(s.max_speed[0][c], i < 5 ? 2.0 : 1.0, 1e-6) << i;
+            EXPECT_EQ(s.pass_probability_all[c], s.pass_probability[0][c]);
+        }
+    // Coarsened by 2: 5 × 3 cells of 2 m; the row j = 0 holds y = 1.5.
+    StatsDef def = default_stats_def();
+    def.map_coarsen = 2;
+    const SweepStats c = compute_stats(sw.r, scene_with(Grid{10, 5, 0.5, 0.5, 1, 1}), def);
+    EXPECT_EQ(c.map.nx, 5);
+    EXPECT_EQ(c.map.ny, 3);
+    EXPECT_DOUBLE_EQ(c.map.x0, 1.0);
+    EXPECT_EQ(c.pass_probability[0][c.map.index(2, 0)], 1.0f);  // x 4..6: both
+    EXPECT_EQ(c.pass_probability[0][c.map.index(3, 0)], 0.5f);
+}
+
+// The sweep file reads back to the same bytes, and the CLI writes the NetCDF and CSVs.
+TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
+    const auto dir = test::scratch_dir("sweep_stats_cli");
+    SyntheticSweep sw(1.0, 20.0);
+    for (int k = 1; k <= 3; ++k) sw.add(0, 1, 0, k % 2, line(0.0, 0.0, 0.1, 0.01 * k, 5.0 * k));
+    write_sweep_file(dir + "/a.nc", sw.r);
+    write_sweep_file(dir + "/b.nc", read_sweep_file(dir + "/a.nc"));
+    EXPECT_EQ(sha256_file(dir + "/a.nc"), sha256_file(dir + "/b.nc"));
+
+    Scene scene = scene_with(Grid{30, 20, 0.05, -0.45, 0.1, 0.1});
+    scene.sections = {{"s1", 1.05, -1.0, 1.0}};
+    scene.regions = {{"r", {{{0, -1}}, {{3, -1}}, {{3, 1}}, {{0, 1}}}}};
+    write_scene(dir + "/scene.nc", scene, "test");
+    std::string out;
+    ASSERT_EQ(test::run_cli("stats --sweep " + dir + "/a.nc --scene " + dir + "/scene.nc --out " + dir + "/st.nc --csv " + dir + "/csv", &out), 0)
+        << out;
+    const nc::File f = nc::File::open_read(dir + "/st.nc");
+    EXPECT_EQ(f.get_int(f.var("passage_count"))[0], 3);
+    EXPECT_NEAR(f.get_double(f.var("passage_y_mean"))[0], 0.21, 1e-12);
+    EXPECT_EQ(f.get_int(f.var("region_count"))[0], 3);
+    EXPECT_EQ(f.shape(f.var("pass_probability")), (std::vector<std::size_t>{1, 20, 30}));
+    for (const char* name : {"sections.csv", "speed_kde.csv", "yaw_histogram.csv", "regions.csv", "distance.csv", "members.csv"})
+        EXPECT_TRUE(std::filesystem::exists(dir + "/csv/" + name)) << name;
+
+    // A shard is refused until merged.
+    SweepResult part = sw.r;
+    part.shard = {0, 2};
+    write_sweep_file(dir + "/part.nc", part);
+    EXPECT_NE(test::run_cli("stats --sweep " + dir + "/part.nc --scene " + dir + "/scene.nc --out " + dir + "/x.nc", &out), 0);
+    EXPECT_NE(out.find("merge the parts first"), std::string::npos) << out;
+}
