@@ -92,12 +92,17 @@ def chart_trajectories(scene, flows, trajs, out, snapshot_time):
         fig.colorbar(im, ax=ax, shrink=0.8, label=f"vorticity at t = {t.values[k]:.0f} s [1/s] (depth > 5 mm)")
     seen = set()
     for path in trajs:
-        d = xr.open_dataset(path)
-        for n in range(d.sizes["trajectory"]):
+        d = xr.open_dataset(path, decode_times=False)
+        members = range(d.sizes["trajectory"])
+        if "param_set" in d and "param_set_is_control" in d:  # a sweep: the control set only
+            ctrl = d["param_set_is_control"].values
+            members = [n for n in members if ctrl[int(d["param_set"].values[n])]]
+        for n in members:
             key = f"{str(d['contact_model'].values[n])}+{str(d['collision_model'].values[n])}"
             color, label = VARIANT_STYLE.get(key, ("k", key))
             x, y = d["x"].values[n], d["y"].values[n]
-            ax.plot(x, y, color=color, lw=1.4, label=label if label not in seen else None)
+            ax.plot(x, y, color=color, lw=1.4 if len(members) <= 8 else 0.8, alpha=1.0 if len(members) <= 8 else 0.6,
+                    label=label if label not in seen else None)
             seen.add(label)
             ax.plot(x[0], y[0], "o", color="k", ms=4)
             ax.plot(x[-1], y[-1], "s", color=color, ms=4)
@@ -168,6 +173,141 @@ def chart_time_to_draft(scene, flows, out):
     save(fig, out, "time_to_draft.png")
 
 
+def group_labels(st):
+    return [f"{b} {v}" for b, v in zip(st["group_body"].values, st["group_variant"].values)]
+
+
+def group_color(label):
+    return "tab:blue" if "LC+MC" in label else ("tab:orange" if "CC+SC" in label else "tab:gray")
+
+
+def chart_sections(st, out):
+    groups, names = group_labels(st), [str(n) for n in st["section_name"].values]
+    count = st["passage_count"].values
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4.6))
+    width = 0.8 / max(1, len(groups))
+    for g, label in enumerate(groups):
+        xs = np.arange(len(names)) + (g - (len(groups) - 1) / 2) * width
+        for ax, var, scale in ((axes[0], "passage_y", 1.0), (axes[1], "passage_speed", 100.0)):
+            mean = st[f"{var}_mean"].values[g] * scale
+            std = st[f"{var}_std"].values[g] * scale
+            med = st[f"{var}_median"].values[g] * scale
+            ok = count[g] > 0
+            ax.errorbar(xs[ok], mean[ok], yerr=np.nan_to_num(std[ok]), fmt="o", color=group_color(label),
+                        mfc="white" if label.startswith("LD") else group_color(label), capsize=3,
+                        label=f"{label} (mean ± std, x = median)")
+            ax.plot(xs[ok], med[ok], "x", color=group_color(label))
+            for xi, c, m in zip(xs[ok], count[g][ok], mean[ok]):
+                ax.annotate(f"n={c}", (xi, m), textcoords="offset points", xytext=(3, -10), fontsize=6)
+    for ax, lab in ((axes[0], "passage position y [m]"), (axes[1], "passage speed [cm/s]")):
+        ax.set_xticks(np.arange(len(names)))
+        ax.set_xticklabels(names, rotation=20)
+        ax.set_xlabel("cross-section")
+        ax.set_ylabel(lab)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Where and how fast debris crosses each north-south section (all flows and parameter sets)")
+    fig.tight_layout()
+    save(fig, out, "sections.png")
+
+
+def chart_speed_density(st, out):
+    groups, names = group_labels(st), [str(n) for n in st["section_name"].values]
+    count = st["passage_count"].values
+    used = [k for k in range(len(names)) if count[:, k].sum() > 0]
+    if not used:
+        print("charts.py: speed_density.png skipped (no passages)")
+        return
+    fig, axes = plt.subplots(1, len(used), figsize=(4 * len(used), 3.6), squeeze=False)
+    speed = st["speed"].values * 100
+    for ax, k in zip(axes[0], used):
+        for g, label in enumerate(groups):
+            if count[g, k] < 2:
+                continue
+            ax.plot(speed, st["passage_speed_kde"].values[g, k] / 100, color=group_color(label),
+                    ls="--" if label.startswith("LD") else "-", label=f"{label} (n={count[g, k]})")
+        ax.set_title(names[k])
+        ax.set_xlabel("passage speed [cm/s]")
+        ax.set_ylabel("density [1/(cm/s)]")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+    fig.suptitle("Passage speed, Gaussian kernel density (Silverman bandwidth)")
+    fig.tight_layout()
+    save(fig, out, "speed_density.png")
+
+
+def chart_yaw(st, out):
+    groups = group_labels(st)
+    centres = st["yaw_bin"].values
+    width = float(centres[1] - centres[0]) if len(centres) > 1 else 10.0
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4.2))
+    for ax, var, title in ((axes[0], "max_rotation_histogram", "largest rotation from the heading at motion start"),
+                           (axes[1], "max_yaw_to_motion_histogram", "largest angle of the long axis to the direction of motion")):
+        for g, label in enumerate(groups):
+            ax.step(centres, st[var].values[g], where="mid", color=group_color(label), ls="--" if label.startswith("LD") else "-",
+                    label=label)
+        ax.set_xlabel("angle in the first 30 s after motion starts [degree]")
+        ax.set_ylabel(f"trajectories per {width:g}° bin")
+        ax.set_title(title, fontsize=10)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    save(fig, out, "yaw.png")
+
+
+def chart_relative_error(st, out):
+    groups = group_labels(st)
+    labels = [str(v) for v in st["param_set_label"].values]
+    control = [bool(v) for v in st["param_set_is_control"].values]
+    t = st["time"].values - st["time"].values[0]
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.2 * len(groups), 3.8), squeeze=False, sharey=True)
+    cmap = plt.get_cmap("tab10")
+    for ax, (g, label) in zip(axes[0], enumerate(groups)):
+        for p, pl in enumerate(labels):
+            if control[p]:
+                continue
+            r = st["relative_error"].values[g, p]
+            r = np.where(np.abs(r) > 1e30, np.nan, r)
+            ax.plot(t, r, color=cmap(p % 10), ls="-" if "x" in pl else "--", lw=1.2, label=pl)
+        ax.axhline(0, color="k", lw=0.8)
+        ax.set_title(label)
+        ax.set_xlabel("time [s]")
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("R(t) = (D - D_control) / D_control [-]")
+    axes[0][-1].legend(fontsize=7, ncol=2)
+    fig.suptitle("Relative change of the distance from the start per parameter (mean over flows)")
+    fig.tight_layout()
+    save(fig, out, "relative_error.png")
+
+
+def chart_map(scene, st, out, var, name, label, cmap, scale=1.0, vmax=None):
+    groups = group_labels(st)
+    xs, ys = st["x"].values, st["y"].values
+    fig, axes = plt.subplots(len(groups), 1, figsize=(11, 3.3 * len(groups)), squeeze=False)
+    for ax, (g, glabel) in zip(axes[:, 0], enumerate(groups)):
+        scene_background(ax, scene, city_extent(scene))
+        v = st[var].values[g].astype(float) * scale
+        v = np.ma.masked_where(~np.isfinite(v) | (v <= 0) | (v > 1e30), v)
+        im = ax.imshow(v, origin="lower", extent=[xs[0], xs[-1], ys[0], ys[-1]], cmap=cmap, vmin=0, vmax=vmax, aspect="equal")
+        fig.colorbar(im, ax=ax, shrink=0.85, label=label)
+        ax.set_title(f"{glabel}: {int(st['group_members'].values[g])} trajectories", fontsize=10)
+    fig.tight_layout()
+    save(fig, out, name)
+
+
+def charts_from_stats(scene, stats_path, out):
+    if not stats_path:
+        print("charts.py: sections, speed_density, yaw, relative_error, probability, max_speed skipped (no --stats)")
+        return
+    st = xr.open_dataset(stats_path, decode_times=False)
+    chart_sections(st, out)
+    chart_speed_density(st, out)
+    chart_yaw(st, out)
+    chart_relative_error(st, out)
+    chart_map(scene, st, out, "pass_probability", "probability.png", "probability that debris passes the cell [-]", "magma_r",
+              vmax=1.0)
+    chart_map(scene, st, out, "max_debris_speed", "max_speed.png", "largest debris speed in the cell [cm/s]", "viridis", scale=100.0)
+
+
 def point_positions(scene):
     out = {}
     if "point_name" in scene and "point_x" in scene:
@@ -193,6 +333,7 @@ def main():
     chart_trajectories(scene, a.flows, a.trajectories, a.out, a.snapshot_time)
     chart_wg2(a.flows, a.out)
     chart_time_to_draft(scene, a.flows, a.out)
+    charts_from_stats(scene, a.stats, a.out)
 
 
 if __name__ == "__main__":
