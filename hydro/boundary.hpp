@@ -20,16 +20,22 @@ enum class BoundaryKind {
     nested,        // ghost cells given by the other grid of a nested pair (hydro/nesting.hpp)
 };
 
+// A measured record (WG1) is the total level: the wave going in plus what the city sent
+// back. Read as the incoming wave alone, that reflection is counted twice (generated
+// scene, 4 cm, record r00: WG2 peaks at 0.117 m as `incident`, 0.0615 m as `total`;
+// the paper measured 0.063 m). Hence `total` is the default; `incident` is for a series
+// that really is the incoming wave only (an offshore model's, a wave maker's target).
 enum class LevelMode {
+    total,     // the series is the total level at the side: the level is imposed, the
+               // velocity follows from the outgoing Riemann invariant taken from inside
     incident,  // the series is the incoming long wave: the incoming Riemann invariant is
                // imposed, the outgoing one comes from inside, so reflections leave
-    total,     // the series is the total level at the side (Dirichlet on eta)
 };
 
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
     std::string series_file;                  // CSV time,value for level / discharge
-    LevelMode level_mode = LevelMode::incident;
+    LevelMode level_mode = LevelMode::total;
     double pump_discharge = 0.0175;           // [m^3/s] mass source while pumping (half the flume pump)
     double pump_stop = 300.0;                 // [s] end of pumping
     double pump_relax_time = 50.0;            // [s] e-folding time of the level after pumping

@@ -18,7 +18,7 @@ struct HydroOptions {
     std::vector<double> window;
     std::vector<std::string> gauges;
     std::string west = "level", east = "transmissive", south = "wall", north = "wall";
-    std::string level_mode = "incident";
+    std::string level_mode = "total";
     int threads = 0;
 };
 
@@ -103,7 +103,7 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--east-series", s.east.series_file, "CSV for an east level/discharge boundary");
     sub->add_option("--south-series", s.south.series_file, "CSV for a south level/discharge boundary");
     sub->add_option("--north-series", s.north.series_file, "CSV for a north level/discharge boundary");
-    sub->add_option("--level-mode", o->level_mode, "A level series is the 'incident' wave (reflections leave) or the 'total' level")->capture_default_str();
+    sub->add_option("--level-mode", o->level_mode, "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the 'incident' wave (reflections leave)")->capture_default_str();
     sub->add_option("--pump-discharge", s.west.pump_discharge, "Pump boundary: mass source [m^3/s]")->capture_default_str();
     sub->add_option("--pump-stop", s.west.pump_stop, "Pump boundary: end of pumping [s]")->capture_default_str();
     sub->add_option("--pump-relax", s.west.pump_relax_time, "Pump boundary: relaxation time of the level after pumping [s]")->capture_default_str();
