@@ -218,9 +218,13 @@ def chart_speed_density(st, out):
     if not used:
         print("charts.py: speed_density.png skipped (no passages)")
         return
-    fig, axes = plt.subplots(1, len(used), figsize=(4 * len(used), 3.6), squeeze=False)
+    ncol = min(3, len(used))
+    nrow = (len(used) + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.4 * ncol, 3.4 * nrow), squeeze=False)
+    for ax in axes.flat[len(used):]:
+        ax.set_visible(False)
     speed = st["speed"].values * 100
-    for ax, k in zip(axes[0], used):
+    for ax, k in zip(axes.flat, used):
         for g, label in enumerate(groups):
             if count[g, k] < 2:
                 continue
