@@ -44,73 +44,67 @@ def save(fig, path, legend_rows=0):
     print(f"charts_accuracy_debris.py: wrote {path}")
 
 
-def floors(ax, rows, col):
-    for r in rows:
-        ax.axhline(max(float(r[col]), FLOOR_VALUE), color=COLOURS[r["model"]], ls=":", lw=1)
+def error_grid(rows, is_floor, xlabel, draw, title, legend_title, legend_rows, out):
+    """Starts (rows) × METRICS (columns) on log-log axes: the floor lines, then
+    draw(ax, rows of the start, metric column), then one legend below."""
+    fig, axes = plt.subplots(2, 3, figsize=(16, 8.5))
+    for i, start in enumerate(STARTS):
+        for j, (col, label) in enumerate(METRICS):
+            ax = axes[i][j]
+            mine = [r for r in rows if r["start"] == start]
+            for r in mine:
+                if is_floor(r):
+                    ax.axhline(max(float(r[col]), FLOOR_VALUE), color=COLOURS[r["model"]], ls=":", lw=1)
+            draw(ax, mine, col)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel(label)
+            ax.set_title(f"{start} starts", fontsize=10)
+            ax.grid(alpha=0.3, which="both")
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8, title=legend_title, title_fontsize=8)
+    fig.suptitle(title)
+    save(fig, out, legend_rows)
 
 
 def frames_chart(rows, out):
-    fig, axes = plt.subplots(2, 3, figsize=(16, 8.5))
-    for i, start in enumerate(STARTS):
-        for j, (col, label) in enumerate(METRICS):
-            ax = axes[i][j]
-            mine = [r for r in rows if r["start"] == start]
-            floors(ax, [r for r in mine if r["interpolant"] == "floor"], col)
-            for model in COLOURS:
-                for interp, style in (("linear", "o-"), ("cubic", "s--")):
-                    rs = sorted((r for r in mine if r["model"] == model and r["interpolant"] == interp),
-                                key=lambda r: float(r["file_bytes"]))
-                    rs = [r for r in rs if not (interp == "linear" and float(r["frame_interval_s"]) == 0.1)]  # the reference
-                    x = [float(r["file_bytes"]) / 1e6 for r in rs]
-                    y = [max(float(r[col]), FLOOR_VALUE) for r in rs]
-                    ax.plot(x, y, style, color=COLOURS[model], label=f"{model}, {interp}")
-                    if interp == "linear":
-                        for xi, yi, r in zip(x, y, rs):
-                            ax.annotate(f"{r['frame_interval_s']} s", (xi, yi), textcoords="offset points", xytext=(3, 3), fontsize=7)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.set_xlabel("flow file size [MB]")
-            ax.set_ylabel(label)
-            ax.set_title(f"{start} starts", fontsize=10)
-            ax.grid(alpha=0.3, which="both")
-    handles, labels = axes[0][0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8,
-               title="reference: 0.1 s frames, linear; dotted: the reference with starts moved 1 mm", title_fontsize=8)
-    fig.suptitle("Debris trajectory error against stored frame interval and time interpolant (real layout, 4 cm flow)")
-    save(fig, out, legend_rows=2)
+    def draw(ax, mine, col):
+        for model in COLOURS:
+            for interp, style in (("linear", "o-"), ("cubic", "s--")):
+                rs = sorted((r for r in mine if r["model"] == model and r["interpolant"] == interp), key=lambda r: float(r["file_bytes"]))
+                rs = [r for r in rs if not (interp == "linear" and float(r["frame_interval_s"]) == 0.1)]  # the reference
+                x = [float(r["file_bytes"]) / 1e6 for r in rs]
+                y = [max(float(r[col]), FLOOR_VALUE) for r in rs]
+                ax.plot(x, y, style, color=COLOURS[model], label=f"{model}, {interp}")
+                if interp == "linear":
+                    for xi, yi, r in zip(x, y, rs):
+                        ax.annotate(f"{r['frame_interval_s']} s", (xi, yi), textcoords="offset points", xytext=(3, 3), fontsize=7)
+
+    error_grid(rows, lambda r: r["interpolant"] == "floor", "flow file size [MB]", draw,
+               "Debris trajectory error against stored frame interval and time interpolant (real layout, 4 cm flow)",
+               "reference: 0.1 s frames, linear; dotted: the reference with starts moved 1 mm", 2, out)
 
 
 def steps_chart(rows, out):
-    fig, axes = plt.subplots(2, 3, figsize=(16, 8.5))
-    for i, start in enumerate(STARTS):
-        for j, (col, label) in enumerate(METRICS):
-            ax = axes[i][j]
-            mine = [r for r in rows if r["start"] == start]
-            floors(ax, [r for r in mine if r["series"] == "floor"], col)
-            for model in COLOURS:
-                for integ, style in (("euler", "o-"), ("heun", "s--")):
-                    rs = sorted((r for r in mine if r["model"] == model and r["integrator"] == integ and r["series"] == "dt_max"),
-                                key=lambda r: float(r["stepping_cpu_per_body_run_s"]))
-                    x = [float(r["stepping_cpu_per_body_run_s"]) for r in rs]
-                    y = [max(float(r[col]), FLOOR_VALUE) for r in rs]
-                    ax.plot(x, y, style, color=COLOURS[model], mfc="none" if integ == "heun" else None, label=f"{model}, {integ}")
-                    for xi, yi, r in zip(x, y, rs):
-                        ax.annotate(f"{float(r['dt_max_s']) * 1000:g} ms", (xi, yi), textcoords="offset points", xytext=(3, 3), fontsize=6)
-                    fr = [r for r in mine if r["model"] == model and r["integrator"] == integ and r["series"] == "fraction"]
-                    ax.plot([float(r["stepping_cpu_per_body_run_s"]) for r in fr], [max(float(r[col]), FLOOR_VALUE) for r in fr], "x",
-                            color=COLOURS[model], ms=5)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.set_xlabel("stepping CPU per body-run [s]")
-            ax.set_ylabel(label)
-            ax.set_title(f"{start} starts", fontsize=10)
-            ax.grid(alpha=0.3, which="both")
-    handles, labels = axes[0][0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8,
-               title="lines: dt_max at f = 0.25; x: f = 1 … 1/16 at dt_max 10 ms; reference: heun, 1.25 ms, f 1/16; "
-                     "dotted: the reference with starts moved 1 mm", title_fontsize=8)
-    fig.suptitle("Debris trajectory error against step and integrator (real layout, 4 cm flow, 1 s frames)")
-    save(fig, out, legend_rows=3)
+    def draw(ax, mine, col):
+        for model in COLOURS:
+            for integ, style in (("euler", "o-"), ("heun", "s--")):
+                rs = sorted((r for r in mine if r["model"] == model and r["integrator"] == integ and r["series"] == "dt_max"),
+                            key=lambda r: float(r["stepping_cpu_per_body_run_s"]))
+                x = [float(r["stepping_cpu_per_body_run_s"]) for r in rs]
+                y = [max(float(r[col]), FLOOR_VALUE) for r in rs]
+                ax.plot(x, y, style, color=COLOURS[model], mfc="none" if integ == "heun" else None, label=f"{model}, {integ}")
+                for xi, yi, r in zip(x, y, rs):
+                    ax.annotate(f"{float(r['dt_max_s']) * 1000:g} ms", (xi, yi), textcoords="offset points", xytext=(3, 3), fontsize=6)
+                fr = [r for r in mine if r["model"] == model and r["integrator"] == integ and r["series"] == "fraction"]
+                ax.plot([float(r["stepping_cpu_per_body_run_s"]) for r in fr], [max(float(r[col]), FLOOR_VALUE) for r in fr], "x",
+                        color=COLOURS[model], ms=5)
+
+    error_grid(rows, lambda r: r["series"] == "floor", "stepping CPU per body-run [s]", draw,
+               "Debris trajectory error against step and integrator (real layout, 4 cm flow, 1 s frames)",
+               "lines: dt_max at f = 0.25; x: f = 1 … 1/16 at dt_max 10 ms; reference: heun, 1.25 ms, f 1/16; "
+               "dotted: the reference with starts moved 1 mm", 3, out)
 
 
 def stability_chart(rows, out):
