@@ -108,4 +108,13 @@ TEST(DebrisRun, CliWritesTheSameTrajectoryFileTwice) {
     EXPECT_NE(out.find("not a flow file"), std::string::npos) << out;
     EXPECT_NE(test::run_cli("debris --flow " + flow + " --scene " + dir + "/scene.nc --start WG --out " + dir + "/c.nc", &out), 0);
     EXPECT_NE(out.find("no start point"), std::string::npos) << out;
+    for (const char* bad : {"--time-interpolation spline", "--integrator rk4", "--vertex-step-fraction 0"}) {
+        EXPECT_NE(test::run_cli("debris --flow " + flow + " --at 0,0,0 " + bad + " --out " + dir + "/c.nc", &out), 0) << bad;
+        EXPECT_NE(out.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << out;
+    }
+    // The choices are recorded in the file.
+    ASSERT_EQ(test::run_cli(args + " --time-interpolation cubic --integrator heun --out " + dir + "/d.nc", &out), 0) << out;
+    const nc::File d = nc::File::open_read(dir + "/d.nc");
+    EXPECT_EQ(d.att_text(NC_GLOBAL, "time_interpolation").value_or(""), "cubic");
+    EXPECT_EQ(d.att_text(NC_GLOBAL, "integrator").value_or(""), "heun");
 }
