@@ -1,6 +1,8 @@
 // flotsam debris: replay one or more bodies through a stored flow and write their
 // trajectories (debris/trajectory_file.hpp).
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -25,6 +27,9 @@ struct DebrisOptions {
     double output_interval = 0.5;  // [s]
     double end_time = -1.0;        // [s]; < 0: the flow's last frame
     double dt_max = debris::default_step_def().dt_max;
+    double vertex_step_fraction = debris::default_step_def().vertex_step_fraction;
+    std::string integrator = debris::to_string(debris::default_step_def().integrator);
+    std::string time_interpolation = debris::to_string(debris::default_flow_reader_def().time_interpolation);
     int threads = 0;
     bool quiet = false;
 };
@@ -83,7 +88,12 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     }
 
     debris::WorldDef wdef = debris::default_world_def();
+    if (!(o.dt_max > 0)) fail("--dt-max", std::to_string(o.dt_max), "must be positive");
+    if (!(o.vertex_step_fraction > 0)) fail("--vertex-step-fraction", std::to_string(o.vertex_step_fraction), "must be positive");
     wdef.step.dt_max = o.dt_max;
+    wdef.step.vertex_step_fraction = o.vertex_step_fraction;
+    wdef.step.integrator = debris::parse_integrator(o.integrator);
+    wdef.flow.time_interpolation = debris::parse_time_interpolation(o.time_interpolation);
     wdef.threads = o.threads;
     std::vector<std::uint8_t> building;
     {
@@ -102,6 +112,7 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     debris::TrajectorySeries series;
     debris::record(world, series);
     Progress progress("debris", t_end, 10.0, o.quiet);
+    const std::clock_t cpu_start = std::clock();
     // Output times t0 + k Δ, computed from k (no accumulated round-off), ending at t_end.
     for (long k = 1;; ++k) {
         const double t = std::min(t0 + double(k) * o.output_interval, t_end);
@@ -115,6 +126,11 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     long steps = 0;
     for (const auto& s : world.stats()) steps += s.steps;
     progress.finish(t_end, steps);
+    if (!o.quiet) {  // for cost charts (pipelines/accuracy_debris.py); CPU time of all threads
+        const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC, reading = world.flow().load_cpu_seconds();
+        std::fprintf(stderr, "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
+                     world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
+    }
     debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names});
 }
 
@@ -148,6 +164,13 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")->capture_default_str();
     sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");
     sub->add_option("--dt-max", opts->dt_max, "largest time step [s]")->capture_default_str();
+    sub->add_option("--vertex-step-fraction", opts->vertex_step_fraction,
+                    "largest corner displacement per step, in grid cells (no tunnelling at the default)")
+        ->capture_default_str();
+    sub->add_option("--integrator", opts->integrator, "fluid-force stage: euler (semi-implicit) or heun (predictor-corrector)")
+        ->capture_default_str();
+    sub->add_option("--time-interpolation", opts->time_interpolation, "between stored frames: linear or cubic (Catmull-Rom, guarded)")
+        ->capture_default_str();
     sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
     sub->callback([opts, command_line] { run_debris(*opts, command_line); });

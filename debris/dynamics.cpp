@@ -5,11 +5,19 @@
 
 #include "debris/box.hpp"
 #include "debris/collision.hpp"
+#include "common/error.hpp"
 #include "debris/kernels.hpp"
 
 namespace flotsam::debris {
 
 StepDef default_step_def() { return StepDef{}; }
+
+const char* to_string(Integrator m) { return m == Integrator::euler ? "euler" : "heun"; }
+Integrator parse_integrator(const std::string& s) {
+    if (s == "euler") return Integrator::euler;
+    if (s == "heun") return Integrator::heun;
+    fail("--integrator", s, "expected 'euler' or 'heun'");
+}
 
 namespace {
 
@@ -33,6 +41,54 @@ double bottom_elevation(const ObstacleMap& obstacles, double x, double y, double
     return obstacles.ground(x, y) + std::max(depth - draft, 0.0);
 }
 
+// The body's pose and velocities as the fluid force sees them.
+struct Motion {
+    Vec2 centre;              // x_g [m]
+    double theta;             // heading [rad]
+    Vec2 velocity;            // V [m/s]
+    double omega;             // ω about the centre [rad/s]
+    double pivot_rate;        // ω_p about the contact centroid [rad/s]
+    Vec2 pivot_arm;           // that centroid relative to the centre [m]
+};
+
+// The flow's force on the body without friction: inertia ρ V_s Cm Du/Dt at the centre
+// plus the face-sampled drag, and the drag's torque T' about the centre [N], [N m].
+struct FluidLoad {
+    Vec2 force;
+    double torque = 0.0;
+};
+FluidLoad fluid_load(const StepContext& ctx, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged, double t) {
+    const BodyDef& def = b.def;
+    const double rho = ctx.def.water_density;
+    const Box box = Box::make(m.centre, m.theta, def.length, def.width);
+    // Velocity of the body point at r from the centre: translation, rotation about the
+    // centre, and rotation about the pivot while the axis is shifted.
+    auto point_velocity = [&](Vec2 r) { return m.velocity + spin(m.omega, r) + spin(m.pivot_rate, r - m.pivot_arm); };
+    FluidLoad load;
+    load.force = (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
+    const int ns = def.samples_per_face;
+    for (int face = 0; face < 4; ++face) {
+        const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
+        const double sign = (face % 2 == 0) ? 1.0 : -1.0;
+        const Vec2 n = sign * (long_normal ? box.axis_long : box.axis_wide);
+        const Vec2 tangent = long_normal ? box.axis_wide : box.axis_long;
+        const double offset = long_normal ? box.half_length : box.half_width;
+        const double face_length = long_normal ? def.width : def.length;
+        const double segment = face_length / ns;
+        for (int q = 0; q < ns; ++q) {
+            const Vec2 r = offset * n + ((q + 0.5) / ns - 0.5) * face_length * tangent;
+            const FlowPoint fp = ctx.flow.sample(m.centre.x + r.x, m.centre.y + r.y, t);
+            const double wetted = std::min(b.draft, fp.depth);
+            if (wetted <= 0.0) continue;
+            const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);
+            const Vec2 dF = face_drag(u_rel, n, segment * wetted, def.cd1, def.cd2, rho);
+            load.force += dF;
+            load.torque += cross(r, dF);
+        }
+    }
+    return load;
+}
+
 }  // namespace
 
 double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch) {
@@ -54,41 +110,39 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     const Inertia eff = effective_inertia(b, submerged, rho);
     const Box box = Box::make(xg, s.theta, def.length, def.width);
     const Vec2 V{s.vx, s.vy};
-    // Velocity of the body point at r from the centre: translation, rotation about the
-    // centre, and rotation about the pivot while the axis is shifted.
-    const Vec2 pivot_arm{s.pivot_ax, s.pivot_ay};
-    auto point_velocity = [&](Vec2 r) { return V + spin(s.omega, r) + spin(s.pivot_rate, r - pivot_arm); };
+    const Motion now{xg, s.theta, V, s.omega, s.pivot_rate, Vec2{s.pivot_ax, s.pivot_ay}};
 
     // ---- hydrodynamic force F and its torque T' about the centre (no friction) ----
-    Vec2 F = (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
-    double T = 0.0;
-    const int ns = def.samples_per_face;
-    for (int face = 0; face < 4; ++face) {
-        const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
-        const double sign = (face % 2 == 0) ? 1.0 : -1.0;
-        const Vec2 n = sign * (long_normal ? box.axis_long : box.axis_wide);
-        const Vec2 tangent = long_normal ? box.axis_wide : box.axis_long;
-        const double offset = long_normal ? box.half_length : box.half_width;
-        const double face_length = long_normal ? def.width : def.length;
-        const double segment = face_length / ns;
-        for (int q = 0; q < ns; ++q) {
-            const Vec2 r = offset * n + ((q + 0.5) / ns - 0.5) * face_length * tangent;
-            const FlowPoint fp = ctx.flow.sample(xg.x + r.x, xg.y + r.y, t);
-            const double wetted = std::min(b.draft, fp.depth);
-            if (wetted <= 0.0) continue;
-            const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);
-            const Vec2 dF = face_drag(u_rel, n, segment * wetted, def.cd1, def.cd2, rho);
-            F += dF;
-            T += cross(r, dF);
-        }
+    const FluidLoad load = fluid_load(ctx, b, now, centre, submerged, t);
+    Vec2 F = load.force;
+    double T = load.torque;
+    Vec2 explicit_force;  // −ρ C_a V_s dV/dt with last step's dV/dt (unstable: for the study only)
+    double explicit_torque = 0.0;
+    if (def.added_mass == AddedMass::explicit_) {
+        explicit_force = (-eff.added_mass) * Vec2{s.ax_prev, s.ay_prev};
+        explicit_torque = -eff.added_mass * b.radius_sq * s.alpha_prev;
+        F += explicit_force;
+        T += explicit_torque;
     }
-    if (def.added_mass == AddedMass::explicit_) {  // −ρ C_a V_s dV/dt with last step's dV/dt (unstable: for the study only)
-        F += (-eff.added_mass) * Vec2{s.ax_prev, s.ay_prev};
-        T -= eff.added_mass * b.radius_sq * s.alpha_prev;
+    // Velocities first (added mass on the left), then positions. Euler: the acceleration
+    // at the start of the step. Heun: its mean with the acceleration at the Euler-predicted
+    // end (pose, velocities and time t + dt; the pivot motion held as it is). The axis
+    // shift below uses the force at the start of the step in both.
+    Vec2 V_trial = V + (dt / eff.mass) * F;
+    double omega_trial = s.omega + dt / eff.inertia * T;
+    if (ctx.def.integrator == Integrator::heun) {
+        Motion end = now;
+        end.velocity = V_trial;
+        end.omega = omega_trial;
+        end.centre = xg + dt * V_trial;
+        end.theta = s.theta + dt * omega_trial;
+        const FlowPointAccel centre_end = ctx.flow.sample_accel(end.centre.x, end.centre.y, t + dt);
+        const double submerged_end = b.plan_area * std::min(b.draft, centre_end.depth);
+        const Inertia eff_end = effective_inertia(b, submerged_end, rho);
+        const FluidLoad load_end = fluid_load(ctx, b, end, centre_end, submerged_end, t + dt);
+        V_trial = V + (0.5 * dt) * ((1.0 / eff.mass) * F + (1.0 / eff_end.mass) * (load_end.force + explicit_force));
+        omega_trial = s.omega + 0.5 * dt * (T / eff.inertia + (load_end.torque + explicit_torque) / eff_end.inertia);
     }
-    // Semi-implicit Euler: velocities first (added mass on the left), positions with the new velocities.
-    const Vec2 V_trial = V + (dt / eff.mass) * F;
-    const double omega_trial = s.omega + dt / eff.inertia * T;
 
     // ---- friction patches ----
     auto& patches = scratch.patches;
@@ -179,9 +233,14 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     s.pivot_rate = pivot_rate;
     s.pivot_ax = pivot_rate != 0.0 ? pivot_arm_new.x : 0.0;
     s.pivot_ay = pivot_rate != 0.0 ? pivot_arm_new.y : 0.0;
-    s.x += dt * V_new.x + shift.x;
-    s.y += dt * V_new.y + shift.y;
-    s.theta += dt * omega_new + turn;
+    // Heun moves with the mean of the old and new velocities (second order), Euler with
+    // the new one (semi-implicit: a body friction has stopped does not move).
+    const double w_new = ctx.def.integrator == Integrator::heun ? 0.5 : 1.0;
+    const Vec2 V_move = w_new * V_new + (1.0 - w_new) * V;
+    const double omega_move = w_new * omega_new + (1.0 - w_new) * now.omega;
+    s.x += dt * V_move.x + shift.x;
+    s.y += dt * V_move.y + shift.y;
+    s.theta += dt * omega_move + turn;
 
     const auto before = box.corners();
     const auto after = Box::make({s.x, s.y}, s.theta, def.length, def.width).corners();

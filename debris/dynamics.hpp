@@ -2,6 +2,7 @@
 // The equations are in docs/debris.md; every step is independent of other bodies, so
 // many bodies can go through the same loaded frames in parallel.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "debris/body.hpp"
@@ -11,12 +12,21 @@
 
 namespace flotsam::debris {
 
+// The fluid-force stage of a step: semi-implicit Euler (the force at the start of the
+// step), or Heun (the mean of the accelerations at the start and at an Euler-predicted
+// end, positions with the mean of the old and new velocity). Friction, the axis shift and
+// collisions follow the same way in both. See docs/debris.md.
+enum class Integrator { euler, heun };
+const char* to_string(Integrator m);
+Integrator parse_integrator(const std::string& s);  // "euler" | "heun"
+
 struct StepDef {
     double water_density = 1000.0;     // ρw [kg/m³]
     double gravity = 9.81;             // g [m/s²]
     double dt_max = 0.01;              // upper bound of the time step [s]
     double vertex_step_fraction = 0.25; // largest corner displacement per step, in cells [-]
     int max_collision_passes = 10;     // MC pass bound [-]
+    Integrator integrator = Integrator::euler;
 };
 StepDef default_step_def();
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include "common/error.hpp"
 #include "hydro/flow_file.hpp"
@@ -11,7 +12,22 @@ namespace flotsam::debris {
 
 FlowReaderDef default_flow_reader_def() { return FlowReaderDef{}; }
 
+const char* to_string(TimeInterpolation m) { return m == TimeInterpolation::linear ? "linear" : "cubic"; }
+TimeInterpolation parse_time_interpolation(const std::string& s) {
+    if (s == "linear") return TimeInterpolation::linear;
+    if (s == "cubic") return TimeInterpolation::cubic;
+    fail("--time-interpolation", s, "expected 'linear' or 'cubic'");
+}
+
 namespace {
+
+// CPU time of the calling thread [s] (reading runs on one thread, between the parallel
+// stepping sweeps).
+double thread_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 // A flow field found by standard_name, with dims (time, y, x).
 int find_field(const nc::File& f, const char* standard_name, const char* short_name) {
@@ -52,26 +68,54 @@ double FlowReader::next_frame_time(double t) const {
     return it == times_.end() ? times_.back() : *it;
 }
 
-void FlowReader::load(std::size_t slot, std::size_t frame) {
+void FlowReader::load(Frame& f, std::size_t frame) {
     const auto start_clock = std::chrono::steady_clock::now();
+    const double start_cpu = thread_cpu_seconds();
     const std::size_t ni = std::size_t(window_.i1 - window_.i0), nj = std::size_t(window_.j1 - window_.j0), n = ni * nj;
     const std::vector<std::size_t> start = {frame, std::size_t(window_.j0), std::size_t(window_.i0)}, count = {1, nj, ni};
-    h_[slot].resize(n);
-    qx_[slot].resize(n);
-    qy_[slot].resize(n);
-    file_.get_slab(var_h_, start, count, h_[slot].data());
-    file_.get_slab(var_u_, start, count, qx_[slot].data());
-    file_.get_slab(var_v_, start, count, qy_[slot].data());
+    f.h.resize(n);
+    f.qx.resize(n);
+    f.qy.resize(n);
+    file_.get_slab(var_h_, start, count, f.h.data());
+    file_.get_slab(var_u_, start, count, f.qx.data());
+    file_.get_slab(var_v_, start, count, f.qy.data());
     for (std::size_t k = 0; k < n; ++k) {
-        const float h = h_[slot][k];
-        if (!std::isfinite(h) || !std::isfinite(qx_[slot][k]) || !std::isfinite(qy_[slot][k]))
+        const float h = f.h[k];
+        if (!std::isfinite(h) || !std::isfinite(f.qx[k]) || !std::isfinite(f.qy[k]))
             fail(path(), "frame " + std::to_string(frame), "h, u or v is not finite (a flow file stores 0, never NaN)");
-        qx_[slot][k] *= h;  // u → hu
-        qy_[slot][k] *= h;
+        f.qx[k] *= h;  // u → hu
+        f.qy[k] *= h;
     }
-    slot_frame_[slot] = frame;
+    f.index = frame;
     ++frames_loaded_;
     load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+    load_cpu_seconds_ += thread_cpu_seconds() - start_cpu;
+}
+
+void FlowReader::hold(const std::size_t (&need)[4]) {
+    const bool cubic = def_.time_interpolation == TimeInterpolation::cubic;
+    const int r0 = cubic ? 0 : 1, r1 = cubic ? 4 : 3;
+    Frame held[4];
+    for (int r = 0; r < 4; ++r) held[r] = std::move(frames_[r]);
+    for (int r = r0; r < r1; ++r) {
+        Frame& f = frames_[r];
+        f.index = no_frame;
+        for (int q = r0; q < r && f.index == no_frame; ++q)  // the same frame in an earlier role (at the ends)
+            if (frames_[q].index == need[r]) f = frames_[q];
+        for (int q = 0; q < 4 && f.index == no_frame; ++q)  // held already: keep it
+            if (held[q].index == need[r]) {
+                f = std::move(held[q]);
+                held[q].index = no_frame;
+            }
+        if (f.index == no_frame) load(f, need[r]);
+    }
+    for (int r = 0; r < 4; ++r) {
+        role_slot_[r] = cubic ? r : std::clamp(r, 1, 2);
+        h_.role[r] = role(r).h.data();
+        qx_.role[r] = role(r).qx.data();
+        qy_.role[r] = role(r).qy.data();
+    }
+    loaded_ = true;
 }
 
 void FlowReader::prepare(double t) {
@@ -79,25 +123,14 @@ void FlowReader::prepare(double t) {
     std::size_t k = std::size_t(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
     k = k == 0 ? 0 : k - 1;
     const std::size_t k1 = std::min(k + 1, n - 1);
-    if (loaded_ && slot_frame_[0] == k && slot_frame_[1] == k1) return;
-    if (loaded_ && slot_frame_[1] == k) {  // moving forward one frame: keep the newer one
-        std::swap(h_[0], h_[1]);
-        std::swap(qx_[0], qx_[1]);
-        std::swap(qy_[0], qy_[1]);
-        slot_frame_[0] = k;
-    } else {
-        load(0, k);
+    const bool cubic = def_.time_interpolation == TimeInterpolation::cubic;
+    const std::size_t need[4] = {cubic && k > 0 ? k - 1 : k, k, k1, cubic ? std::min(k1 + 1, n - 1) : k1};
+    if (loaded_) {
+        bool same = true;
+        for (int r = 0; r < 4; ++r) same = same && role(r).index == need[r];
+        if (same) return;
     }
-    if (k1 == k) {
-        h_[1] = h_[0];
-        qx_[1] = qx_[0];
-        qy_[1] = qy_[0];
-        slot_frame_[1] = k1;
-    } else {
-        load(1, k1);
-    }
-    pair_ = k;
-    loaded_ = true;
+    hold(need);
 }
 
 void FlowReader::set_window(const CellWindow& w) {
@@ -107,16 +140,9 @@ void FlowReader::set_window(const CellWindow& w) {
     if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
     window_ = c;
     if (!loaded_) return;
-    const std::size_t f0 = slot_frame_[0], f1 = slot_frame_[1];
-    load(0, f0);
-    if (f1 == f0) {
-        h_[1] = h_[0];
-        qx_[1] = qx_[0];
-        qy_[1] = qy_[0];
-        slot_frame_[1] = f1;
-    } else {
-        load(1, f1);
-    }
+    const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};
+    for (Frame& f : frames_) f.index = no_frame;  // stored on the old window: read again
+    hold(need);
 }
 
 CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) const {
@@ -127,11 +153,13 @@ CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) con
 }
 
 struct FlowReader::Stencil {
-    std::size_t n00 = 0, n10 = 0, n01 = 0, n11 = 0;  // node offsets in the window arrays
-    double wx = 0.0, wy = 0.0;                       // bilinear weights of the +1 nodes
-    double a = 0.0;                                  // weight of the later frame
-    double inv_dt = 0.0;                             // 1 / frame interval, 0 where the flow is held
-    bool inside_x = true, inside_y = true;           // false where the point was clamped to the grid
+    std::size_t n[4] = {0, 0, 0, 0};        // node offsets in the window arrays: 00, 10, 01, 11
+    double wx = 0.0, wy = 0.0;              // bilinear weights of the +1 nodes
+    double a = 0.0;                         // linear: weight of frame k+1
+    double inv_dt = 0.0;                    // 1 / frame interval, 0 where the flow is held
+    bool cubic[4] = {false, false, false, false};  // node c uses the cubic (it passed the guard)
+    TimeWeights cubic_weights;              // set where the cubic interpolant is on
+    bool inside_x = true, inside_y = true;  // false where the point was clamped to the grid
 };
 
 FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
@@ -145,45 +173,64 @@ FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
     j = std::clamp(j, 0, wny - 2);
     s.wx = std::clamp(fx - double(i + window_.i0), 0.0, 1.0);
     s.wy = std::clamp(fy - double(j + window_.j0), 0.0, 1.0);
-    s.n00 = std::size_t(j) * std::size_t(wnx) + std::size_t(i);
-    s.n10 = s.n00 + 1;
-    s.n01 = s.n00 + std::size_t(wnx);
-    s.n11 = s.n01 + 1;
-    const double t0 = times_[slot_frame_[0]], t1 = times_[slot_frame_[1]];
+    s.n[0] = std::size_t(j) * std::size_t(wnx) + std::size_t(i);
+    s.n[1] = s.n[0] + 1;
+    s.n[2] = s.n[0] + std::size_t(wnx);
+    s.n[3] = s.n[2] + 1;
+    const double t0 = times_[role(1).index], t1 = times_[role(2).index];
     if (t1 > t0) {
         s.a = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
         if (t >= t0 && t <= t1) s.inv_dt = 1.0 / (t1 - t0);
+        if (def_.time_interpolation == TimeInterpolation::cubic) {
+            const double tp = times_[role(0).index], tn = times_[role(3).index];
+            s.cubic_weights = catmull_rom_time_weights(s.a, s.inv_dt, (t1 - t0) / (t1 - tp), (t1 - t0) / (tn - t0));
+            for (int c = 0; c < 4; ++c) {
+                const double h[4] = {h_.role[0][s.n[c]], h_.role[1][s.n[c]], h_.role[2][s.n[c]], h_.role[3][s.n[c]]};
+                s.cubic[c] = cubic_depth_admissible(apply_time_weights(s.cubic_weights.w, h[0], h[1], h[2], h[3]), h, def_.dry_depth);
+            }
+        }
     }
     return s;
 }
 
 namespace {
-// Value, and its x, y, t derivatives, of one field interpolated linearly in time and
-// bilinearly in space.
+// Value, and its x, y, t derivatives, of one field interpolated in time and bilinearly
+// in space.
 struct Interp {
     double val, ddx, ddy, ddt;
 };
 template <class S>
-inline double lerp_node(const std::vector<float>& f0, const std::vector<float>& f1, std::size_t n, const S& s) {
-    return (1.0 - s.a) * double(f0[n]) + s.a * double(f1[n]);
-}
-template <class S>
-inline double bilinear(double v00, double v10, double v01, double v11, const S& s) {
-    return (1.0 - s.wy) * ((1.0 - s.wx) * v00 + s.wx * v10) + s.wy * ((1.0 - s.wx) * v01 + s.wx * v11);
+inline double bilinear(const double (&v)[4], const S& s) {
+    return (1.0 - s.wy) * ((1.0 - s.wx) * v[0] + s.wx * v[1]) + s.wy * ((1.0 - s.wx) * v[2] + s.wx * v[3]);
 }
 }  // namespace
 
+// One field at node c of the stencil, in time: its value and its d/dt, from the cubic
+// where the node passed the guard, else from the two frames around t.
+template <class S, class F>
+inline double value_in_time(const S& s, const F& f, int c) {
+    const std::size_t n = s.n[c];
+    if (s.cubic[c]) return apply_time_weights(s.cubic_weights.w, f.role[0][n], f.role[1][n], f.role[2][n], f.role[3][n]);
+    return linear_in_time(s.a, f.role[1][n], f.role[2][n]);
+}
+template <class S, class F>
+inline double rate_in_time(const S& s, const F& f, int c) {
+    const std::size_t n = s.n[c];
+    if (s.cubic[c]) return apply_time_weights(s.cubic_weights.dw, f.role[0][n], f.role[1][n], f.role[2][n], f.role[3][n]);
+    return linear_rate(s.inv_dt, f.role[1][n], f.role[2][n]);
+}
+
 double FlowReader::depth(double x, double y, double t) const {
     const Stencil s = stencil(x, y, t);
-    return bilinear(lerp_node(h_[0], h_[1], s.n00, s), lerp_node(h_[0], h_[1], s.n10, s), lerp_node(h_[0], h_[1], s.n01, s),
-                    lerp_node(h_[0], h_[1], s.n11, s), s);
+    const double v[4] = {value_in_time(s, h_, 0), value_in_time(s, h_, 1), value_in_time(s, h_, 2), value_in_time(s, h_, 3)};
+    return bilinear(v, s);
 }
 
 FlowPoint FlowReader::sample(double x, double y, double t) const {
     const Stencil s = stencil(x, y, t);
-    auto at = [&](const std::vector<float>* f) {
-        return bilinear(lerp_node(f[0], f[1], s.n00, s), lerp_node(f[0], f[1], s.n10, s), lerp_node(f[0], f[1], s.n01, s),
-                        lerp_node(f[0], f[1], s.n11, s), s);
+    auto at = [&](const Field& f) {
+        const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
+        return bilinear(v, s);
     };
     FlowPoint p;
     p.depth = at(h_);
@@ -197,15 +244,14 @@ FlowPoint FlowReader::sample(double x, double y, double t) const {
 FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     const Stencil s = stencil(x, y, t);
     const double gx = s.inside_x ? 1.0 / grid_.dx : 0.0, gy = s.inside_y ? 1.0 / grid_.dy : 0.0;
-    auto interp = [&](const std::vector<float>* f) {
-        const double v00 = lerp_node(f[0], f[1], s.n00, s), v10 = lerp_node(f[0], f[1], s.n10, s);
-        const double v01 = lerp_node(f[0], f[1], s.n01, s), v11 = lerp_node(f[0], f[1], s.n11, s);
+    auto interp = [&](const Field& f) {
+        const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
+        const double rate[4] = {rate_in_time(s, f, 0), rate_in_time(s, f, 1), rate_in_time(s, f, 2), rate_in_time(s, f, 3)};
         Interp r;
-        r.val = bilinear(v00, v10, v01, v11, s);
-        r.ddx = ((1.0 - s.wy) * (v10 - v00) + s.wy * (v11 - v01)) * gx;
-        r.ddy = ((1.0 - s.wx) * (v01 - v00) + s.wx * (v11 - v10)) * gy;
-        auto dn = [&](std::size_t n) { return double(f[1][n]) - double(f[0][n]); };
-        r.ddt = bilinear(dn(s.n00), dn(s.n10), dn(s.n01), dn(s.n11), s) * s.inv_dt;
+        r.val = bilinear(v, s);
+        r.ddx = ((1.0 - s.wy) * (v[1] - v[0]) + s.wy * (v[3] - v[2])) * gx;
+        r.ddy = ((1.0 - s.wx) * (v[2] - v[0]) + s.wx * (v[3] - v[1])) * gy;
+        r.ddt = bilinear(rate, s);
         return r;
     };
     const Interp h = interp(h_);
@@ -229,9 +275,9 @@ double FlowReader::min_depth(const CellWindow& w) const {
     const int j0 = std::max(w.j0, window_.j0) - window_.j0, j1 = std::min(w.j1, window_.j1) - window_.j0;
     const int wnx = window_.i1 - window_.i0;
     float m = 1e30f;
-    for (int s = 0; s < 2; ++s)
+    for (int r = 1; r <= 2; ++r)
         for (int j = j0; j < j1; ++j) {
-            const float* row = h_[s].data() + std::size_t(j) * std::size_t(wnx);
+            const float* row = h_.role[r] + std::size_t(j) * std::size_t(wnx);
             for (int i = i0; i < i1; ++i) m = std::min(m, row[i]);
         }
     return double(m);

@@ -1,11 +1,15 @@
 // Replays a stage-one flow file (hydro/flow_file.hpp) at any point and time.
 //
-// Only two frames are held: the pair that brackets the current time, over a sub-window
-// of the grid (OpenDrift/Parcels style). Stored as float (as in the file); samples are
-// double. Interpolation is linear in time and bilinear in space of depth h and discharge
-// (hu, hv); velocity is then q / h. Because both are interpolated with the same weights,
-// u is a depth-weighted mean of the corner velocities, so a wetting front (one wet
-// corner, three dry) gives that corner's speed, never more. Below `dry_depth` the
+// Only the frames around the current time are held, over a sub-window of the grid
+// (OpenDrift/Parcels style): the pair that brackets t for the linear interpolant in time,
+// the four frames k−1 … k+2 for the cubic one (debris/time_kernels.hpp). Stored as float
+// (as in the file); samples are double. Depth h and discharge (hu, hv) are interpolated
+// in time and bilinearly in space with the same weights; velocity is then q / h. With the
+// linear interpolant u is a depth-weighted mean of the corner velocities, so a wetting
+// front (one wet corner, three dry) gives that corner's speed, never more. The cubic one
+// is used node by node only where its depth passes the guard of time_kernels.hpp (never
+// below the shallower frame around t, all four frames wet); elsewhere the node is linear,
+// so fronts keep that property and the depth is never negative. Below `dry_depth` the
 // velocity is zero.
 //
 // Before the first frame and past the last one the flow is held (steady, ∂/∂t = 0).
@@ -18,12 +22,20 @@
 
 #include "common/grid.hpp"
 #include "common/netcdf.hpp"
+#include "debris/time_kernels.hpp"
 
 namespace flotsam::debris {
+
+// Interpolation between stored frames: linear in the two frames around t, or the cubic
+// Catmull-Rom through the four frames around t (guarded, see above).
+enum class TimeInterpolation { linear, cubic };
+const char* to_string(TimeInterpolation m);
+TimeInterpolation parse_time_interpolation(const std::string& s);  // "linear" | "cubic"
 
 struct FlowReaderDef {
     double dry_depth = 1e-5;    // below this interpolated depth the velocity is zero [m]
     double accel_depth = 1e-3;  // below this depth Du/Dt is zero (q/h gradients blow up at a front) [m]
+    TimeInterpolation time_interpolation = TimeInterpolation::linear;
 };
 FlowReaderDef default_flow_reader_def();
 
@@ -60,31 +72,50 @@ public:
     const std::vector<float>& bed() const { return z_; }   // z on the whole grid [m]
     const std::string& path() const { return file_.path(); }
 
+    const FlowReaderDef& def() const { return def_; }
+
     // The first frame time after t (end_time() when none).
     double next_frame_time(double t) const;
-    // Loads (or keeps) the pair of frames bracketing [t, next_frame_time(t)].
+    // Loads (or keeps) the frames the interpolant needs on [t, next_frame_time(t)]: the
+    // bracketing pair, and for the cubic one frame either side. Moving on by one frame
+    // reads one new frame; each frame is read once while time advances.
     void prepare(double t);
-    // Restricts loading to cells `w` (clamped to the grid); reloads the current pair.
+    // Restricts loading to cells `w` (clamped to the grid); reloads the current frames.
     void set_window(const CellWindow& w);
     const CellWindow& window() const { return window_; }
     // The cells a box [x0, x1] × [y0, y1] needs for sampling (bilinear stencils included).
     CellWindow cells_for(double x0, double x1, double y0, double y1) const;
     std::size_t frames_loaded() const { return frames_loaded_; }
-    double load_seconds() const { return load_seconds_; }  // wall time spent reading frames [s]
+    double load_seconds() const { return load_seconds_; }          // wall time spent reading frames [s]
+    double load_cpu_seconds() const { return load_cpu_seconds_; }  // CPU time of the reading thread in it [s]
 
     // Samples at time t in the prepared interval (clamped into it). The point must lie
     // in the window (cells_for of it contained in window()); outside, values are clamped.
     FlowPoint sample(double x, double y, double t) const;
     FlowPointAccel sample_accel(double x, double y, double t) const;
     double depth(double x, double y, double t) const;
-    // Smallest stored depth over cells `w` in both loaded frames: a lower bound of the
-    // interpolated depth anywhere inside those cells' stencils.
+    // Smallest stored depth over cells `w` in the two frames around t: a lower bound of
+    // the interpolated depth anywhere inside those cells' stencils (for the cubic too,
+    // by its guard).
     double min_depth(const CellWindow& w) const;
 
 private:
+    static constexpr std::size_t no_frame = std::size_t(-1);
+    // One stored frame on the window: depth, x- and y-discharge, row-major x fastest.
+    struct Frame {
+        std::size_t index = no_frame;
+        std::vector<float> h, qx, qy;
+    };
+    // One field of the four roles (below), for the sampling loops.
+    struct Field {
+        const float* role[4] = {nullptr, nullptr, nullptr, nullptr};
+    };
     struct Stencil;
     Stencil stencil(double x, double y, double t) const;
-    void load(std::size_t slot, std::size_t frame);
+    // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
+    void hold(const std::size_t (&need)[4]);
+    void load(Frame& f, std::size_t frame);
+    const Frame& role(int r) const { return frames_[role_slot_[r]]; }
 
     nc::File file_;
     FlowReaderDef def_;
@@ -94,13 +125,16 @@ private:
     int var_h_ = -1, var_u_ = -1, var_v_ = -1;
 
     CellWindow window_;
-    std::size_t pair_ = 0;          // frames pair_ and pair_ + 1 (or pair_ twice at the end)
     bool loaded_ = false;
     std::size_t frames_loaded_ = 0;
     double load_seconds_ = 0.0;
-    // slot s: depth, x- and y-discharge on the window, row-major x fastest.
-    std::vector<float> h_[2], qx_[2], qy_[2];
-    std::size_t slot_frame_[2] = {std::size_t(-1), std::size_t(-1)};
+    double load_cpu_seconds_ = 0.0;
+    // Roles 0..3: frames k−1, k, k+1, k+2 around t (k, k+1 bracket t; a missing one is
+    // its nearest neighbour). The linear interpolant holds roles 1 and 2 only and maps
+    // 0 → 1, 3 → 2 (their weights are zero).
+    Frame frames_[4];
+    int role_slot_[4] = {0, 1, 2, 3};
+    Field h_, qx_, qy_;  // the roles' arrays, set when frames are loaded
 };
 
 }  // namespace flotsam::debris

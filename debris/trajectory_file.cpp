@@ -114,6 +114,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put_att(NC_GLOBAL, "dt_max_s", world.def().step.dt_max);
         f.put_att(NC_GLOBAL, "vertex_step_fraction", world.def().step.vertex_step_fraction);
         f.put_att(NC_GLOBAL, "max_collision_passes", world.def().step.max_collision_passes);
+        f.put_att(NC_GLOBAL, "integrator", std::string(to_string(world.def().step.integrator)));
+        f.put_att(NC_GLOBAL, "time_interpolation", std::string(to_string(world.def().flow.time_interpolation)));
         f.enddef();
 
         f.put(vt, series.time);

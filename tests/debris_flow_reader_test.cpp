@@ -60,6 +60,34 @@ TEST(FlowReader, MaterialAccelerationOfAnalyticField) {
 // At a wetting front (one wet corner, the others dry) the velocity from interpolated
 // discharge over interpolated depth is a depth-weighted mean of the corner velocities,
 // so it never exceeds the fastest corner, however thin the water.
+// A thin, fast film at one corner of a cell (a wetting front racing ahead, as shallow-
+// water solvers write it: 0.1 mm at 5 m/s) beside deep, slow water (10 cm at 0.5 m/s).
+// Depth-then-divide weighs each corner's velocity by its depth, so the film barely moves
+// the velocity at the cell centre: (½·0.1·0.5 + ½·1e-4·5)/(½·0.1 + ½·1e-4) = 0.5045 m/s.
+// Interpolating the velocity itself would give the plain mean, 2.75 m/s. And in a cell
+// half wet with equal velocities, the wet side's speed is kept exactly (u interpolation
+// would average it with the dry corners' zeros).
+TEST(FlowReader, ThinFastFilmBarelyMovesTheVelocity) {
+    const auto dir = test::scratch_dir("fr_film");
+    const Grid g{8, 4, 0.05, 0.05, 0.1, 0.1};  // nodes at x = 0.05, 0.15, ...
+    const auto path = test::write_flow(dir + "/f.nc", g, {0.0, 1.0}, [](double, double) { return 0.0; },
+                                       [&](double x, double y, double) {
+                                           if (y > 0.2) return x < 0.3 ? test::FlowState{0.02f, 1.5f, -0.7f} : test::FlowState{};
+                                           return x < 0.2 ? test::FlowState{0.1f, 0.5f, 0.0f} : test::FlowState{1e-4f, 5.0f, 0.0f};
+                                       });
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
+        FlowReaderDef def;
+        def.time_interpolation = interp;
+        FlowReader r(path, def);
+        r.prepare(0.5);
+        const FlowPoint film = r.sample(0.2, 0.1, 0.5);  // between nodes x = 0.15 (deep) and 0.25 (film)
+        EXPECT_NEAR(film.u, (0.5 * 0.1 * 0.5 + 0.5 * 1e-4 * 5.0) / (0.5 * 0.1 + 0.5 * 1e-4), 1e-5) << to_string(interp);
+        const FlowPoint front = r.sample(0.3, 0.3, 0.5);  // between x = 0.25 (wet) and 0.35 (dry)
+        EXPECT_NEAR(front.u, 1.5, 1e-5) << to_string(interp);
+        EXPECT_NEAR(front.v, -0.7, 1e-5) << to_string(interp);
+    }
+}
+
 TEST(FlowReader, WettingFrontGivesBoundedSpeed) {
     const auto dir = test::scratch_dir("fr_front");
     const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0}, [](double, double) { return 0.0; },
@@ -81,16 +109,82 @@ TEST(FlowReader, WettingFrontGivesBoundedSpeed) {
 
 TEST(FlowReader, HoldsLastFrameAndLoadsFramesOnce) {
     const auto dir = test::scratch_dir("fr_hold");
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0}, [](double, double) { return -0.5; },
+    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, [](double, double) { return -0.5; },
                                        [](double, double, double t) { return test::FlowState{0.2f, float(0.1 * t), 0.0f}; });
-    FlowReader r(path);
-    for (double t = 0.0; t < 3.0; t += 0.25) r.prepare(t);
-    EXPECT_EQ(r.frames_loaded(), 4u);  // each frame read once while time advances
-    r.prepare(7.0);
-    const FlowPointAccel p = r.sample_accel(0.0, 2.2, 7.0);
-    EXPECT_NEAR(p.u, 0.3, 1e-6);   // held
-    EXPECT_EQ(p.du_dt, 0.0);       // steady past the end
-    EXPECT_EQ(r.next_frame_time(7.0), 3.0);
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
+        FlowReaderDef def;
+        def.time_interpolation = interp;
+        FlowReader r(path, def);
+        for (double t = 0.0; t < 5.0; t += 0.25) r.prepare(t);
+        EXPECT_EQ(r.frames_loaded(), 6u) << to_string(interp);  // each frame read once while time advances
+        r.prepare(7.0);
+        const FlowPointAccel p = r.sample_accel(0.0, 2.2, 7.0);
+        EXPECT_NEAR(p.u, 0.5, 1e-6);   // held
+        EXPECT_EQ(p.du_dt, 0.0);       // steady past the end
+        EXPECT_EQ(r.next_frame_time(7.0), 5.0);
+    }
+}
+
+// The cubic (Catmull-Rom) is exact for a field quadratic in time at even frame spacing,
+// and its Du/Dt is the derivative of that same interpolant; the linear one is not.
+TEST(FlowReader, CubicIsExactForQuadraticInTime) {
+    const auto dir = test::scratch_dir("fr_cubic");
+    const double a = 0.2, c = 0.03;  // u = a + c t² at uniform depth
+    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0, 4.0}, [](double, double) { return -0.5; },
+                                       [&](double, double, double t) { return test::FlowState{0.25f, float(a + c * t * t), 0.0f}; });
+    FlowReaderDef def;
+    def.time_interpolation = TimeInterpolation::cubic;
+    FlowReader cubic(path, def), linear(path);
+    const double t = 2.3;
+    cubic.prepare(t);
+    linear.prepare(t);
+    const FlowPointAccel pc = cubic.sample_accel(-0.4, 2.2, t), pl = linear.sample_accel(-0.4, 2.2, t);
+    EXPECT_NEAR(pc.u, a + c * t * t, 1e-6);
+    EXPECT_NEAR(pc.du_dt, 2 * c * t, 1e-5);
+    EXPECT_GT(std::fabs(pl.u - (a + c * t * t)), 5e-3);  // the linear interpolant cuts the corner: c Δ² s(1 − s) = 6.3 mm/s
+    EXPECT_NEAR(pl.du_dt, c * (2 * 2 + 1), 1e-5);        // the secant slope of [2, 3]
+}
+
+// Stability map of the time interpolants: a cubic in time undershoots where the depth
+// at a node has a trough or a wetting front between frames. Without a guard its depth
+// is negative (shown with the same weights); the guard falls back to the linear
+// interpolant there, so the depth stays ≥ 0 and never below the shallower of the two
+// frames around t; a peak between frames (overshoot upwards) keeps the cubic's value.
+TEST(FlowReader, CubicGuardKeepsDepthPositiveWhereTheCubicUndershoots) {
+    const auto dir = test::scratch_dir("fr_guard");
+    const std::vector<double> times = {0.0, 1.0, 2.0, 3.0};
+    FlowReaderDef def;
+    def.time_interpolation = TimeInterpolation::cubic;
+    struct Case {
+        const char* name;
+        double h[4];      // the depth at frames 0..3 [m]
+        double linear;    // the linear value at t = 1.5 [m]
+    };
+    const Case cases[] = {{"trough", {0.1, 0.001, 0.001, 0.1}, 0.001},
+                          {"wetting front", {0.0, 0.0, 0.0, 0.05}, 0.0},
+                          {"peak", {0.01, 0.05, 0.05, 0.01}, 0.05}};
+    const TimeWeights w = catmull_rom_time_weights(0.5, 1.0, 0.5, 0.5);  // t = 1.5, frames k−1 … k+2 = 0 … 3
+    for (const Case& c : cases) {
+        const auto path = test::write_flow(dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
+                                           [&](double, double, double t) {
+                                               const float h = float(c.h[int(t)]);
+                                               return test::FlowState{h, h > 0 ? 0.4f : 0.0f, 0.0f};
+                                           });
+        FlowReader r(path, def);
+        r.prepare(1.5);
+        const double unguarded = apply_time_weights(w.w, c.h[0], c.h[1], c.h[2], c.h[3]);
+        const FlowPoint p = r.sample(-0.37, 2.21, 1.5);
+        if (std::string(c.name) == "peak") {
+            EXPECT_NEAR(unguarded, 0.055, 1e-9);
+            EXPECT_NEAR(p.depth, unguarded, 1e-7) << c.name;  // the cubic's peak is kept
+            EXPECT_NEAR(p.u, 0.4, 1e-6);
+        } else {
+            EXPECT_LT(unguarded, -1e-3) << c.name;  // the cubic alone goes negative
+            EXPECT_GE(p.depth, 0.0) << c.name;
+            EXPECT_NEAR(p.depth, c.linear, 1e-9) << c.name;
+        }
+        EXPECT_GE(r.depth(-0.37, 2.21, 1.5), r.min_depth(r.cells_for(-0.37, -0.37, 2.21, 2.21)) - 1e-9) << c.name;
+    }
 }
 
 TEST(FlowReader, SubWindowGivesTheSameValues) {

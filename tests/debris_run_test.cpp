@@ -1,5 +1,5 @@
-// Whole runs: determinism across thread counts, the CLI and its output, and the
-// stability of the added-mass treatment.
+// Whole runs: determinism across thread counts, the CLI and its output. (The stability
+// of the added-mass treatment: debris_stability_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -72,32 +72,6 @@ TEST(DebrisRun, SameTrajectoriesWithOneAndTwoThreads) {
     EXPECT_EQ(hashes[0], hashes[2]);
 }
 
-// Explicit added mass, m dV/dt = F − ρ C_a V_s (dV/dt from the last step), amplifies an
-// error in dV/dt by −ρ C_a V_s / m per step: −C_a here (V_s = m/ρ when afloat). At the
-// paper's 1.5 × Cm = 3 (C_a = 2) it blows up; at Cm = 2 it is neutral and keeps an
-// undamped step-to-step oscillation. The implicit form holds in both.
-TEST(DebrisRun, ExplicitAddedMassBlowsUpWhereImplicitHolds) {
-    const auto dir = test::scratch_dir("run_added_mass");
-    const double U = 0.1;
-    const Grid g{400, 40, -0.995, -0.195, 0.01, 0.01};
-    const auto path = test::uniform_flow(dir + "/f.nc", g, 20, 0.1, U, 0.0);
-    auto run = [&](AddedMass treatment, double cm) {
-        World w(path, {});
-        BodyDef b = default_body_def();
-        b.x = -0.6;
-        b.cm = cm;
-        b.added_mass = treatment;
-        w.add_body(b);
-        w.advance_to(2.0);
-        return w.states()[0].vx;
-    };
-    // Implicit: the analytic relaxation w = U / (1 + t/τ), τ = M / (½ ρ (Cd1+Cd2) B d U).
-    const double M = 0.625 * (1 + 2.0), tau = M / (0.5 * 1000 * 1.2 * 0.1 * 0.025 * U);
-    EXPECT_NEAR(run(AddedMass::implicit, 3.0), U - U / (1 + 2.0 / tau), 0.002 * U);
-    const double exploded = run(AddedMass::explicit_, 3.0);
-    EXPECT_TRUE(!std::isfinite(exploded) || std::fabs(exploded) > 1e3 * U) << exploded;
-}
-
 TEST(DebrisRun, CliWritesTheSameTrajectoryFileTwice) {
     const auto dir = test::scratch_dir("run_cli");
     const auto flow = varied_flow(dir + "/f.nc");
@@ -134,4 +108,13 @@ TEST(DebrisRun, CliWritesTheSameTrajectoryFileTwice) {
     EXPECT_NE(out.find("not a flow file"), std::string::npos) << out;
     EXPECT_NE(test::run_cli("debris --flow " + flow + " --scene " + dir + "/scene.nc --start WG --out " + dir + "/c.nc", &out), 0);
     EXPECT_NE(out.find("no start point"), std::string::npos) << out;
+    for (const char* bad : {"--time-interpolation spline", "--integrator rk4", "--vertex-step-fraction 0"}) {
+        EXPECT_NE(test::run_cli("debris --flow " + flow + " --at 0,0,0 " + bad + " --out " + dir + "/c.nc", &out), 0) << bad;
+        EXPECT_NE(out.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << out;
+    }
+    // The choices are recorded in the file.
+    ASSERT_EQ(test::run_cli(args + " --time-interpolation cubic --integrator heun --out " + dir + "/d.nc", &out), 0) << out;
+    const nc::File d = nc::File::open_read(dir + "/d.nc");
+    EXPECT_EQ(d.att_text(NC_GLOBAL, "time_interpolation").value_or(""), "cubic");
+    EXPECT_EQ(d.att_text(NC_GLOBAL, "integrator").value_or(""), "heun");
 }
