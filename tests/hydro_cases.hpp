@@ -39,6 +39,42 @@ inline Scene city_basin(int nx, int ny, unsigned seed) {
     return s;
 }
 
+// city_basin(80, 50, seed) with a column of water 8 cm above still water over its
+// first 20 columns: released, it floods the city's streets around the buildings.
+inline Scene flooded_basin(unsigned seed) {
+    Scene s = city_basin(80, 50, seed);
+    s.eta0.assign(s.grid.size(), 0.0);
+    for (int j = 0; j < s.grid.ny; ++j)
+        for (int i = 0; i < 20; ++i) s.eta0[s.grid.index(i, j)] = 0.08;
+    return s;
+}
+
+// How far a lake at rest has moved: the largest |level| of a wet cell [m], the largest
+// speed [m/s], and the deepest water on ground above still water (the roofs) [m].
+struct RestDrift {
+    double level = 0.0, speed = 0.0, roof_depth = 0.0;
+};
+template <class S>
+RestDrift rest_drift(const S& solver, const Scene& s) {
+    RestDrift r;
+    for (int j = 0; j < s.grid.ny; ++j)
+        for (int i = 0; i < s.grid.nx; ++i) {
+            if (solver.depth(i, j) > 0.0) r.level = std::max(r.level, std::abs(solver.level(i, j)));
+            r.speed = std::max(r.speed, std::hypot(solver.x_velocity(i, j), solver.y_velocity(i, j)));
+            if (s.z[s.grid.index(i, j)] > 0.0) r.roof_depth = std::max(r.roof_depth, solver.depth(i, j));
+        }
+    return r;
+}
+
+// Smallest depth of any cell [m].
+template <class S>
+double min_depth(const S& solver) {
+    double m = 0.0;
+    for (int j = 0; j < solver.grid().ny; ++j)
+        for (int i = 0; i < solver.grid().nx; ++i) m = std::min(m, solver.depth(i, j));
+    return m;
+}
+
 // Stoker's dam break (wet bed, hr > 0) or Ritter's (dry bed) at x/t = xi.
 inline double dam_break_depth(double hl, double hr, double g, double xi) {
     const double cl = std::sqrt(g * hl);

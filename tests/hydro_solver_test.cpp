@@ -54,23 +54,15 @@ TEST(Solver, LakeAtRestAroundBuildingsStaysAtRest) {
         d.default_manning_n = 0.013;
         Solver solver(s, d);
         for (int n = 0; n < 2000; ++n) solver.step(solver.stable_dt());
-        double eta_drift = 0.0, speed = 0.0;
-        for (int j = 0; j < s.grid.ny; ++j)
-            for (int i = 0; i < s.grid.nx; ++i) {
-                if (solver.depth(i, j) > 0.0) eta_drift = std::max(eta_drift, std::abs(solver.level(i, j)));
-                speed = std::max(speed, std::hypot(solver.x_velocity(i, j), solver.y_velocity(i, j)));
-                if (s.z[s.grid.index(i, j)] > 0.0) { EXPECT_EQ(solver.depth(i, j), 0.0); }
-            }
-        EXPECT_LE(eta_drift, 1e-6) << "order " << order;
-        EXPECT_LE(speed, 1e-6) << "order " << order;
+        const test::RestDrift drift = test::rest_drift(solver, s);
+        EXPECT_LE(drift.level, 1e-6) << "order " << order;
+        EXPECT_LE(drift.speed, 1e-6) << "order " << order;
+        EXPECT_EQ(drift.roof_depth, 0.0) << "order " << order;
     }
 }
 
 TEST(Solver, MassConservedWithClosedWallsAndDepthNeverNegative) {
-    Scene s = city_basin(80, 50, 5);
-    s.eta0.assign(s.grid.size(), 0.0);
-    for (int j = 0; j < s.grid.ny; ++j)
-        for (int i = 0; i < 20; ++i) s.eta0[s.grid.index(i, j)] = 0.08;  // a column of water floods the city
+    const Scene s = test::flooded_basin(5);
     SolverDef d = closed_def();
     d.default_manning_n = 0.013;
     Solver solver(s, d);
@@ -78,8 +70,7 @@ TEST(Solver, MassConservedWithClosedWallsAndDepthNeverNegative) {
     double min_depth = 0.0;
     for (int n = 0; n < 1500; ++n) {
         solver.step(solver.stable_dt());
-        for (int j = 0; j < s.grid.ny; ++j)
-            for (int i = 0; i < s.grid.nx; ++i) min_depth = std::min(min_depth, solver.depth(i, j));
+        min_depth = std::min(min_depth, test::min_depth(solver));
     }
     EXPECT_NEAR(solver.volume() / v0 - 1.0, 0.0, 1e-12);
     EXPECT_GE(min_depth, 0.0);
