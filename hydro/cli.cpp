@@ -20,6 +20,7 @@ struct HydroOptions {
     std::string west = "level", east = "transmissive", south = "wall", north = "wall";
     std::string level_mode = "incident";
     std::string scheme = "fv";
+    std::string friction = "implicit";
     int threads = 0;
 };
 
@@ -27,6 +28,7 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     using namespace hydro;
     SolverDef& s = o.solver;
     o.run.scheme = parse_scheme(o.scheme, "--scheme");
+    s.friction = parse_friction(o.friction, "--friction");
     s.west.kind = parse_boundary_kind(o.west, "--west");
     s.east.kind = parse_boundary_kind(o.east, "--east");
     s.south.kind = parse_boundary_kind(o.south, "--south");
@@ -96,6 +98,10 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")->capture_default_str();
     sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")->check(CLI::Range(1.0, 2.0))->capture_default_str();
     sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
+    sub->add_option("--friction", o->friction, "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
+        ->capture_default_str();
+    sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
+                  "Stability study only: accept --cfl above 0.5 and let the leap-frog run past Courant number 1 (to see the failure)");
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
         ->check(CLI::Range(1, 16))->capture_default_str();

@@ -22,7 +22,7 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const L
             fail("", "--scheme leapfrog", "nested grids (--nest-ratio > 1) are written for the finite-volume scheme: use --scheme fv with "
                                           "--nest-ratio, or --nest-ratio 1 with --scheme leapfrog");
     if (!(leapfrog.courant > 0.0)) fail("", "--courant", "must be positive");
-    if (leapfrog.check_courant && leapfrog.courant > 1.0) fail("", "--courant", "must be at most 1 (the leap-frog's linear stability limit)");
+    if (!def.study_past_stability_limit && leapfrog.courant > 1.0) fail("", "--courant", "must be at most 1 (the leap-frog's linear stability limit)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     const int nx = grid_.nx, ny = grid_.ny;
     stride_ = std::size_t(nx + 2);
@@ -253,7 +253,7 @@ void LeapfrogSolver::continuity(double dt) {
     stats_.negative_depth_fixes += fixes;
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
     max_courant_ = std::max(max_courant_, courant);
-    if (lf_.check_courant && courant > 1.0) {
+    if (!def_.study_past_stability_limit && courant > 1.0) {
         int wi = 0, wj = 0;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i)

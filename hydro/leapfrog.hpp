@@ -78,17 +78,14 @@ struct LeapfrogDef {
     // h_max the deepest water at the start (and of a level boundary). Linear limit: 1.
     double courant = 0.7;           // [-]
     double step_divides = 0.0;      // [s] shorten the step to divide this (the output interval); 0: no
-    // Study only: false lets a run pass the Courant limit instead of failing, to show
-    // the blow-up in the stability map. Never for a real run.
-    bool check_courant = true;
 };
 LeapfrogDef default_leapfrog_def();
 
 class LeapfrogSolver {
 public:
-    // `def` gives gravity, dry_depth, max_dt, default_manning_n and the boundaries
-    // (its finite-volume settings cfl, order and limiter_theta are not used). Nested
-    // boundaries are refused.
+    // `def` gives gravity, dry_depth, max_dt, default_manning_n, the boundaries and
+    // study_past_stability_limit (its finite-volume settings cfl, order, limiter_theta
+    // and friction are not used). Nested boundaries are refused.
     LeapfrogSolver(const Scene& scene, const SolverDef& def, const LeapfrogDef& leapfrog);
 
     // The fixed step [s].

@@ -250,13 +250,16 @@ double cell_updates(const Solver& s, long steps) { return double(steps) * double
 double cell_updates(const NestedSolver& s, long) { return s.cell_updates(); }
 double cell_updates(const LeapfrogSolver& s, long steps) { return double(steps) * double(s.grid().size()); }
 
-std::string scheme_description(const Solver&) { return "finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, implicit Manning"; }
+std::string scheme_description(const Solver& s) {
+    return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
+           (s.def().friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
+}
 std::string scheme_description(const LeapfrogSolver& s) {
     return "staggered C-grid, leap-frog, first-order upwind momentum advection, semi-implicit Manning, outflow limiter; fixed step " +
            std::to_string(s.stable_dt()) + " s (Courant " + std::to_string(s.leapfrog_def().courant) + ")";
 }
 std::string scheme_description(const NestedSolver& s) {
-    return "finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, implicit Manning; nested: " + std::to_string(s.coarse().grid().dx) +
+    return scheme_description(s.coarse()) + "; nested: " + std::to_string(s.coarse().grid().dx) +
            " m west of x = " + std::to_string(s.grid().x_min_edge() + s.interface_column() * s.grid().dx) + " m, sub-cycled, refluxed";
 }
 

@@ -11,6 +11,12 @@
 
 namespace flotsam::hydro {
 
+Friction parse_friction(const std::string& s, const std::string& option) {
+    if (s == "implicit") return Friction::implicit;
+    if (s == "explicit") return Friction::explicit_;
+    fail("", option, "unknown friction treatment '" + s + "' (implicit, explicit)");
+}
+
 SolverDef default_solver_def() {
     SolverDef d;
     d.west.kind = BoundaryKind::level;
@@ -33,7 +39,8 @@ bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
 Solver::Solver(const Scene& scene, const SolverDef& def)
     : grid_(scene.grid), def_(def), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
     if (def.order != 1 && def.order != 2) fail("", "--order", "must be 1 or 2");
-    if (!(def.cfl > 0.0 && def.cfl <= 0.5)) fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
+    if (!(def.cfl > 0.0 && (def.cfl <= 0.5 || def.study_past_stability_limit)))
+        fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
     rows_ = std::size_t(grid_.ny + 2 * kGhost);
@@ -335,6 +342,17 @@ void Solver::add_sources(double t) {
 void Solver::update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
                     const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
                     std::vector<double>& hu_out, std::vector<double>& hv_out) {
+    if (def_.friction == Friction::explicit_)
+        update_stage<Friction::explicit_>(dt, a, h0, hu0, hv0, h, hu, hv, h_out, hu_out, hv_out);
+    else
+        update_stage<Friction::implicit>(dt, a, h0, hu0, hv0, h, hu, hv, h_out, hu_out, hv_out);
+}
+
+template <Friction friction>
+void Solver::update_stage(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0,
+                          const std::vector<double>* hv0, const std::vector<double>& h, const std::vector<double>& hu,
+                          const std::vector<double>& hv, std::vector<double>& h_out, std::vector<double>& hu_out,
+                          std::vector<double>& hv_out) {
     const double dry = def_.dry_depth;
     const int nx = grid_.nx;
     long fixes = 0;
@@ -353,9 +371,15 @@ void Solver::update(double dt, double a, const std::vector<double>* h0, const st
                 ++fixes;
                 hn = 0.0;
             }
-            const double r = friction_factor(hn, qx, qy, g_n2_[p], dt, dry);
-            qx *= r;
-            qy *= r;
+            if constexpr (friction == Friction::explicit_) {  // study only: forward Euler on the old state
+                const double e = explicit_friction_rate(h[p], hu[p], hv[p], g_n2_[p], dt, dry);
+                qx -= e * hu[p];
+                qy -= e * hv[p];
+            } else {
+                const double r = friction_factor(hn, qx, qy, g_n2_[p], dt, dry);
+                qx *= r;
+                qy *= r;
+            }
             if (h0) {
                 hn = a * (*h0)[p] + (1.0 - a) * hn;
                 qx = a * (*hu0)[p] + (1.0 - a) * qx;

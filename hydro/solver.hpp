@@ -19,6 +19,11 @@
 
 namespace flotsam::hydro {
 
+// Manning friction: implicit (the scheme's) or explicit, forward Euler on the old state,
+// kept only for the stability study (it reverses and blows up thin films).
+enum class Friction { implicit, explicit_ };
+Friction parse_friction(const std::string& s, const std::string& option);  // "implicit" | "explicit"
+
 struct SolverDef {
     double gravity = 9.81;           // [m s^-2]
     // The one dry tolerance: a cell with h <= dry_depth has no velocity and no friction.
@@ -30,6 +35,10 @@ struct SolverDef {
     double limiter_theta = 1.3;      // 1 = minmod ... 2 = monotonised central
     int order = 2;                   // 1: first order in space and time; 2: MUSCL + Heun
     double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
+    Friction friction = Friction::implicit;  // explicit: stability study only
+    // Study only, never for a real run: accept cfl above 0.5 (finite volumes) and let the
+    // leap-frog run on past its Courant limit instead of failing, to show the failures.
+    bool study_past_stability_limit = false;
     BoundaryDef west, east, south, north;
 };
 SolverDef default_solver_def();
@@ -105,6 +114,10 @@ private:
     void update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
                 const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
                 std::vector<double>& hu_out, std::vector<double>& hv_out);
+    template <Friction friction>
+    void update_stage(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
+                      const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
+                      std::vector<double>& hu_out, std::vector<double>& hv_out);
     void add_sources(double t);
     const BoundaryDef& boundary(Side s) const;
 
