@@ -14,7 +14,6 @@ namespace {
 
 using test::city_basin;
 using test::closed_def;
-using test::flat_scene;
 
 double dam_break_error(int nx, double hl, double hr, int order, double t_end) {
     return test::dam_break_error(
@@ -106,11 +105,7 @@ TEST(Solver, DryDamBreakConvergesToRitter) {
 TEST(Solver, ThinFilmWithFrictionOnSlopeStaysFinite) {
     // A 0.1 mm film on a 1:10 slope with n = 0.025 at 1 cm cells: explicit friction
     // would blow up (dt g n^2 |u| / h^(4/3) >> 1); the implicit one must stay bounded.
-    Scene s = flat_scene(100, 4, 0.01, 0.0, 0.0);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 100; ++i) s.z[s.grid.index(i, j)] = -0.1 * s.grid.x(i);
-    s.eta0.assign(s.grid.size(), 0.0);
-    for (std::size_t k = 0; k < s.z.size(); ++k) s.eta0[k] = s.z[k] + 1e-4;
+    const Scene s = test::film_on_slope();
     SolverDef d = closed_def();
     d.default_manning_n = 0.025;
     Solver solver(s, d);
