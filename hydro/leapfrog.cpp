@@ -15,6 +15,11 @@ namespace {
 bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
 }  // namespace
 
+std::size_t LeapfrogSolver::edge_cell(Side s, int k) const {
+    if (is_x_side(s)) return at(s == Side::west ? 0 : grid_.nx - 1, k);
+    return at(k, s == Side::south ? 0 : grid_.ny - 1);
+}
+
 LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const LeapfrogDef& leapfrog)
     : grid_(scene.grid), def_(def), lf_(leapfrog), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
     for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north})
@@ -26,8 +31,7 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const L
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     const int nx = grid_.nx, ny = grid_.ny;
     stride_ = std::size_t(nx + 2);
-    rows_ = std::size_t(ny + 2);
-    const std::size_t n = stride_ * rows_;
+    const std::size_t n = stride_ * std::size_t(ny + 2);
     for (auto* v : {&h_, &u_, &v_, &m_, &n_, &u_new_, &v_new_, &m_new_, &n_new_, &z_, &g_n2_}) v->assign(n, 0.0);
     factor_.assign(n, 1.0);
 
@@ -62,21 +66,14 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const L
                 n_[p] = upstream_depth(v_[p], h_[q], z_[q], h_[p], z_[p], dry) * v_[p];
             }
     }
-    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
-        const int n_along = is_x_side(s) ? ny : nx;
-        for (int k = 0; k < n_along; ++k)
-            rest_depth_[int(s)].push_back(is_x_side(s) ? h_[at(s == Side::west ? 0 : nx - 1, k)] : h_[at(k, s == Side::south ? 0 : ny - 1)]);
-    }
-    // The deepest water a level boundary brings: its highest level over its deepest edge cell.
-    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
-        if (forcing_.def(s).kind != BoundaryKind::level) continue;
-        const int n_along = is_x_side(s) ? ny : nx;
-        for (int k = 0; k < n_along; ++k) {
-            const int i = is_x_side(s) ? (s == Side::west ? 0 : nx - 1) : k;
-            const int j = is_x_side(s) ? k : (s == Side::south ? 0 : ny - 1);
-            deepest = std::max(deepest, -z_[at(i, j)] + forcing_.series_max(s));
+    // Each side's initial edge depths; the deepest water a level side brings: its
+    // highest level over its deepest edge cell.
+    for (Side s : {Side::west, Side::east, Side::south, Side::north})
+        for (int k = 0; k < (is_x_side(s) ? ny : nx); ++k) {
+            const std::size_t e = edge_cell(s, k);
+            rest_depth_[int(s)].push_back(h_[e]);
+            if (forcing_.def(s).kind == BoundaryKind::level) deepest = std::max(deepest, -z_[e] + forcing_.series_max(s));
         }
-    }
     const double wave_metric = std::sqrt(1.0 / (grid_.dx * grid_.dx) + 1.0 / (grid_.dy * grid_.dy));
     dt_ = def.max_dt;
     if (deepest > 0.0) dt_ = std::min(dt_, leapfrog.courant / (std::sqrt(def.gravity * deepest) * wave_metric));
@@ -103,18 +100,19 @@ void LeapfrogSolver::boundary_faces(double t) {
         });
         const bool xs = is_x_side(s);
         // Inward normal: +x at the west, -x at the east, +y at the south, -y at the north.
-        const double sign = (s == Side::west || s == Side::south) ? 1.0 : -1.0;
+        const bool low_side = s == Side::west || s == Side::south;
+        const double sign = low_side ? 1.0 : -1.0;
         std::vector<double>& vel_new = xs ? u_new_ : v_new_;
         std::vector<double>& q_new = xs ? m_new_ : n_new_;
         const std::vector<double>& vel = xs ? u_ : v_;
         const int n_along = xs ? ny : nx;
+        // Neighbours along the inward normal: ghost - edge, faces at the side and inside.
+        const std::ptrdiff_t inward = xs ? (s == Side::west ? 1 : -1) : (s == Side::south ? std::ptrdiff_t(stride_) : -std::ptrdiff_t(stride_));
         for (int k = 0; k < n_along; ++k) {
-            const int i = xs ? (s == Side::west ? 0 : nx - 1) : k;
-            const int j = xs ? k : (s == Side::south ? 0 : ny - 1);
-            const std::size_t edge = at(i, j);
-            const std::size_t ghost = xs ? at(s == Side::west ? -1 : nx, j) : at(i, s == Side::south ? -1 : ny);
-            const std::size_t face = xs ? at(s == Side::west ? 0 : nx, j) : at(i, s == Side::south ? 0 : ny);
-            const std::size_t inner_face = xs ? at(s == Side::west ? 1 : nx - 1, j) : at(i, s == Side::south ? 1 : ny - 1);
+            const std::size_t edge = edge_cell(s, k);
+            const std::size_t ghost = edge - inward;
+            const std::size_t face = low_side ? edge : ghost;  // a face is stored at the cell on its +x (+y) side
+            const std::size_t inner_face = low_side ? edge + inward : edge;
             if (f.kind == BoundaryKind::wall) {
                 h_[ghost] = h_[edge];
                 vel_new[face] = q_new[face] = 0.0;

@@ -121,6 +121,7 @@ public:
     std::vector<std::vector<double>*> state_arrays() { return {&h_, &u_, &v_, &m_, &n_}; }
 
 private:
+    std::size_t edge_cell(Side s, int k) const;  // padded index of the k-th cell along side s
     void boundary_faces(double t);
     void momentum(double dt);
     void limit_outflow(double dt);
@@ -130,7 +131,7 @@ private:
     SolverDef def_;
     LeapfrogDef lf_;
     Forcing forcing_;
-    std::size_t stride_ = 0, rows_ = 0;
+    std::size_t stride_ = 0;
     double dt_ = 0.0;
     double time_ = 0.0;
     double max_courant_ = 0.0;
