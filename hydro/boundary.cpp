@@ -1,5 +1,6 @@
 #include "hydro/boundary.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -72,6 +73,51 @@ void discharge_ghost(double h_in, double un_in, double q_in, double g, double dr
     }
     h_out = std::max(h, critical);  // stay subcritical at the inflow
     un_out = q_in / h_out;
+}
+
+void open_side_state(const SideForcing& f, double h_in, double un_in, double h0, double g, double dry_depth, double& h_out,
+                     double& un_out) {
+    if (f.kind == BoundaryKind::discharge)
+        discharge_ghost(h_in, un_in, f.given, g, dry_depth, h_out, un_out);
+    else if (f.kind == BoundaryKind::level)
+        level_ghost(h_in, un_in, h0, f.given, f.mode, g, h_out, un_out);
+    else
+        level_ghost(h_in, un_in, h0, 0.0, LevelMode::incident, g, h_out, un_out);
+}
+
+Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, const std::vector<double>& bed) : sides_(sides) {
+    length_ = {grid.ny * grid.dy, grid.ny * grid.dy, grid.nx * grid.dx, grid.nx * grid.dx};
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
+        const BoundaryDef& b = def(s);
+        if (b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) {
+            if (b.series_file.empty()) fail("", std::string("boundary ") + to_string(b.kind), "needs a series file (time,value CSV)");
+            series_[int(s)] = read_time_series_csv(b.series_file);
+        }
+        if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");
+        if (b.kind == BoundaryKind::nested && s != Side::west && s != Side::east)
+            fail("", "boundary nested", "is only available on the west and east sides");
+    }
+    const BoundaryDef& w = def(Side::west);
+    if (w.kind == BoundaryKind::pump) {
+        const int ncol = std::max(1, int(std::lround(w.pump_length / grid.dx)));
+        for (int j = 0; j < grid.ny; ++j)
+            for (int i = 0; i < std::min(ncol, grid.nx); ++i)
+                if (bed[grid.index(i, j)] < 0.0) {
+                    pump_cells_.push_back({i, j});
+                    pump_area_ += grid.dx * grid.dy;
+                }
+        if (pump_area_ <= 0.0) fail("", "boundary pump", "no wet cells along the west side to put the pump's mass source in");
+    }
+}
+
+double Forcing::series_max(Side s) const {
+    const auto& v = series_[int(s)].value;
+    return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+}
+
+double Forcing::pump_rate(double t) const {
+    const BoundaryDef& w = def(Side::west);
+    return w.kind == BoundaryKind::pump && t < w.pump_stop ? w.pump_discharge / pump_area_ : 0.0;
 }
 
 }  // namespace flotsam::hydro

@@ -1,9 +1,12 @@
 // Boundary conditions, one per side of the grid (TUM SWE style scenario data): they
 // fill two layers of ghost cells before each flux evaluation.
 #pragma once
+#include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "common/grid.hpp"
 #include "common/timeseries.hpp"
 
 namespace flotsam::hydro {
@@ -57,5 +60,75 @@ const char* to_string(BoundaryKind k);
 // h0 at the side. Outputs through h_out, un_out.
 void level_ghost(double h_in, double un_in, double h0, double eta_given, LevelMode mode, double g, double& h_out, double& un_out);
 void discharge_ghost(double h_in, double un_in, double q_in, double g, double dry_depth, double& h_out, double& un_out);
+
+// What one side imposes at one time: the pump resolved (a wall while it pumps, then a
+// total level relaxing to still water), a series read at that time.
+struct SideForcing {
+    BoundaryKind kind = BoundaryKind::wall;  // never pump
+    LevelMode mode = LevelMode::incident;
+    double given = 0.0;                      // level [m], or discharge per unit length of the side [m^2/s]
+};
+
+// The state (depth h_out, inward velocity un_out) at an open side of kind level or
+// discharge from the interior cell (h_in, un_in, still-water depth h0); any other kind
+// is taken as no incoming wave (a level side with incident level 0).
+void open_side_state(const SideForcing& f, double h_in, double un_in, double h0, double g, double dry_depth, double& h_out,
+                     double& un_out);
+
+// The time-dependent inputs of the four sides, shared by the solvers: the boundary
+// series, the pump's strip of source cells, and the level the pump side relaxes from
+// after the stop (part of a run's restart state).
+class Forcing {
+public:
+    // `sides` in the order of Side; `bed` [m] on `grid`, row-major. Reads the series and
+    // checks the sides (errors name the boundary); places the pump's strip on the cells
+    // below still water in the first pump_length along the west side.
+    Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, const std::vector<double>& bed);
+
+    const BoundaryDef& def(Side s) const { return sides_[int(s)]; }
+    // Largest value of side s's series (level [m] or discharge [m^3/s]); 0 without one.
+    double series_max(Side s) const;
+    // Forcing of side s at time t. `strip_level()` is the mean level [m] over the pump's
+    // strip now; it is called once, the first time past the pump's stop, to fix the level
+    // the side relaxes from.
+    template <class StripLevel>
+    SideForcing at(Side s, double t, StripLevel&& strip_level);
+
+    // The pump's strip: interior cells (i, j), and its source as a depth rate [m/s] at t.
+    const std::vector<std::array<int, 2>>& pump_cells() const { return pump_cells_; }
+    double pump_rate(double t) const;
+    double pump_level_at_stop() const { return pump_level_at_stop_; }
+    void set_pump_level_at_stop(double v) { pump_level_at_stop_ = v; pump_stopped_ = true; }
+
+private:
+    std::array<BoundaryDef, 4> sides_;
+    std::array<TimeSeries, 4> series_;           // level [m] or discharge [m^3/s], where used
+    std::array<double, 4> length_{};             // [m] of each side
+    std::vector<std::array<int, 2>> pump_cells_;
+    double pump_area_ = 0.0;                     // [m^2]
+    double pump_level_at_stop_ = 0.0;            // [m]
+    bool pump_stopped_ = false;
+};
+
+template <class StripLevel>
+SideForcing Forcing::at(Side s, double t, StripLevel&& strip_level) {
+    const BoundaryDef& b = def(s);
+    SideForcing f{b.kind, b.level_mode, 0.0};
+    if (b.kind == BoundaryKind::pump) {
+        if (t < b.pump_stop) {
+            f.kind = BoundaryKind::wall;
+        } else {
+            if (!pump_stopped_) set_pump_level_at_stop(strip_level());
+            f.kind = BoundaryKind::level;
+            f.mode = LevelMode::total;
+            f.given = pump_level_at_stop_ * std::exp(-(t - b.pump_stop) / b.pump_relax_time);
+        }
+    } else if (b.kind == BoundaryKind::level) {
+        f.given = series_[int(s)].at(t);
+    } else if (b.kind == BoundaryKind::discharge) {
+        f.given = series_[int(s)].at(t) / length_[int(s)];
+    }
+    return f;
+}
 
 }  // namespace flotsam::hydro

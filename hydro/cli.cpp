@@ -19,12 +19,16 @@ struct HydroOptions {
     std::vector<std::string> gauges;
     std::string west = "level", east = "transmissive", south = "wall", north = "wall";
     std::string level_mode = "total";
+    std::string scheme = "fv";
+    std::string friction = "implicit";
     int threads = 0;
 };
 
 void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line) {
     using namespace hydro;
     SolverDef& s = o.solver;
+    o.run.scheme = parse_scheme(o.scheme, "--scheme");
+    s.friction = parse_friction(o.friction, "--friction");
     s.west.kind = parse_boundary_kind(o.west, "--west");
     s.east.kind = parse_boundary_kind(o.east, "--east");
     s.south.kind = parse_boundary_kind(o.south, "--south");
@@ -52,10 +56,11 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     o.run.config_text = sub->config_to_str(true, false);
     const RunResult r = run_hydro(o.run, s);
     if (!o.run.quiet)
-        std::fprintf(stderr, "%s: %s after %ld steps in %.1f s wall, %.3g cell-updates/s, volume %.6g -> %.6g m^3%s\n", o.run.label.c_str(),
+        std::fprintf(stderr, "%s: %s after %ld steps in %.1f s wall, %.3g cell-updates/s, volume %.6g -> %.6g m^3%s%s\n", o.run.label.c_str(),
                      r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)", r.steps, r.wall_seconds,
                      r.cell_updates_per_second,
-                     r.volume_start, r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "");
+                     r.volume_start, r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "",
+                     r.outflow_limits ? (", outflow limited in " + std::to_string(r.outflow_limits) + " cell-steps").c_str() : "");
 }
 
 }  // namespace
@@ -83,11 +88,20 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_flag("--quiet", r.quiet, "No progress output");
     sub->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")->capture_default_str();
     // Scheme.
+    sub->add_option("--scheme", o->scheme, "fv: finite volumes (MUSCL + HLL + Heun); leapfrog: staggered leap-frog of the classic tsunami codes")
+        ->check(CLI::IsMember({"fv", "leapfrog"}))->capture_default_str();
+    sub->add_option("--courant", r.leapfrog.courant,
+                    "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1")
+        ->capture_default_str();
     sub->add_option("--order", s.order, "1: first order; 2: MUSCL + Heun (default)")->check(CLI::IsMember({1, 2}))->capture_default_str();
-    sub->add_option("--cfl", s.cfl, "Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")->capture_default_str();
+    sub->add_option("--cfl", s.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")->capture_default_str();
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")->capture_default_str();
     sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")->check(CLI::Range(1.0, 2.0))->capture_default_str();
     sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
+    sub->add_option("--friction", o->friction, "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
+        ->capture_default_str();
+    sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
+                  "Stability study only: accept --cfl above 0.5 and let the leap-frog run past Courant number 1 (to see the failure)");
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
         ->check(CLI::Range(1, 16))->capture_default_str();

@@ -8,10 +8,16 @@
 #include <vector>
 
 #include "hydro/flow_file.hpp"
+#include "hydro/leapfrog.hpp"
 #include "hydro/nesting.hpp"
 #include "hydro/solver.hpp"
 
 namespace flotsam::hydro {
+
+// The numerical scheme of a run: finite volumes (solver.hpp, the default) or the
+// staggered leap-frog of the classic tsunami codes (leapfrog.hpp).
+enum class Scheme { finite_volume, leapfrog };
+Scheme parse_scheme(const std::string& s, const std::string& option);  // "fv" | "leapfrog"
 
 struct RunDef {
     std::string scene_file;
@@ -21,7 +27,9 @@ struct RunDef {
     std::optional<std::array<double, 4>> window;  // x_min, x_max, y_min, y_max [m] of stored frames
     double gauge_interval = 0.05;            // [s] between gauge samples
     std::vector<FlowGauge> gauges;           // added to the scene's gauge points
-    NestDef nest = default_nest_def();       // ratio > 1: coarse grid in the flume (hydro/nesting.hpp)
+    Scheme scheme = Scheme::finite_volume;
+    LeapfrogDef leapfrog = default_leapfrog_def();  // --scheme leapfrog only; its step divides output_interval
+    NestDef nest = default_nest_def();       // ratio > 1: coarse grid in the flume (hydro/nesting.hpp); fv only
     double arrival_depth = 0.025;            // [m] threshold of the arrival-time map (the draft)
     double checkpoint_interval = 0.0;        // [s] simulated time between checkpoints; 0: none
     bool restart = false;                    // continue from <out>.checkpoint.nc
@@ -42,6 +50,7 @@ struct RunResult {
     double cell_updates_per_second = 0.0;    // interior cells x steps / wall_seconds
     double volume_start = 0.0, volume_end = 0.0;  // [m^3]
     long negative_depth_fixes = 0;
+    long outflow_limits = 0;                 // leap-frog: cell-steps whose outflow was scaled down
     std::size_t file_bytes = 0;
 };
 

@@ -11,6 +11,12 @@
 
 namespace flotsam::hydro {
 
+Friction parse_friction(const std::string& s, const std::string& option) {
+    if (s == "implicit") return Friction::implicit;
+    if (s == "explicit") return Friction::explicit_;
+    fail("", option, "unknown friction treatment '" + s + "' (implicit, explicit)");
+}
+
 SolverDef default_solver_def() {
     SolverDef d;
     d.west.kind = BoundaryKind::level;
@@ -30,9 +36,11 @@ inline void flush_subnormals() { _mm_setcsr(_mm_getcsr() | 0x8040); }
 bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
 }  // namespace
 
-Solver::Solver(const Scene& scene, const SolverDef& def) : grid_(scene.grid), def_(def) {
+Solver::Solver(const Scene& scene, const SolverDef& def)
+    : grid_(scene.grid), def_(def), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
     if (def.order != 1 && def.order != 2) fail("", "--order", "must be 1 or 2");
-    if (!(def.cfl > 0.0 && def.cfl <= 0.5)) fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
+    if (!(def.cfl > 0.0 && (def.cfl <= 0.5 || def.study_past_stability_limit)))
+        fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
     rows_ = std::size_t(grid_.ny + 2 * kGhost);
@@ -74,30 +82,9 @@ Solver::Solver(const Scene& scene, const SolverDef& def) : grid_(scene.grid), de
                 }
         }
     }
-    series_.resize(4);
-    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
-        const BoundaryDef& b = boundary(s);
-        if (b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) {
-            if (b.series_file.empty())
-                fail("", std::string("boundary ") + to_string(b.kind), "needs a series file (time,value CSV)");
-            series_[int(s)] = read_time_series_csv(b.series_file);
-        }
-        if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");
-        if (b.kind == BoundaryKind::nested && !is_x_side(s)) fail("", "boundary nested", "is only available on the west and east sides");
-        if (b.kind == BoundaryKind::nested) track_transfer_ = true;
-    }
+    track_transfer_ = def.west.kind == BoundaryKind::nested || def.east.kind == BoundaryKind::nested;
     for (auto* v : {&west_face_mass_, &east_face_mass_, &west_stage1_, &east_stage1_, &west_transfer_, &east_transfer_})
         v->assign(std::size_t(grid_.ny), 0.0);
-    if (def.west.kind == BoundaryKind::pump) {
-        const int ncol = std::max(1, int(std::lround(def.west.pump_length / grid_.dx)));
-        for (int j = 0; j < grid_.ny; ++j)
-            for (int i = 0; i < std::min(ncol, grid_.nx); ++i)
-                if (z_[at(i, j)] < 0.0) {
-                    pump_cells_.push_back(at(i, j));
-                    pump_area_ += grid_.dx * grid_.dy;
-                }
-        if (pump_area_ <= 0.0) fail("", "boundary pump", "no wet cells along the west side to put the pump's mass source in");
-    }
 }
 
 const BoundaryDef& Solver::boundary(Side s) const {
@@ -139,37 +126,13 @@ double Solver::stable_dt() const {
     return amax > 0.0 ? std::min(def_.max_dt, def_.cfl / amax) : def_.max_dt;
 }
 
-double Solver::pump_level(double t) {
-    const BoundaryDef& b = def_.west;
-    if (!pump_stopped_) {
-        // First call past the stop: remember the level the relaxation starts from.
-        double sum = 0.0;
-        for (std::size_t p : pump_cells_) sum += h_[p] + z_[p];
-        pump_level_at_stop_ = sum / double(pump_cells_.size());
-        pump_stopped_ = true;
-    }
-    return pump_level_at_stop_ * std::exp(-(t - b.pump_stop) / b.pump_relax_time);
-}
-
 void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
-    const BoundaryDef& b = boundary(s);
-    BoundaryKind kind = b.kind;
-    double given = 0.0;
-    LevelMode mode = b.level_mode;
-    if (kind == BoundaryKind::pump) {
-        if (t < b.pump_stop) {
-            kind = BoundaryKind::wall;
-        } else {
-            kind = BoundaryKind::level;
-            mode = LevelMode::total;
-            given = pump_level(t);
-        }
-    } else if (kind == BoundaryKind::level) {
-        given = series_[int(s)].at(t);
-    } else if (kind == BoundaryKind::discharge) {
-        const double length = is_x_side(s) ? grid_.ny * grid_.dy : grid_.nx * grid_.dx;
-        given = series_[int(s)].at(t) / length;  // [m^2/s] per unit length of the side
-    }
+    const SideForcing forcing = forcing_.at(s, t, [&] {
+        double sum = 0.0;
+        for (auto [i, j] : forcing_.pump_cells()) sum += h_[at(i, j)] + z_[at(i, j)];
+        return sum / double(forcing_.pump_cells().size());
+    });
+    const BoundaryKind kind = forcing.kind;
     const bool xs = is_x_side(s);
     const int n_along = xs ? grid_.ny : grid_.nx;
     if (kind == BoundaryKind::nested) {
@@ -220,10 +183,7 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
                     const double un_in = sign * velocity(h_in, qn[src], def_.dry_depth);
                     const double ut_in = velocity(h_in, qt[src], def_.dry_depth);
                     double hb = 0.0, unb = 0.0;
-                    if (kind == BoundaryKind::level)
-                        level_ghost(h_in, un_in, std::max(0.0, -z_[src]), given, mode, g, hb, unb);
-                    else
-                        discharge_ghost(h_in, un_in, given, g, def_.dry_depth, hb, unb);
+                    open_side_state(forcing, h_in, un_in, std::max(0.0, -z_[src]), g, def_.dry_depth, hb, unb);
                     h[ghost] = hb;
                     qn[ghost] = sign * hb * unb;
                     qt[ghost] = hb * ut_in;
@@ -374,14 +334,25 @@ void Solver::rates(std::vector<double>& h, std::vector<double>& hu, std::vector<
 }
 
 void Solver::add_sources(double t) {
-    if (def_.west.kind != BoundaryKind::pump || t >= def_.west.pump_stop) return;
-    const double rate = def_.west.pump_discharge / pump_area_;  // [m/s] over the source strip
-    for (std::size_t p : pump_cells_) dh_[p] += rate;
+    const double rate = forcing_.pump_rate(t);  // [m/s] over the source strip
+    if (rate == 0.0) return;
+    for (auto [i, j] : forcing_.pump_cells()) dh_[at(i, j)] += rate;
 }
 
 void Solver::update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
                     const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
                     std::vector<double>& hu_out, std::vector<double>& hv_out) {
+    if (def_.friction == Friction::explicit_)
+        update_stage<Friction::explicit_>(dt, a, h0, hu0, hv0, h, hu, hv, h_out, hu_out, hv_out);
+    else
+        update_stage<Friction::implicit>(dt, a, h0, hu0, hv0, h, hu, hv, h_out, hu_out, hv_out);
+}
+
+template <Friction friction>
+void Solver::update_stage(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0,
+                          const std::vector<double>* hv0, const std::vector<double>& h, const std::vector<double>& hu,
+                          const std::vector<double>& hv, std::vector<double>& h_out, std::vector<double>& hu_out,
+                          std::vector<double>& hv_out) {
     const double dry = def_.dry_depth;
     const int nx = grid_.nx;
     long fixes = 0;
@@ -400,9 +371,15 @@ void Solver::update(double dt, double a, const std::vector<double>* h0, const st
                 ++fixes;
                 hn = 0.0;
             }
-            const double r = friction_factor(hn, qx, qy, g_n2_[p], dt, dry);
-            qx *= r;
-            qy *= r;
+            if constexpr (friction == Friction::explicit_) {  // study only: forward Euler on the old state
+                const double e = explicit_friction_rate(h[p], hu[p], hv[p], g_n2_[p], dt, dry);
+                qx -= e * hu[p];
+                qy -= e * hv[p];
+            } else {
+                const double r = friction_factor(hn, qx, qy, g_n2_[p], dt, dry);
+                qx *= r;
+                qy *= r;
+            }
             if (h0) {
                 hn = a * (*h0)[p] + (1.0 - a) * hn;
                 qx = a * (*hu0)[p] + (1.0 - a) * qx;

@@ -19,6 +19,11 @@
 
 namespace flotsam::hydro {
 
+// Manning friction: implicit (the scheme's) or explicit, forward Euler on the old state,
+// kept only for the stability study (it reverses and blows up thin films).
+enum class Friction { implicit, explicit_ };
+Friction parse_friction(const std::string& s, const std::string& option);  // "implicit" | "explicit"
+
 struct SolverDef {
     double gravity = 9.81;           // [m s^-2]
     // The one dry tolerance: a cell with h <= dry_depth has no velocity and no friction.
@@ -30,6 +35,10 @@ struct SolverDef {
     double limiter_theta = 1.3;      // 1 = minmod ... 2 = monotonised central
     int order = 2;                   // 1: first order in space and time; 2: MUSCL + Heun
     double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
+    Friction friction = Friction::implicit;  // explicit: stability study only
+    // Study only, never for a real run: accept cfl above 0.5 (finite volumes) and let the
+    // leap-frog run on past its Courant limit instead of failing, to show the failures.
+    bool study_past_stability_limit = false;
     BoundaryDef west, east, south, north;
 };
 SolverDef default_solver_def();
@@ -39,6 +48,7 @@ struct SolverStats {
     long steps = 0;
     long negative_depth_fixes = 0;   // cells where round-off made h < 0 (set to 0)
     double min_depth_seen = 0.0;     // most negative h before the fix [m]
+    long outflow_limits = 0;         // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
 };
 
 class Solver {
@@ -91,8 +101,8 @@ public:
     void reset_side_transfer();
 
     // Level at the pump side when pumping stopped (restart state of the pump boundary).
-    double pump_level_at_stop() const { return pump_level_at_stop_; }
-    void set_pump_level_at_stop(double v) { pump_level_at_stop_ = v; pump_stopped_ = true; }
+    double pump_level_at_stop() const { return forcing_.pump_level_at_stop(); }
+    void set_pump_level_at_stop(double v) { forcing_.set_pump_level_at_stop(v); }
 
 private:
     void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
@@ -104,9 +114,12 @@ private:
     void update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
                 const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
                 std::vector<double>& hu_out, std::vector<double>& hv_out);
+    template <Friction friction>
+    void update_stage(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
+                      const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
+                      std::vector<double>& hu_out, std::vector<double>& hv_out);
     void add_sources(double t);
     const BoundaryDef& boundary(Side s) const;
-    double pump_level(double t);
 
     Grid grid_;
     SolverDef def_;
@@ -123,11 +136,7 @@ private:
     // Cold data.
     std::vector<double> z_;          // bed [m], ghosts filled once
     std::vector<double> g_n2_;       // g * manning_n^2 per cell
-    std::vector<TimeSeries> series_; // per side (index Side), when used
-    std::vector<std::size_t> pump_cells_;  // padded indices of the pump's source strip
-    double pump_area_ = 0.0;              // [m^2] area of the source strip
-    double pump_level_at_stop_ = 0.0;
-    bool pump_stopped_ = false;
+    Forcing forcing_;                // boundary series and the pump
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
     struct NestedGhosts {
         double t0 = 0.0, t1 = 0.0;

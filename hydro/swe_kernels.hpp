@@ -110,4 +110,14 @@ inline double friction_factor(double h, double q1, double q2, double g_n2, doubl
     return h > dry_depth ? r : 0.0;
 }
 
+// Explicit Manning friction, kept only for the stability study: q_new = q* - e q_old with
+// e = dt g n^2 |q_old| / h_old^(7/3) from the old state (0 where dry). Where e > 1 the
+// step reverses the flow, where e > 2 it grows it: thin films (h^(7/3) tiny) blow up.
+inline double explicit_friction_rate(double h, double q1, double q2, double g_n2, double dt, double dry_depth) {
+    const double hs = h > dry_depth ? h : 1.0;
+    const double y = inverse_cube_root(hs), y3 = y * y * y;
+    const double e = dt * g_n2 * std::sqrt(q1 * q1 + q2 * q2) * (y3 * y3 * y);
+    return h > dry_depth ? e : 0.0;
+}
+
 }  // namespace flotsam::hydro

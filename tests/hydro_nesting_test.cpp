@@ -7,6 +7,7 @@
 
 #include "hydro/nesting.hpp"
 #include "test_support.hpp"
+#include "tests/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;
@@ -32,13 +33,6 @@ Scene mini_flume(double hump) {
     return s;
 }
 
-SolverDef closed() {
-    SolverDef d;
-    d.west.kind = d.east.kind = d.south.kind = d.north.kind = BoundaryKind::wall;
-    d.default_manning_n = 0.0;
-    return d;
-}
-
 template <class S>
 void run_to(S& s, double t_end) {
     while (s.time() < t_end - 1e-12) s.step(std::min(s.stable_dt(), t_end - s.time()));
@@ -48,7 +42,7 @@ void run_to(S& s, double t_end) {
 
 TEST(Nesting, LakeAtRestStaysAtRestAcrossTheInterface) {
     const Scene scene = mini_flume(0.0);
-    NestedSolver s(scene, closed(), NestDef{4.0, 4});
+    NestedSolver s(scene, test::closed_def(), NestDef{4.0, 4});
     run_to(s, 1.0);
     double drift = 0.0, speed = 0.0;
     for (int j = 0; j < scene.grid.ny; ++j)
@@ -63,7 +57,7 @@ TEST(Nesting, LakeAtRestStaysAtRestAcrossTheInterface) {
 
 TEST(Nesting, VolumeIsConservedToRoundOff) {
     const Scene scene = mini_flume(0.05);
-    NestedSolver s(scene, closed(), NestDef{4.0, 4});
+    NestedSolver s(scene, test::closed_def(), NestDef{4.0, 4});
     const double v0 = s.volume();
     run_to(s, 4.0);  // the wave crosses the interface, reflects on the shelf, comes back
     EXPECT_LT(std::abs(s.volume() - v0) / v0, 1e-12);
@@ -72,8 +66,8 @@ TEST(Nesting, VolumeIsConservedToRoundOff) {
 
 TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
     const Scene scene = mini_flume(0.05);
-    Solver fine(scene, closed());
-    NestedSolver nested(scene, closed(), NestDef{4.0, 4});
+    Solver fine(scene, test::closed_def());
+    NestedSolver nested(scene, test::closed_def(), NestDef{4.0, 4});
     // The first crest on the shelf (x = 7.2 m), within 6 s.
     const int gi = scene.grid.cell_i(7.2), gj = 3;
     double peak_fine = 0.0, peak_nested = 0.0, peak_coarse_time = 0.0, peak_fine_time = 0.0;
@@ -94,6 +88,6 @@ TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
 
 TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
     const Scene scene = mini_flume(0.0);
-    EXPECT_NE(test::error_of([&] { NestedSolver(scene, closed(), NestDef{4.0, 3}); }).find("--nest-ratio"), std::string::npos);
-    EXPECT_NE(test::error_of([&] { NestedSolver(scene, closed(), NestDef{7.95, 4}); }).find("--nest-x"), std::string::npos);
+    EXPECT_NE(test::error_of([&] { NestedSolver(scene, test::closed_def(), NestDef{4.0, 3}); }).find("--nest-ratio"), std::string::npos);
+    EXPECT_NE(test::error_of([&] { NestedSolver(scene, test::closed_def(), NestDef{7.95, 4}); }).find("--nest-x"), std::string::npos);
 }

@@ -2,83 +2,22 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "hydro/solver.hpp"
 #include "hydro/swe_kernels.hpp"
+#include "tests/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;
 
 namespace {
 
-Scene flat_scene(int nx, int ny, double dx, double x0, double bed) {
-    Scene s;
-    s.grid = Grid{nx, ny, x0 + 0.5 * dx, 0.5 * dx, dx, dx};
-    s.z.assign(s.grid.size(), bed);
-    return s;
-}
+using test::city_basin;
+using test::closed_def;
 
-SolverDef closed_def() {
-    SolverDef d;
-    d.west.kind = d.east.kind = d.south.kind = d.north.kind = BoundaryKind::wall;
-    d.default_manning_n = 0.0;
-    return d;
-}
-
-// A bumpy basin with 5 cm "buildings" standing out of still water at level 0.
-Scene city_basin(int nx, int ny, unsigned seed) {
-    Scene s = flat_scene(nx, ny, 0.01, 0.0, 0.0);
-    std::mt19937 rng(seed);
-    for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) {
-            double z = -0.03 + 0.02 * std::sin(0.3 * i) * std::cos(0.2 * j) + 0.004 * double(rng() % 1000) / 1000.0;
-            if ((i / 6) % 3 == 1 && (j / 5) % 3 == 1) z = 0.05;  // building blocks
-            if (i > nx - 8) z = 0.01 + 0.001 * (i - nx + 8);     // dry shore
-            s.z[s.grid.index(i, j)] = z;
-        }
-    return s;
-}
-
-// Stoker's dam break (wet bed, hr > 0) or Ritter's (dry bed) at x/t = xi.
-double dam_break_depth(double hl, double hr, double g, double xi) {
-    const double cl = std::sqrt(g * hl);
-    if (xi <= -cl) return hl;
-    if (hr <= 0.0) return xi < 2.0 * cl ? (2.0 * cl - xi) * (2.0 * cl - xi) / (9.0 * g) : 0.0;
-    // Middle depth hm: rarefaction u_m = 2(cl - cm) equals the shock's u_m = S (1 - hr/hm).
-    auto mismatch = [&](double hm) {
-        const double S = std::sqrt(g * hm * (hm + hr) / (2.0 * hr));
-        return 2.0 * (cl - std::sqrt(g * hm)) - S * (1.0 - hr / hm);
-    };
-    double lo = hr, hi = hl;
-    for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (mismatch(mid) > 0.0 ? lo : hi) = mid;
-    }
-    const double hm = 0.5 * (lo + hi), cm = std::sqrt(g * hm);
-    const double S = std::sqrt(g * hm * (hm + hr) / (2.0 * hr));
-    const double um = 2.0 * (cl - cm);
-    if (xi < um - cm) return (2.0 * cl - xi) * (2.0 * cl - xi) / (9.0 * g);
-    if (xi < S) return hm;
-    return hr;
-}
-
-// L1 error of the depth against the exact dam break at t_end, on nx cells over [-5, 5].
 double dam_break_error(int nx, double hl, double hr, int order, double t_end) {
-    Scene s = flat_scene(nx, 2, 10.0 / nx, -5.0, 0.0);
-    s.eta0.assign(s.grid.size(), 0.0);
-    for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < nx; ++i) s.eta0[s.grid.index(i, j)] = s.grid.x(i) < 0.0 ? hl : hr;
-    SolverDef d = closed_def();
-    d.west.kind = d.east.kind = BoundaryKind::transmissive;
-    d.order = order;
-    d.dry_depth = 1e-8;
-    Solver solver(s, d);
-    while (solver.time() < t_end - 1e-12) solver.step(std::min(solver.stable_dt(), t_end - solver.time()));
-    double err = 0.0;
-    for (int i = 0; i < nx; ++i)
-        err += std::abs(solver.depth(i, 0) - dam_break_depth(hl, hr, d.gravity, s.grid.x(i) / t_end)) * s.grid.dx;
-    return err;
+    return test::dam_break_error(
+        nx, hl, hr, t_end, [](const Scene& s, const SolverDef& d) { return Solver(s, d); }, [&](SolverDef& d) { d.order = order; });
 }
 
 }  // namespace
@@ -114,23 +53,15 @@ TEST(Solver, LakeAtRestAroundBuildingsStaysAtRest) {
         d.default_manning_n = 0.013;
         Solver solver(s, d);
         for (int n = 0; n < 2000; ++n) solver.step(solver.stable_dt());
-        double eta_drift = 0.0, speed = 0.0;
-        for (int j = 0; j < s.grid.ny; ++j)
-            for (int i = 0; i < s.grid.nx; ++i) {
-                if (solver.depth(i, j) > 0.0) eta_drift = std::max(eta_drift, std::abs(solver.level(i, j)));
-                speed = std::max(speed, std::hypot(solver.x_velocity(i, j), solver.y_velocity(i, j)));
-                if (s.z[s.grid.index(i, j)] > 0.0) { EXPECT_EQ(solver.depth(i, j), 0.0); }
-            }
-        EXPECT_LE(eta_drift, 1e-6) << "order " << order;
-        EXPECT_LE(speed, 1e-6) << "order " << order;
+        const test::RestDrift drift = test::rest_drift(solver, s);
+        EXPECT_LE(drift.level, 1e-6) << "order " << order;
+        EXPECT_LE(drift.speed, 1e-6) << "order " << order;
+        EXPECT_EQ(drift.roof_depth, 0.0) << "order " << order;
     }
 }
 
 TEST(Solver, MassConservedWithClosedWallsAndDepthNeverNegative) {
-    Scene s = city_basin(80, 50, 5);
-    s.eta0.assign(s.grid.size(), 0.0);
-    for (int j = 0; j < s.grid.ny; ++j)
-        for (int i = 0; i < 20; ++i) s.eta0[s.grid.index(i, j)] = 0.08;  // a column of water floods the city
+    const Scene s = test::flooded_basin(5);
     SolverDef d = closed_def();
     d.default_manning_n = 0.013;
     Solver solver(s, d);
@@ -138,8 +69,7 @@ TEST(Solver, MassConservedWithClosedWallsAndDepthNeverNegative) {
     double min_depth = 0.0;
     for (int n = 0; n < 1500; ++n) {
         solver.step(solver.stable_dt());
-        for (int j = 0; j < s.grid.ny; ++j)
-            for (int i = 0; i < s.grid.nx; ++i) min_depth = std::min(min_depth, solver.depth(i, j));
+        min_depth = std::min(min_depth, test::min_depth(solver));
     }
     EXPECT_NEAR(solver.volume() / v0 - 1.0, 0.0, 1e-12);
     EXPECT_GE(min_depth, 0.0);
@@ -175,11 +105,7 @@ TEST(Solver, DryDamBreakConvergesToRitter) {
 TEST(Solver, ThinFilmWithFrictionOnSlopeStaysFinite) {
     // A 0.1 mm film on a 1:10 slope with n = 0.025 at 1 cm cells: explicit friction
     // would blow up (dt g n^2 |u| / h^(4/3) >> 1); the implicit one must stay bounded.
-    Scene s = flat_scene(100, 4, 0.01, 0.0, 0.0);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 100; ++i) s.z[s.grid.index(i, j)] = -0.1 * s.grid.x(i);
-    s.eta0.assign(s.grid.size(), 0.0);
-    for (std::size_t k = 0; k < s.z.size(); ++k) s.eta0[k] = s.z[k] + 1e-4;
+    const Scene s = test::film_on_slope();
     SolverDef d = closed_def();
     d.default_manning_n = 0.025;
     Solver solver(s, d);
