@@ -127,7 +127,8 @@ TomlDoc read_toml_lite(const std::string& path) {
         while (value.starts_with("[") && !value.ends_with("]")) {
             if (!std::getline(in, raw)) fail(path, here, "key '" + key + "': array not closed with ']'");
             ++line;
-            value += " " + trim(strip_comment(raw));
+            value += ' ';
+            value += trim(strip_comment(raw));
             value = trim(value);
         }
         values[key] = parse_value(path, first_line, key, value);

@@ -624,7 +624,11 @@ void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepRes
                  std::to_string(r.flow) + "," + std::to_string(r.perturbation) + "," + num(s.motion_start[m]) + "," + num(s.max_rotation[m]) +
                  "," + num(s.max_yaw_to_motion[m]) + "," + num(s.motion_direction[m]) + "," +
                  (s.region_at_arrival[m] >= 0 ? s.regions[std::size_t(s.region_at_arrival[m])] : std::string()) ;
-            for (std::size_t c = 0; c < ns; ++c) t += "," + num(s.passage_time[m][c]) + "," + num(s.passage_y[m][c]) + "," + num(s.passage_speed[m][c]);
+            for (std::size_t c = 0; c < ns; ++c)
+                for (double v : {s.passage_time[m][c], s.passage_y[m][c], s.passage_speed[m][c]}) {
+                    t += ',';
+                    t += num(v);
+                }
             t += "\n";
         }
         write_text_atomic(dir + "/members.csv", t);
