@@ -118,31 +118,55 @@ private:
 
 template <class S>
 void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
-    const std::size_t n = win.grid.size();
+    const std::size_t n = win.grid.size(), nx = std::size_t(win.grid.nx);
     std::vector<float> h(n), u(n), v(n);
-    for (int j = win.j0; j <= win.j1; ++j)
-        for (int i = win.i0; i <= win.i1; ++i) {
-            const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
-            h[q] = float(s.depth(i, j));
-            u[q] = float(s.x_velocity(i, j));
-            v[q] = float(s.y_velocity(i, j));
+#pragma omp parallel
+    {
+        std::vector<double> rh(nx), ru(nx), rv(nx);
+#pragma omp for schedule(static)
+        for (int j = win.j0; j <= win.j1; ++j) {
+            s.state_row(j, win.i0, win.i1 + 1, rh.data(), ru.data(), rv.data());
+            const std::size_t q0 = win.grid.index(0, j - win.j0);
+            for (std::size_t i = 0; i < nx; ++i) {
+                h[q0 + i] = float(rh[i]);
+                u[q0 + i] = float(ru[i]);
+                v[q0 + i] = float(rv[i]);
+            }
         }
+    }
     w.write_frame(k, h, u, v);
+}
+
+// The maxima and arrival times of one row of cells, given their depth and velocities.
+// Out of line and branch-free: it runs after every step, so it must vectorise.
+[[gnu::noinline]] void accumulate_row(std::size_t n, const double* h, const double* u, const double* v, double t, double arrival_depth,
+                                      float* __restrict max_depth, float* __restrict max_speed, float* __restrict arrival) {
+    const float fill = float(kFill), arrival_time = float(t);
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) {
+        // (Values, not references into the arrays, for std::max: else no vectorising.)
+        const float depth = float(h[i]), speed = float(std::sqrt(u[i] * u[i] + v[i] * v[i]));
+        const float depth_so_far = max_depth[i], speed_so_far = max_speed[i], arrived = arrival[i];
+        max_depth[i] = std::max(depth_so_far, depth);
+        max_speed[i] = std::max(speed_so_far, speed);
+        arrival[i] = (h[i] > arrival_depth) & (arrived == fill) ? arrival_time : arrived;
+    }
 }
 
 template <class S>
 void accumulate(Summary& sum, const S& s, const Window& win, double t, double arrival_depth) {
-#pragma omp parallel for schedule(static)
-    for (int j = win.j0; j <= win.j1; ++j)
-        for (int i = win.i0; i <= win.i1; ++i) {
-            const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
-            const double h = s.depth(i, j);
-            const double u = s.x_velocity(i, j), v = s.y_velocity(i, j);
-            const float speed = float(std::sqrt(u * u + v * v));
-            sum.max_depth[q] = std::max(sum.max_depth[q], float(h));
-            sum.max_speed[q] = std::max(sum.max_speed[q], speed);
-            if (h > arrival_depth && sum.arrival[q] == float(kFill)) sum.arrival[q] = float(t);
+    const std::size_t nx = std::size_t(win.grid.nx);
+#pragma omp parallel
+    {
+        std::vector<double> h(nx), u(nx), v(nx);
+#pragma omp for schedule(static)
+        for (int j = win.j0; j <= win.j1; ++j) {
+            s.state_row(j, win.i0, win.i1 + 1, h.data(), u.data(), v.data());
+            const std::size_t q0 = win.grid.index(0, j - win.j0);
+            accumulate_row(nx, h.data(), u.data(), v.data(), t, arrival_depth, sum.max_depth.data() + q0, sum.max_speed.data() + q0,
+                           sum.arrival.data() + q0);
         }
+    }
 }
 
 // ---- checkpoints ----
