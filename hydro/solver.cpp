@@ -40,8 +40,8 @@ Solver::Solver(const Scene& scene, const SolverDef& def) : grid_(scene.grid), de
     rows_ = std::size_t(grid_.ny + 2 * kGhost);
     const std::size_t n = stride_ * rows_;
     for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &z_, &g_n2_}) v->assign(n, 0.0);
-    for (auto* v : {&bound_, &bound1_, &base_nonzero_, &active_}) v->assign(std::size_t(grid_.ny), ColumnRange{});
-    nonzero_.assign(rows_, ColumnRange{});
+    for (auto* v : {&bound_, &bound1_, &state_nonzero_, &base_nonzero_, &active_}) v->assign(std::size_t(grid_.ny), ColumnRange{});
+    depth_nonzero_.assign(rows_, ColumnRange{});
 
     for (int j = 0; j < grid_.ny; ++j)
         for (int i = 0; i < grid_.nx; ++i) {
@@ -273,12 +273,13 @@ namespace {
 // of the unfused scheme (fluxes, then update, per row), so the results are the same
 // bits.
 //
-// Dry land: where the state is exactly zero (h, hu, hv all +0: land the water has not
-// reached, roofs above it) on the whole stencil of a cell (2 cells each way in x and
-// y), every flux and rate of the cell is +0 or -0 and its update gives +0 again, so the
-// cell need not be computed. Per row, only the columns within 2 cells of a nonzero cell
-// of the 5 rows around it are (find_active_columns). This is exact, not a second dry
-// tolerance: a film of 1e-9 m is computed like any water.
+// Dry land: a cell whose depth is zero over its whole stencil (2 cells each way in x
+// and y) has zero velocities (u = hu * 0) and depths at its faces, so every flux and
+// rate of the cell is +0 or -0, whatever the discharges there. If its own h, hu, hv are
+// +0 (all bits zero), its update then gives +0 again: the cell need not be computed.
+// Per row, only the columns within 2 cells of a nonzero depth in the 5 rows around it,
+// and those with a nonzero state, are (find_active_columns). This is exact, not a
+// second dry tolerance: a film of 1e-9 m is computed like any water.
 
 // The row functions below are called once per row and kept out of line (noinline):
 // inlined into the stage's OpenMP region, GCC 12 stops vectorising some of them.
@@ -510,34 +511,41 @@ void clear_outside(double* row, ColumnRange was, ColumnRange now) {
 void Solver::find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv,
                                  bool pumping) {
     const int nx = grid_.nx, ny = grid_.ny;
-    // Where the input may be nonzero: what the last stage computed (scan whole rows when
-    // the state was changed outside step()); ghost rows and columns always.
+    // Where the input may be nonzero: what the last stage computed (whole rows when the
+    // state was changed outside step()); ghost rows and columns always. Serial: each
+    // scan stops at the first nonzero cell from either end, so it reads few cells more
+    // than the dry ones within the bound; a parallel region would cost more.
     const std::vector<ColumnRange>& bound = which == Stage::corrector ? bound1_ : bound_;
     const bool whole_rows = which == Stage::predictor && state_changed_outside_;
-    // Serial: a scan stops at the first nonzero cell from either end, so it reads little
-    // more than the dry cells within the bound; a parallel region would cost more.
     for (int j = -kGhost; j < ny + kGhost; ++j) {
         const std::size_t row = std::size_t(j + kGhost) * stride_ + kGhost;  // column i at row + i
-        auto nonzero = [&](int i) {
-            const std::size_t p = std::size_t(std::ptrdiff_t(row) + i);
-            return !(is_zero(h[p]) && is_zero(hu[p]) && is_zero(hv[p]));
-        };
-        const ColumnRange scan = (j < 0 || j >= ny || whole_rows) ? ColumnRange{0, nx} : bound[std::size_t(j)];
+        auto at_column = [&](int i) { return std::size_t(std::ptrdiff_t(row) + i); };
+        auto state_nonzero = [&](int i) { return !(is_zero(h[at_column(i)]) && is_zero(hu[at_column(i)]) && is_zero(hv[at_column(i)])); };
+        auto depth_nonzero = [&](int i) { return h[at_column(i)] != 0.0; };
+        const bool ghost_row = j < 0 || j >= ny;
+        const ColumnRange scan = ghost_row || whole_rows ? ColumnRange{0, nx} : bound[std::size_t(j)];
         int b = scan.begin, e = scan.end;
-        while (b < e && !nonzero(b)) ++b;
-        while (e > b && !nonzero(e - 1)) --e;
-        ColumnRange found = b < e ? ColumnRange{b, e} : ColumnRange{};
+        if (!ghost_row) {  // the cells of the row itself: any bit of the state
+            while (b < e && !state_nonzero(b)) ++b;
+            while (e > b && !state_nonzero(e - 1)) --e;
+            state_nonzero_[std::size_t(j)] = b < e ? ColumnRange{b, e} : ColumnRange{};
+        }
+        while (b < e && !depth_nonzero(b)) ++b;  // neighbours: the depth
+        while (e > b && !depth_nonzero(e - 1)) --e;
+        ColumnRange depth = b < e ? ColumnRange{b, e} : ColumnRange{};
         for (int i : {-2, -1, nx, nx + 1})
-            if (nonzero(i)) found = hull(found, {i, i + 1});
-        nonzero_[std::size_t(j + kGhost)] = found;
+            if (depth_nonzero(i)) depth = hull(depth, {i, i + 1});
+        depth_nonzero_[std::size_t(j + kGhost)] = depth;
     }
-    if (which == Stage::predictor)
-        for (int j = 0; j < ny; ++j) base_nonzero_[std::size_t(j)] = clip(nonzero_[std::size_t(j + kGhost)], 0, nx);
+    if (which == Stage::predictor) base_nonzero_ = state_nonzero_;
     for (int j = 0; j < ny; ++j) {
-        ColumnRange a;
-        for (int k = j - 2; k <= j + 2; ++k) a = hull(a, nonzero_[std::size_t(k + kGhost)]);
-        a = clip(widen(a, 2), 0, nx);
-        // The corrector also averages with the base state, which may be wet where U1 is not.
+        ColumnRange a{0, nx};
+        if (def_.skip_dry_land) {
+            a = {};
+            for (int k = j - 2; k <= j + 2; ++k) a = hull(a, depth_nonzero_[std::size_t(k + kGhost)]);
+            a = hull(clip(widen(a, 2), 0, nx), state_nonzero_[std::size_t(j)]);
+        }
+        // The corrector also averages with the base state, which may be nonzero where U1 is not.
         if (which == Stage::corrector) a = hull(a, base_nonzero_[std::size_t(j)]);
         if (pumping)
             for (std::size_t k = pump_row_start_[std::size_t(j)]; k < pump_row_start_[std::size_t(j) + 1]; ++k) {
@@ -545,7 +553,9 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
                 a = hull(a, {i, i + 1});
             }
         active_[std::size_t(j)] = a;
+        stats_.cell_stages_dry += double(nx - std::max(0, a.end - a.begin));
     }
+    stats_.cell_stages += double(grid_.size());
 }
 
 void Solver::stage(Stage which, double dt, double t) {
