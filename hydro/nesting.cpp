@@ -119,6 +119,8 @@ SolverStats NestedSolver::stats() const {
     SolverStats s = coarse_.stats();
     s.negative_depth_fixes += fine_.stats().negative_depth_fixes;
     s.min_depth_seen = std::min(s.min_depth_seen, fine_.stats().min_depth_seen);
+    s.cell_stages += fine_.stats().cell_stages;
+    s.cell_stages_dry += fine_.stats().cell_stages_dry;
     return s;
 }
 

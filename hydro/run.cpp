@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 
 #include "common/atomic_file.hpp"
@@ -263,6 +264,13 @@ std::string boundary_checksums(const SolverDef& d) {
 }
 
 
+// Processor time of this process, all threads [s].
+double cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 double cell_updates(const Solver& s, long steps) { return double(steps) * double(s.grid().size()); }
 double cell_updates(const NestedSolver& s, long) { return s.cell_updates(); }
 
@@ -336,6 +344,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     Progress progress(run.label, run.duration, 10.0, run.quiet);
     RunResult res;
     const auto wall0 = std::chrono::steady_clock::now();
+    const double cpu0 = cpu_seconds();
     double next_checkpoint = run.checkpoint_interval > 0.0 ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval : 1e300;
     long steps = state.steps;
     auto before = gauges.read(solver);
@@ -375,12 +384,14 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         progress.update(t1, dt, steps);
     }
     res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    res.cpu_seconds = cpu_seconds() - cpu0;
     res.steps = steps - state.steps * (run.restart ? 1 : 0);
     res.simulated = solver.time();
     res.cell_updates_per_second = cell_updates(solver, res.steps) / std::max(res.wall_seconds, 1e-9);
     res.volume_start = state.volume_start;
     res.volume_end = solver.volume();
     res.negative_depth_fixes = solver.stats().negative_depth_fixes;
+    res.dry_skipped_fraction = solver.stats().cell_stages_dry / std::max(solver.stats().cell_stages, 1.0);
     if (stopped) {
         writer->close();
         out.keep_partial();
