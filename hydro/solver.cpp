@@ -577,6 +577,11 @@ void Solver::stage(Stage which, double dt, double t) {
     auto row = [&](const std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     auto row_out = [&](std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     if (work_.size() < std::size_t(omp_get_max_threads())) work_.resize(std::size_t(omp_get_max_threads()));
+    // Columns to compute in the rows below each row, to give each thread an equal share
+    // (with dry land skipped, rows cost different amounts; up to 10 % on 2 threads).
+    cumulative_columns_.assign(std::size_t(ny) + 1, 0.0);
+    for (int j = 0; j < ny; ++j)
+        cumulative_columns_[std::size_t(j) + 1] = cumulative_columns_[std::size_t(j)] + 1.0 + std::max(0, active(j).end - active(j).begin);
     long fixes = 0;
     double worst = 0.0, amax = 0.0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
@@ -603,7 +608,11 @@ void Solver::stage(Stage which, double dt, double t) {
         };
         auto faces = [&](int j) { y_faces_row(s, hull(active(j - 1), active(j)), row(h, j - 1), row(h, j), w, j + kGhost); };
         // This thread's strip of interior rows.
-        const int j0 = int(long(ny) * tid / nt), j1 = int(long(ny) * (tid + 1) / nt);
+        auto first_row = [&](int k) {
+            const double share = cumulative_columns_.back() * k / nt;
+            return int(std::lower_bound(cumulative_columns_.begin(), cumulative_columns_.end(), share) - cumulative_columns_.begin());
+        };
+        const int j0 = first_row(tid), j1 = tid + 1 == nt ? ny : first_row(tid + 1);
         if (j0 < j1) {
             for (int j = j0 - 2; j < j0 + 2; ++j) primitives(j);
             for (int j = j0 - 1; j < j0 + 1; ++j) slopes(j);

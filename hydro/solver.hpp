@@ -143,6 +143,7 @@ private:
     std::vector<double> h_, hu_, hv_;
     std::vector<double> h1_, hu1_, hv1_;            // Heun's intermediate stage
     std::vector<std::vector<double>> work_;         // per thread: the row buffers of stage()
+    std::vector<double> cumulative_columns_;        // columns to compute below each row (splits rows over threads)
     // Skipping dry land (solver.cpp). Per interior row: the columns outside which h_
     // (bound_) and h1_ (bound1_) are exactly zero; those of the stage's input (and
     // base) with a nonzero h, hu or hv; the columns to compute. Per padded row: the
