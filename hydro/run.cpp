@@ -117,24 +117,34 @@ private:
     std::vector<float> eta_, h_, u_, v_;
 };
 
+// Calls f(q0, h, u, v) for each row of the window, rows in parallel: the depth and
+// velocities of the row's cells (state_row) and the index of its first cell in window
+// arrays.
+template <class S, class F>
+void for_each_window_row(const S& s, const Window& win, F&& f) {
+    const std::size_t nx = std::size_t(win.grid.nx);
+#pragma omp parallel
+    {
+        std::vector<double> h(nx), u(nx), v(nx);
+#pragma omp for schedule(static)
+        for (int j = win.j0; j <= win.j1; ++j) {
+            s.state_row(j, win.i0, win.i1 + 1, h.data(), u.data(), v.data());
+            f(win.grid.index(0, j - win.j0), h.data(), u.data(), v.data());
+        }
+    }
+}
+
 template <class S>
 void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
     const std::size_t n = win.grid.size(), nx = std::size_t(win.grid.nx);
     std::vector<float> h(n), u(n), v(n);
-#pragma omp parallel
-    {
-        std::vector<double> rh(nx), ru(nx), rv(nx);
-#pragma omp for schedule(static)
-        for (int j = win.j0; j <= win.j1; ++j) {
-            s.state_row(j, win.i0, win.i1 + 1, rh.data(), ru.data(), rv.data());
-            const std::size_t q0 = win.grid.index(0, j - win.j0);
-            for (std::size_t i = 0; i < nx; ++i) {
-                h[q0 + i] = float(rh[i]);
-                u[q0 + i] = float(ru[i]);
-                v[q0 + i] = float(rv[i]);
-            }
+    for_each_window_row(s, win, [&](std::size_t q0, const double* rh, const double* ru, const double* rv) {
+        for (std::size_t i = 0; i < nx; ++i) {
+            h[q0 + i] = float(rh[i]);
+            u[q0 + i] = float(ru[i]);
+            v[q0 + i] = float(rv[i]);
         }
-    }
+    });
     w.write_frame(k, h, u, v);
 }
 
@@ -156,18 +166,10 @@ void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
 
 template <class S>
 void accumulate(Summary& sum, const S& s, const Window& win, double t, double arrival_depth) {
-    const std::size_t nx = std::size_t(win.grid.nx);
-#pragma omp parallel
-    {
-        std::vector<double> h(nx), u(nx), v(nx);
-#pragma omp for schedule(static)
-        for (int j = win.j0; j <= win.j1; ++j) {
-            s.state_row(j, win.i0, win.i1 + 1, h.data(), u.data(), v.data());
-            const std::size_t q0 = win.grid.index(0, j - win.j0);
-            accumulate_row(nx, h.data(), u.data(), v.data(), t, arrival_depth, sum.max_depth.data() + q0, sum.max_speed.data() + q0,
-                           sum.arrival.data() + q0);
-        }
-    }
+    for_each_window_row(s, win, [&](std::size_t q0, const double* h, const double* u, const double* v) {
+        accumulate_row(std::size_t(win.grid.nx), h, u, v, t, arrival_depth, sum.max_depth.data() + q0, sum.max_speed.data() + q0,
+                       sum.arrival.data() + q0);
+    });
 }
 
 // ---- checkpoints ----
