@@ -56,10 +56,10 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     o.run.config_text = sub->config_to_str(true, false);
     const RunResult r = run_hydro(o.run, s);
     if (!o.run.quiet)
-        std::fprintf(stderr, "%s: %s after %ld steps in %.1f s wall, %.3g cell-updates/s, volume %.6g -> %.6g m^3%s%s\n", o.run.label.c_str(),
-                     r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)", r.steps, r.wall_seconds,
-                     r.cell_updates_per_second,
-                     r.volume_start, r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "",
+        std::fprintf(stderr, "%s: %s after %ld steps in %.1f s wall (%.1f s processor), %.3g cell-updates/s (%.0f%% dry land skipped), volume %.6g -> %.6g m^3%s%s\n",
+                     o.run.label.c_str(), r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)", r.steps,
+                     r.wall_seconds, r.cpu_seconds, r.cell_updates_per_second, 100.0 * r.dry_skipped_fraction, r.volume_start, r.volume_end,
+                     r.negative_depth_fixes ? ", negative depths clamped" : "",
                      r.outflow_limits ? (", outflow limited in " + std::to_string(r.outflow_limits) + " cell-steps").c_str() : "");
 }
 

@@ -113,6 +113,14 @@ public:
     // Cell-centre velocities [m/s]: the mean of the two faces', half a step behind the depth; 0 where dry.
     double x_velocity(int i, int j) const { return h_[at(i, j)] > def_.dry_depth ? 0.5 * (u_[at(i, j)] + u_[at(i + 1, j)]) : 0.0; }
     double y_velocity(int i, int j) const { return h_[at(i, j)] > def_.dry_depth ? 0.5 * (v_[at(i, j)] + v_[at(i, j + 1)]) : 0.0; }
+    // depth(i, j), x_velocity(i, j), y_velocity(i, j) of the cells i0 <= i < i1 of row j (as Solver::state_row).
+    void state_row(int j, int i0, int i1, double* h, double* u, double* v) const {
+        for (int i = i0; i < i1; ++i) {
+            h[i - i0] = depth(i, j);
+            u[i - i0] = x_velocity(i, j);
+            v[i - i0] = y_velocity(i, j);
+        }
+    }
     double volume() const;  // [m^3]
 
     double pump_level_at_stop() const { return forcing_.pump_level_at_stop(); }

@@ -119,6 +119,8 @@ SolverStats NestedSolver::stats() const {
     SolverStats s = coarse_.stats();
     s.negative_depth_fixes += fine_.stats().negative_depth_fixes;
     s.min_depth_seen = std::min(s.min_depth_seen, fine_.stats().min_depth_seen);
+    s.cell_stages += fine_.stats().cell_stages;
+    s.cell_stages_dry += fine_.stats().cell_stages_dry;
     return s;
 }
 
@@ -223,6 +225,26 @@ double NestedSolver::depth(int i, int j) const {
     const int I = i / ratio_, J = j / ratio_;
     if (coarse_.depth(I, J) <= def_.dry_depth) return 0.0;
     return std::max(0.0, coarse_.level(I, J) - z_[grid_.index(i, j)]);
+}
+
+void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double* v) const {
+    const int split = std::clamp(i_nest_, i0, i1);  // the range's first fine cell
+    if (split < i1) fine_.state_row(j, split - i_nest_, i1 - i_nest_, h + (split - i0), u + (split - i0), v + (split - i0));
+    // West of the interface: as depth() and x_velocity(), the coarse cell's level over
+    // the scene's ground.
+    const double dry = def_.dry_depth;
+    const int J = j / ratio_;
+    for (int I = i0 / ratio_; I * ratio_ < split; ++I) {
+        const bool coarse_wet = coarse_.depth(I, J) > dry;
+        const double level = coarse_.level(I, J), u_coarse = coarse_.x_velocity(I, J), v_coarse = coarse_.y_velocity(I, J);
+        for (int i = std::max(i0, I * ratio_); i < std::min(split, (I + 1) * ratio_); ++i) {
+            const double d = coarse_wet ? std::max(0.0, level - z_[grid_.index(i, j)]) : 0.0;
+            const bool wet = d > dry;
+            h[i - i0] = d;
+            u[i - i0] = wet ? u_coarse : 0.0;
+            v[i - i0] = wet ? v_coarse : 0.0;
+        }
+    }
 }
 
 double NestedSolver::x_velocity(int i, int j) const {

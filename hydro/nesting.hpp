@@ -66,6 +66,8 @@ public:
     double level(int i, int j) const { return depth(i, j) + bed(i, j); }
     double x_velocity(int i, int j) const;
     double y_velocity(int i, int j) const;
+    // The three above for the cells i0 <= i < i1 of row j (as Solver::state_row).
+    void state_row(int j, int i0, int i1, double* h, double* u, double* v) const;
 
     double pump_level_at_stop() const { return coarse_.pump_level_at_stop(); }
     void set_pump_level_at_stop(double v) { coarse_.set_pump_level_at_stop(v); }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 
 #include "common/atomic_file.hpp"
@@ -122,33 +123,59 @@ private:
     std::vector<float> eta_, h_, u_, v_;
 };
 
+// Calls f(q0, h, u, v) for each row of the window, rows in parallel: the depth and
+// velocities of the row's cells (state_row) and the index of its first cell in window
+// arrays.
+template <class S, class F>
+void for_each_window_row(const S& s, const Window& win, F&& f) {
+    const std::size_t nx = std::size_t(win.grid.nx);
+#pragma omp parallel
+    {
+        std::vector<double> h(nx), u(nx), v(nx);
+#pragma omp for schedule(static)
+        for (int j = win.j0; j <= win.j1; ++j) {
+            s.state_row(j, win.i0, win.i1 + 1, h.data(), u.data(), v.data());
+            f(win.grid.index(0, j - win.j0), h.data(), u.data(), v.data());
+        }
+    }
+}
+
 template <class S>
 void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
-    const std::size_t n = win.grid.size();
+    const std::size_t n = win.grid.size(), nx = std::size_t(win.grid.nx);
     std::vector<float> h(n), u(n), v(n);
-    for (int j = win.j0; j <= win.j1; ++j)
-        for (int i = win.i0; i <= win.i1; ++i) {
-            const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
-            h[q] = float(s.depth(i, j));
-            u[q] = float(s.x_velocity(i, j));
-            v[q] = float(s.y_velocity(i, j));
+    for_each_window_row(s, win, [&](std::size_t q0, const double* rh, const double* ru, const double* rv) {
+        for (std::size_t i = 0; i < nx; ++i) {
+            h[q0 + i] = float(rh[i]);
+            u[q0 + i] = float(ru[i]);
+            v[q0 + i] = float(rv[i]);
         }
+    });
     w.write_frame(k, h, u, v);
+}
+
+// The maxima and arrival times of one row of cells, given their depth and velocities.
+// Out of line and branch-free: it runs after every step, so it must vectorise.
+[[gnu::noinline]] void accumulate_row(std::size_t n, const double* h, const double* u, const double* v, double t, double arrival_depth,
+                                      float* __restrict max_depth, float* __restrict max_speed, float* __restrict arrival) {
+    const float fill = float(kFill), arrival_time = float(t);
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) {
+        // (Values, not references into the arrays, for std::max: else no vectorising.)
+        const float depth = float(h[i]), speed = float(std::sqrt(u[i] * u[i] + v[i] * v[i]));
+        const float depth_so_far = max_depth[i], speed_so_far = max_speed[i], arrived = arrival[i];
+        max_depth[i] = std::max(depth_so_far, depth);
+        max_speed[i] = std::max(speed_so_far, speed);
+        arrival[i] = (h[i] > arrival_depth) & (arrived == fill) ? arrival_time : arrived;
+    }
 }
 
 template <class S>
 void accumulate(Summary& sum, const S& s, const Window& win, double t, double arrival_depth) {
-#pragma omp parallel for schedule(static)
-    for (int j = win.j0; j <= win.j1; ++j)
-        for (int i = win.i0; i <= win.i1; ++i) {
-            const std::size_t q = win.grid.index(i - win.i0, j - win.j0);
-            const double h = s.depth(i, j);
-            const double u = s.x_velocity(i, j), v = s.y_velocity(i, j);
-            const float speed = float(std::sqrt(u * u + v * v));
-            sum.max_depth[q] = std::max(sum.max_depth[q], float(h));
-            sum.max_speed[q] = std::max(sum.max_speed[q], speed);
-            if (h > arrival_depth && sum.arrival[q] == float(kFill)) sum.arrival[q] = float(t);
-        }
+    for_each_window_row(s, win, [&](std::size_t q0, const double* h, const double* u, const double* v) {
+        accumulate_row(std::size_t(win.grid.nx), h, u, v, t, arrival_depth, sum.max_depth.data() + q0, sum.max_speed.data() + q0,
+                       sum.arrival.data() + q0);
+    });
 }
 
 // ---- checkpoints ----
@@ -246,6 +273,13 @@ std::string boundary_checksums(const SolverDef& d) {
 }
 
 
+// Processor time of this process, all threads [s].
+double cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 double cell_updates(const Solver& s, long steps) { return double(steps) * double(s.grid().size()); }
 double cell_updates(const NestedSolver& s, long) { return s.cell_updates(); }
 double cell_updates(const LeapfrogSolver& s, long steps) { return double(steps) * double(s.grid().size()); }
@@ -327,6 +361,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     Progress progress(run.label, run.duration, 10.0, run.quiet);
     RunResult res;
     const auto wall0 = std::chrono::steady_clock::now();
+    const double cpu0 = cpu_seconds();
     double next_checkpoint = run.checkpoint_interval > 0.0 ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval : 1e300;
     long steps = state.steps;
     auto before = gauges.read(solver);
@@ -368,6 +403,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         progress.update(t1, dt, steps);
     }
     res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    res.cpu_seconds = cpu_seconds() - cpu0;
     res.steps = steps - state.steps * (run.restart ? 1 : 0);
     res.simulated = solver.time();
     res.cell_updates_per_second = cell_updates(solver, res.steps) / std::max(res.wall_seconds, 1e-9);
@@ -375,6 +411,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     res.volume_end = solver.volume();
     res.negative_depth_fixes = solver.stats().negative_depth_fixes;
     res.outflow_limits = solver.stats().outflow_limits;
+    res.dry_skipped_fraction = solver.stats().cell_stages_dry / std::max(solver.stats().cell_stages, 1.0);
     if (stopped) {
         writer->close();
         out.keep_partial();

@@ -46,8 +46,11 @@ struct RunResult {
     bool completed = false;                  // false when stopped by stop_after
     long steps = 0;
     double simulated = 0.0;                  // [s]
-    double wall_seconds = 0.0;               // stepping only, excluding setup
+    double wall_seconds = 0.0;               // stepping only, excluding setup (with the per-step
+                                             // maxima, gauges, frames and checkpoints)
+    double cpu_seconds = 0.0;                // processor time of the same, all threads [s]
     double cell_updates_per_second = 0.0;    // interior cells x steps / wall_seconds
+    double dry_skipped_fraction = 0.0;       // of the cell updates, skipped as dry land (solver.hpp)
     double volume_start = 0.0, volume_end = 0.0;  // [m^3]
     long negative_depth_fixes = 0;
     long outflow_limits = 0;                 // leap-frog: cell-steps whose outflow was scaled down

@@ -7,6 +7,12 @@
 //
 // Storage: h, hu, hv, z with two ghost layers on every side, row-major, x fastest:
 // the interior cell (i, j) sits at (j + 2) * (nx + 4) + (i + 2).
+//
+// Speed (docs/hydro.md, "Performance notes"): a stage sweeps the rows once, keeping the
+// primitive values, slopes and y-face fluxes of the few rows in flight in per-thread
+// row buffers, and updates each row as soon as its rates are known; cells whose whole
+// stencil is exactly zero (dry land the water has not reached) are skipped, which
+// gives the same bits as computing them.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -24,6 +30,12 @@ namespace flotsam::hydro {
 enum class Friction { implicit, explicit_ };
 Friction parse_friction(const std::string& s, const std::string& option);  // "implicit" | "explicit"
 
+// Columns [begin, end) of one grid row, in interior indices (ghosts are -2, -1, nx, nx + 1).
+struct ColumnRange {
+    int begin = 0, end = 0;
+    bool empty() const { return begin >= end; }
+};
+
 struct SolverDef {
     double gravity = 9.81;           // [m s^-2]
     // The one dry tolerance: a cell with h <= dry_depth has no velocity and no friction.
@@ -35,6 +47,9 @@ struct SolverDef {
     double limiter_theta = 1.3;      // 1 = minmod ... 2 = monotonised central
     int order = 2;                   // 1: first order in space and time; 2: MUSCL + Heun
     double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
+    // Skip cells whose whole stencil is exactly dry (h = hu = hv = 0): the same result,
+    // faster. false computes every cell (the tests check that skipping changes no bit).
+    bool skip_dry_land = true;
     Friction friction = Friction::implicit;  // explicit: stability study only
     // Study only, never for a real run: accept cfl above 0.5 (finite volumes) and let the
     // leap-frog run on past its Courant limit instead of failing, to show the failures.
@@ -48,6 +63,8 @@ struct SolverStats {
     long steps = 0;
     long negative_depth_fixes = 0;   // cells where round-off made h < 0 (set to 0)
     double min_depth_seen = 0.0;     // most negative h before the fix [m]
+    double cell_stages = 0.0;        // interior cells x stages stepped
+    double cell_stages_dry = 0.0;    // of which skipped as dry land (all of the stencil exactly zero)
     long outflow_limits = 0;         // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
 };
 
@@ -75,13 +92,18 @@ public:
     double level(int i, int j) const { return h_[at(i, j)] + z_[at(i, j)]; }
     double x_velocity(int i, int j) const { return velocity(h_[at(i, j)], hu_[at(i, j)], def_.dry_depth); }
     double y_velocity(int i, int j) const { return velocity(h_[at(i, j)], hv_[at(i, j)], def_.dry_depth); }
+    // depth(i, j), x_velocity(i, j), y_velocity(i, j) of the cells i0 <= i < i1 of row j,
+    // into h[i - i0], u[i - i0], v[i - i0] (for output and statistics over whole rows).
+    void state_row(int j, int i0, int i1, double* h, double* u, double* v) const;
     // Total water volume [m^3].
     double volume() const;
 
-    // Padded state, for checkpoints and output (size (nx+4)*(ny+4)).
-    std::vector<double>& depth_data() { return h_; }
-    std::vector<double>& x_discharge_data() { return hu_; }
-    std::vector<double>& y_discharge_data() { return hv_; }
+    // Padded state, for checkpoints and output (size (nx+4)*(ny+4)). The non-const
+    // accessors tell the solver that the state may change outside step(): write through
+    // the reference before the next step() or stable_dt(), not after.
+    std::vector<double>& depth_data() { return changed_outside(h_); }
+    std::vector<double>& x_discharge_data() { return changed_outside(hu_); }
+    std::vector<double>& y_discharge_data() { return changed_outside(hv_); }
     const std::vector<double>& depth_data() const { return h_; }
     const std::vector<double>& x_discharge_data() const { return hu_; }
     const std::vector<double>& y_discharge_data() const { return hv_; }
@@ -105,20 +127,20 @@ public:
     void set_pump_level_at_stop(double v) { forcing_.set_pump_level_at_stop(v); }
 
 private:
+    enum class Stage { predictor, corrector };
     void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
     void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
-    // Rate of change of (h, hu, hv) from fluxes and bed slope, into dh_, dhu_, dhv_.
-    void rates(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
-    void x_sweep_row(int j, const std::vector<double>& h);
-    // out = a * base + (1 - a) * friction(state + dt * rate), base optional.
-    void update(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
-                const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
-                std::vector<double>& hu_out, std::vector<double>& hv_out);
-    template <Friction friction>
-    void update_stage(double dt, double a, const std::vector<double>* h0, const std::vector<double>* hu0, const std::vector<double>* hv0,
-                      const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv, std::vector<double>& h_out,
-                      std::vector<double>& hu_out, std::vector<double>& hv_out);
-    void add_sources(double t);
+    // One Heun stage at time t: predictor U1 = E(U), corrector U = (U + E(U1)) / 2, with
+    // E(U) = friction(U + dt L(U)). Fused: one sweep over the rows (see solver.cpp).
+    void stage(Stage which, double dt, double t);
+    // Columns of each row whose rate may be nonzero in this stage, into active_.
+    void find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv,
+                             bool pumping);
+    std::vector<double>& changed_outside(std::vector<double>& v) {
+        state_changed_outside_ = true;
+        max_wave_rate_ = -1.0;
+        return v;
+    }
     const BoundaryDef& boundary(Side s) const;
 
     Grid grid_;
@@ -129,14 +151,22 @@ private:
     // Hot state.
     std::vector<double> h_, hu_, hv_;
     std::vector<double> h1_, hu1_, hv1_;            // Heun's intermediate stage
-    std::vector<double> dh_, dhu_, dhv_;            // rates of change
-    std::vector<double> eta_, u_, v_;               // primitive values of the stage
-    std::vector<double> sy_eta_, sy_h_, sy_u_, sy_v_;  // limited y-slopes
-    std::vector<double> gy_mass_, gy_lo_, gy_hi_, gy_tan_;  // y-face fluxes, face row j below cell row j
+    std::vector<std::vector<double>> work_;         // per thread: the row buffers of stage()
+    std::vector<double> cumulative_columns_;        // columns to compute below each row (splits rows over threads)
+    // Skipping dry land (solver.cpp). Per interior row: the columns outside which h_
+    // (bound_) and h1_ (bound1_) are exactly zero; those of the stage's input (and
+    // base) with a nonzero h, hu or hv; the columns to compute. Per padded row: the
+    // columns of the input with a nonzero depth.
+    std::vector<ColumnRange> bound_, bound1_, state_nonzero_, base_nonzero_, active_;
+    std::vector<ColumnRange> depth_nonzero_;
+    bool state_changed_outside_ = true;             // bound_ unknown: scan whole rows
+    mutable double max_wave_rate_ = -1.0;           // max(a_x/dx + a_y/dy) of the state [1/s]; < 0: not known
     // Cold data.
     std::vector<double> z_;          // bed [m], ghosts filled once
     std::vector<double> g_n2_;       // g * manning_n^2 per cell
     Forcing forcing_;                // boundary series and the pump
+    std::vector<std::size_t> pump_cells_;  // padded indices of the pump's source strip (forcing_'s), row by row
+    std::vector<std::size_t> pump_row_start_;  // the pump cells of interior row j: [start[j], start[j+1])
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
     struct NestedGhosts {
         double t0 = 0.0, t1 = 0.0;

@@ -46,6 +46,14 @@ inline double limited_slope(double dl, double dr, double theta) {
 // Velocity from discharge; zero in dry cells so a film of round-off depth has no speed.
 inline double velocity(double h, double q, double dry_depth) { return h > dry_depth ? q / h : 0.0; }
 
+// The CFL rate of a cell, (|u| + c) / dx + (|v| + c) / dy with c = sqrt(g h) [1/s]: a
+// stable step is at most cfl over its largest value.
+inline double wave_rate(double h, double hu, double hv, double g, double dry_depth, double idx, double idy) {
+    const double c = std::sqrt(g * h);
+    const double inv = h > dry_depth ? 1.0 / h : 0.0;
+    return (std::abs(hu) * inv + c) * idx + (std::abs(hv) * inv + c) * idy;
+}
+
 // Numerical flux across one face, normal direction n, tangential t. Inputs are face
 // values on the left (L) and right (R) side: level eta, depth h, normal velocity un,
 // tangential velocity ut. Outputs: mass flux, normal-momentum flux as seen from the
@@ -101,13 +109,15 @@ inline double inverse_cube_root(double h) {
 // Implicit Manning friction on one discharge component pair (q1, q2) over dt:
 // returns the factor r in (0, 1] with q_new = r q*. g_n2 = g * n^2.
 inline double friction_factor(double h, double q1, double q2, double g_n2, double dt, double dry_depth) {
-    const double hs = h > dry_depth ? h : 1.0;  // keeps the arithmetic finite; the result is 0 there
+    // Dry: any finite r, multiplied by 0. (Written without a branch around the
+    // arithmetic so that the loops calling this vectorise.)
+    const double hs = std::max(h, dry_depth);
     const double qmag = std::sqrt(q1 * q1 + q2 * q2);
     const double y = inverse_cube_root(hs), y3 = y * y * y;
     const double a = dt * g_n2 * (y3 * y3 * y);  // dt g n^2 / h^(7/3)
     // |q| = (-1 + sqrt(1 + 4 a |q*|)) / (2a), written without cancellation.
     const double r = 2.0 / (1.0 + std::sqrt(1.0 + 4.0 * a * qmag));
-    return h > dry_depth ? r : 0.0;
+    return r * (h > dry_depth ? 1.0 : 0.0);
 }
 
 // Explicit Manning friction, kept only for the stability study: q_new = q* - e q_old with

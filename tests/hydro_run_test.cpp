@@ -1,5 +1,6 @@
 // Runs of the hydro driver: the stored file, restart, determinism, errors.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <filesystem>
@@ -147,6 +148,26 @@ TEST(HydroRun, RestartContinuesToTheSameResultAndSameInputsGiveSameBytes) {
     r.stop_after = -1.0;
     r.config_text = "other";
     EXPECT_NE(error_of([&] { run_hydro(r, d); }).find("other settings"), std::string::npos);
+}
+
+// Rows are split over threads, and the rows beside a thread's strip are computed by
+// both threads: the same bytes whatever the thread count, uniform and nested.
+TEST(HydroRun, SameBytesOnOneAndTwoThreads) {
+    const auto dir = test::scratch_dir("hydro_threads");
+    const auto scene = make_scene(dir);
+    const SolverDef d = level_def(make_series(dir));
+    for (int ratio : {1, 2}) {
+        std::string sha[2];
+        for (int threads : {1, 2}) {
+            omp_set_num_threads(threads);
+            RunDef r = base_run(scene, dir + "/t" + std::to_string(threads) + ".nc");
+            r.nest = NestDef{0.3, ratio};
+            ASSERT_TRUE(run_hydro(r, d).completed);
+            sha[threads - 1] = sha256_file(r.out_file);
+        }
+        EXPECT_EQ(sha[0], sha[1]) << "nest ratio " << ratio;
+    }
+    omp_set_num_threads(omp_get_num_procs());
 }
 
 TEST(HydroRun, NestedRunRestartsToTheSameResult) {
