@@ -27,6 +27,58 @@ void record(World& world, TrajectorySeries& series) {
     world.clear_event_flags();
 }
 
+TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime) {
+    TrackVariables vars{};
+    vars.time = f.def_var("time", NC_DOUBLE, {dtime});
+    f.put_att(vars.time, "standard_name", std::string("time"));
+    f.put_att(vars.time, "units", std::string(flow_names::time_units));
+    f.put_att(vars.time, "calendar", std::string("standard"));
+    f.put_att(vars.time, "axis", std::string("T"));
+    auto coordinate = [&](const char* name, const char* standard_name, const char* long_name, const char* axis) {
+        const int v = f.def_var(name, NC_DOUBLE, {dtraj, dtime});
+        f.put_att(v, "standard_name", std::string(standard_name));
+        f.put_att(v, "units", std::string("m"));
+        f.put_att(v, "long_name", std::string(long_name));
+        f.put_att(v, "axis", std::string(axis));
+        return v;
+    };
+    auto field = [&](const char* name, const char* units, const char* long_name) {
+        const int v = f.def_var(name, NC_DOUBLE, {dtraj, dtime});
+        f.put_att(v, "units", std::string(units));
+        f.put_att(v, "long_name", std::string(long_name));
+        f.put_att(v, "coordinates", std::string("time x y"));
+        return v;
+    };
+    vars.x = coordinate("x", "projection_x_coordinate", "x of the body centre (east)", "X");
+    vars.y = coordinate("y", "projection_y_coordinate", "y of the body centre (north)", "Y");
+    vars.yaw = field("yaw", "degree", "heading of the long axis from +x, counter-clockwise, unwrapped");
+    vars.u = field("u", "m s-1", "x velocity of the body centre");
+    vars.v = field("v", "m s-1", "y velocity of the body centre");
+    vars.omega = field("omega", "rad s-1", "yaw rate, counter-clockwise (about the contact centroid while pivoting)");
+    vars.status = f.def_var("status", NC_BYTE, {dtraj, dtime});
+    f.put_att(vars.status, "long_name", std::string("body state flags"));
+    f.put_att(vars.status, "flag_masks",
+              std::vector<std::int8_t>{flag_released, flag_moving, flag_grounded, flag_colliding, flag_pivoting});
+    f.put_att(vars.status, "flag_meanings", std::string("released moving grounded colliding pivoting"));
+    f.put_att(vars.status, "comment",
+              std::string("released: the depth at the centre has exceeded the draft; grounded: friction acts; colliding: touched an "
+                          "obstacle since the previous output; pivoting: rotating about the contact centroid (axis shift)"));
+    f.put_att(vars.status, "coordinates", std::string("time x y"));
+    return vars;
+}
+
+void put_track(nc::File& f, const TrackVariables& vars, std::size_t index, const Track& t) {
+    const std::size_t nt = t.x.size();
+    const std::vector<std::size_t> start = {index, 0}, count = {1, nt};
+    f.put_slab(vars.x, start, count, t.x.data());
+    f.put_slab(vars.y, start, count, t.y.data());
+    f.put_slab(vars.yaw, start, count, t.yaw_deg.data());
+    f.put_slab(vars.u, start, count, t.u.data());
+    f.put_slab(vars.v, start, count, t.v.data());
+    f.put_slab(vars.omega, start, count, t.omega.data());
+    f.put_slab(vars.status, start, count, t.status.data());
+}
+
 void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series, const TrajectoryFileDef& def) {
     ensure_parent_dir(path);
     AtomicOutput out(path);
@@ -34,44 +86,10 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         nc::File f = nc::File::create(out.temp_path());
         const std::size_t nb = world.size(), nt = series.time.size();
         const int dtraj = f.def_dim("trajectory", nb), dtime = f.def_dim("time", nt);
-        const int vt = f.def_var("time", NC_DOUBLE, {dtime});
-        f.put_att(vt, "standard_name", std::string("time"));
-        f.put_att(vt, "units", std::string(flow_names::time_units));
-        f.put_att(vt, "calendar", std::string("standard"));
-        f.put_att(vt, "axis", std::string("T"));
+        const TrackVariables track_vars = define_track_variables(f, dtraj, dtime);
         const int vid = f.def_var("trajectory_id", NC_STRING, {dtraj});
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         f.put_att(vid, "long_name", std::string("body name"));
-        auto field = [&](const char* name, const char* units, const char* long_name, const char* standard_name) {
-            const int v = f.def_var(name, NC_DOUBLE, {dtraj, dtime});
-            if (standard_name[0]) f.put_att(v, "standard_name", std::string(standard_name));
-            f.put_att(v, "units", std::string(units));
-            f.put_att(v, "long_name", std::string(long_name));
-            f.put_att(v, "coordinates", std::string("time x y"));
-            return v;
-        };
-        const int vx = f.def_var("x", NC_DOUBLE, {dtraj, dtime});
-        f.put_att(vx, "standard_name", std::string("projection_x_coordinate"));
-        f.put_att(vx, "units", std::string("m"));
-        f.put_att(vx, "long_name", std::string("x of the body centre (east)"));
-        f.put_att(vx, "axis", std::string("X"));
-        const int vy = f.def_var("y", NC_DOUBLE, {dtraj, dtime});
-        f.put_att(vy, "standard_name", std::string("projection_y_coordinate"));
-        f.put_att(vy, "units", std::string("m"));
-        f.put_att(vy, "long_name", std::string("y of the body centre (north)"));
-        f.put_att(vy, "axis", std::string("Y"));
-        const int vyaw = field("yaw", "degree", "heading of the long axis from +x, counter-clockwise, unwrapped", "");
-        const int vu = field("u", "m s-1", "x velocity of the body centre", "");
-        const int vv = field("v", "m s-1", "y velocity of the body centre", "");
-        const int vom = field("omega", "rad s-1", "yaw rate, counter-clockwise (about the contact centroid while pivoting)", "");
-        const int vst = f.def_var("status", NC_BYTE, {dtraj, dtime});
-        f.put_att(vst, "long_name", std::string("body state flags"));
-        f.put_att(vst, "flag_masks", std::vector<std::int8_t>{flag_released, flag_moving, flag_grounded, flag_colliding, flag_pivoting});
-        f.put_att(vst, "flag_meanings", std::string("released moving grounded colliding pivoting"));
-        f.put_att(vst, "comment",
-                  std::string("released: the depth at the centre has exceeded the draft; grounded: friction acts; colliding: touched an "
-                              "obstacle since the previous output; pivoting: rotating about the contact centroid (axis shift)"));
-        f.put_att(vst, "coordinates", std::string("time x y"));
 
         auto per_double = [&](const char* name, const char* units, const char* long_name) {
             const int v = f.def_var(name, NC_DOUBLE, {dtraj});
@@ -118,7 +136,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put_att(NC_GLOBAL, "time_interpolation", std::string(to_string(world.def().flow.time_interpolation)));
         f.enddef();
 
-        f.put(vt, series.time);
+        f.put(track_vars.time, series.time);
         std::vector<std::string> ids, starts, contacts, collisions;
         std::vector<double> cd1, cd2, cm, mu, e, len, wid, hei, sg;
         std::vector<int> nc_, nu, ns;
@@ -157,17 +175,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(vnc, nc_);
         f.put(vnu, nu);
         f.put(vns, ns);
-        for (std::size_t b = 0; b < nb && nt > 0; ++b) {
-            const Track& t = series.tracks[b];
-            const std::vector<std::size_t> start = {b, 0}, count = {1, nt};
-            f.put_slab(vx, start, count, t.x.data());
-            f.put_slab(vy, start, count, t.y.data());
-            f.put_slab(vyaw, start, count, t.yaw_deg.data());
-            f.put_slab(vu, start, count, t.u.data());
-            f.put_slab(vv, start, count, t.v.data());
-            f.put_slab(vom, start, count, t.omega.data());
-            f.put_slab(vst, start, count, t.status.data());
-        }
+        for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, series.tracks[b]);
         f.close();
     }
     out.commit();

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "common/netcdf.hpp"
 #include "debris/world.hpp"
 
 namespace flotsam::debris {
@@ -39,6 +40,17 @@ struct TrajectoryFileDef {
     std::string flow_file;                    // the replayed flow
     std::vector<std::string> start_names;     // per body: the scene point, or "" for --at
 };
+
+// The time axis and the per-time variables of a trajectory file (time; x, y, yaw, u, v,
+// omega, status over (trajectory, time)), with their CF attributes. Shared by
+// `flotsam debris` and `flotsam sweep`, whose files differ only in the per-trajectory
+// variables.
+struct TrackVariables {
+    int time, x, y, yaw, u, v, omega, status;
+};
+TrackVariables define_track_variables(nc::File& f, int trajectory_dim, int time_dim);
+// Writes the track of trajectory `index` (its series must have one value per time).
+void put_track(nc::File& f, const TrackVariables& vars, std::size_t index, const Track& track);
 
 // Writes atomically (temporary file, then rename).
 void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series, const TrajectoryFileDef& def);

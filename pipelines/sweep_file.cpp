@@ -55,11 +55,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int dflow = f.def_dim("flow", r.flows.size()), dset = f.def_dim("param_set", r.params.size());
         const int dbody = f.def_dim("body", r.bodies.size()), dvar = f.def_dim("variant", r.variants.size());
 
-        const int vt = f.def_var("time", NC_DOUBLE, {dtime});
-        f.put_att(vt, "standard_name", std::string("time"));
-        f.put_att(vt, "units", std::string(flow_names::time_units));
-        f.put_att(vt, "calendar", std::string("standard"));
-        f.put_att(vt, "axis", std::string("T"));
+        const debris::TrackVariables track_vars = debris::define_track_variables(f, dtraj, dtime);
         auto var = [&](const char* name, nc_type type, std::vector<int> dims, const char* units, const char* long_name) {
             const int v = f.def_var(name, type, dims);
             if (units[0]) f.put_att(v, "units", std::string(units));
@@ -95,25 +91,6 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vnu = var("unresolved_collisions", NC_INT, {dtraj}, "", "steps whose collision passes left an overlap");
         const int vns = var("axis_shift_steps", NC_INT, {dtraj}, "", "steps rotated about the contact centroid");
 
-        auto field = [&](const char* name, const char* units, const char* long_name, const char* standard_name) {
-            const int v = var(name, NC_DOUBLE, {dtraj, dtime}, units, long_name);
-            if (standard_name[0]) f.put_att(v, "standard_name", std::string(standard_name));
-            if (standard_name[0] == 0) f.put_att(v, "coordinates", std::string("time x y"));
-            return v;
-        };
-        const int vx = field("x", "m", "x of the body centre (east)", "projection_x_coordinate");
-        const int vy = field("y", "m", "y of the body centre (north)", "projection_y_coordinate");
-        const int vyaw = field("yaw", "degree", "heading of the long axis from +x, counter-clockwise, unwrapped", "");
-        const int vu = field("u", "m s-1", "x velocity of the body centre", "");
-        const int vv = field("v", "m s-1", "y velocity of the body centre", "");
-        const int vom = field("omega", "rad s-1", "yaw rate, counter-clockwise", "");
-        const int vst = f.def_var("status", NC_BYTE, {dtraj, dtime});
-        f.put_att(vst, "long_name", std::string("body state flags"));
-        f.put_att(vst, "flag_masks",
-                  std::vector<std::int8_t>{debris::flag_released, debris::flag_moving, debris::flag_grounded, debris::flag_colliding,
-                                           debris::flag_pivoting});
-        f.put_att(vst, "flag_meanings", std::string("released moving grounded colliding pivoting"));
-        f.put_att(vst, "coordinates", std::string("time x y"));
 
         const int vflowpath = var("flow_path", NC_STRING, {dflow}, "", "flow files of the sweep, in order");
         const int vbodyname = var("body_name", NC_STRING, {dbody}, "", "bodies of the sweep, in order");
@@ -142,7 +119,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put_att(NC_GLOBAL, "perturbation_seed", double(r.perturbation.seed));
         f.enddef();
 
-        f.put(vt, r.time);
+        f.put(track_vars.time, r.time);
         const auto& ms = r.members;
         std::vector<std::string> ids;
         for (const auto& m : ms) ids.push_back(trajectory_label(r, m));
@@ -170,16 +147,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put(vnu, column<int>(ms, [](const MemberRecord& m) { return m.unresolved_collisions; }));
         f.put(vns, column<int>(ms, [](const MemberRecord& m) { return m.axis_shift_steps; }));
         for (std::size_t b = 0; b < nm && nt > 0; ++b) {
-            const debris::Track& t = ms[b].track;
-            if (t.x.size() != nt) fail(path, "member " + std::to_string(ms[b].id), "track length does not match the time axis");
-            const std::vector<std::size_t> start = {b, 0}, count = {1, nt};
-            f.put_slab(vx, start, count, t.x.data());
-            f.put_slab(vy, start, count, t.y.data());
-            f.put_slab(vyaw, start, count, t.yaw_deg.data());
-            f.put_slab(vu, start, count, t.u.data());
-            f.put_slab(vv, start, count, t.v.data());
-            f.put_slab(vom, start, count, t.omega.data());
-            f.put_slab(vst, start, count, t.status.data());
+            if (ms[b].track.x.size() != nt) fail(path, "member " + std::to_string(ms[b].id), "track length does not match the time axis");
+            debris::put_track(f, track_vars, b, ms[b].track);
         }
         f.put(vflowpath, r.flows);
         f.put(vbodyname, r.bodies);
