@@ -45,6 +45,37 @@ std::string summary_path_for(const std::string& nc_path) {
     return p.string();
 }
 
+ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim) {
+    auto var = [&](const std::string& name, nc_type type, const char* units, const char* long_name) {
+        const int v = f.def_var(name, type, {dim});
+        if (units[0]) f.put_att(v, "units", std::string(units));
+        f.put_att(v, "long_name", std::string(long_name));
+        return v;
+    };
+    ParameterSetVariables vars{};
+    vars.label = var("param_set_label", NC_STRING, "", "parameter set label");
+    vars.is_control = var("param_set_is_control", NC_BYTE, "", "1: the control set that R(t) compares against");
+    for (std::size_t p = 0; p < 5; ++p)
+        vars.value[p] = var(std::string("param_set_") + parameter_names[p], NC_DOUBLE, "1", parameter_long_names[p]);
+    return vars;
+}
+
+void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const std::vector<ParameterSet>& sets) {
+    std::vector<std::string> labels;
+    std::vector<std::int8_t> control;
+    for (const ParameterSet& s : sets) {
+        labels.push_back(s.label);
+        control.push_back(s.is_control ? 1 : 0);
+    }
+    f.put(vars.label, labels);
+    f.put(vars.is_control, control);
+    for (std::size_t p = 0; p < 5; ++p) {
+        std::vector<double> values;
+        for (const ParameterSet& s : sets) values.push_back(s.values[p]);
+        f.put(vars.value[p], values);
+    }
+}
+
 void write_sweep_file(const std::string& path, const SweepResult& r) {
     ensure_parent_dir(path);
     AtomicOutput out(path);
@@ -75,11 +106,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vcoll = var("collision_model", NC_STRING, {dtraj}, "", "collision model: single (SC) or multi (MC)");
         const int vset = var("param_set", NC_INT, {dtraj}, "", "index of the parameter set (dimension param_set)");
         const int vlabel = var("param_label", NC_STRING, {dtraj}, "", "label of the parameter set");
-        const char* param_long[5] = {"drag coefficient, flow toward a face", "drag coefficient, flow leaving a face",
-                                     "inertia coefficient Cm = 1 + Ca", "friction coefficient with the ground (Fc)",
-                                     "coefficient of restitution against obstacles"};
         std::array<int, 5> vparam{};
-        for (std::size_t p = 0; p < 5; ++p) vparam[p] = var(parameter_names[p], NC_DOUBLE, {dtraj}, "1", param_long[p]);
+        for (std::size_t p = 0; p < 5; ++p) vparam[p] = var(parameter_names[p], NC_DOUBLE, {dtraj}, "1", parameter_long_names[p]);
         const int vl = var("length", NC_DOUBLE, {dtraj}, "m", "body length");
         const int vw = var("width", NC_DOUBLE, {dtraj}, "m", "body width");
         const int vh = var("height", NC_DOUBLE, {dtraj}, "m", "body height");
@@ -95,11 +123,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vflowpath = var("flow_path", NC_STRING, {dflow}, "", "flow files of the sweep, in order");
         const int vbodyname = var("body_name", NC_STRING, {dbody}, "", "bodies of the sweep, in order");
         const int vvarname = var("variant_name", NC_STRING, {dvar}, "", "model variants of the sweep, in order");
-        const int vsetlabel = var("param_set_label", NC_STRING, {dset}, "", "parameter set label");
-        const int vsetctrl = var("param_set_is_control", NC_BYTE, {dset}, "", "1: the control set that R(t) compares against");
-        std::array<int, 5> vsetparam{};
-        for (std::size_t p = 0; p < 5; ++p)
-            vsetparam[p] = var((std::string("param_set_") + parameter_names[p]).c_str(), NC_DOUBLE, {dset}, "1", param_long[p]);
+        const ParameterSetVariables set_vars = define_parameter_set_variables(f, dset);
 
         f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
         f.put_att(NC_GLOBAL, "featureType", std::string("trajectory"));
@@ -153,19 +177,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put(vflowpath, r.flows);
         f.put(vbodyname, r.bodies);
         f.put(vvarname, r.variants);
-        std::vector<std::string> labels;
-        std::vector<std::int8_t> ctrl;
-        for (const auto& s : r.params) {
-            labels.push_back(s.label);
-            ctrl.push_back(s.is_control ? 1 : 0);
-        }
-        f.put(vsetlabel, labels);
-        f.put(vsetctrl, ctrl);
-        for (std::size_t p = 0; p < 5; ++p) {
-            std::vector<double> vals;
-            for (const auto& s : r.params) vals.push_back(s.values[p]);
-            f.put(vsetparam[p], vals);
-        }
+        put_parameter_sets(f, set_vars, r.params);
         f.close();
     }
     out.commit();

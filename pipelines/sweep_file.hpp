@@ -8,9 +8,11 @@
 // whole sweep, and writes the same bytes as an unsharded run (nothing in the file
 // depends on how the sweep was split, on the command line or on the clock).
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
+#include "common/netcdf.hpp"
 #include "debris/trajectory_file.hpp"
 #include "pipelines/sweep_spec.hpp"
 
@@ -41,6 +43,15 @@ struct SweepResult {
     Shard shard;                     // {0, 1}: the whole sweep
     std::vector<MemberRecord> members;  // by increasing id
 };
+
+// The parameter-set table (param_set_label, param_set_is_control, param_set_<name>) on
+// dimension `dim`: written alike in sweep files and statistics files.
+struct ParameterSetVariables {
+    int label, is_control;
+    std::array<int, 5> value;  // in the order of parameter_names
+};
+ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim);
+void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const std::vector<ParameterSet>& sets);
 
 // Writes atomically.
 void write_sweep_file(const std::string& path, const SweepResult& r);

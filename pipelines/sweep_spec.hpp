@@ -14,6 +14,9 @@ namespace flotsam::sweep {
 
 // The parameters a design varies, in this order everywhere (files, CSV, grids).
 inline constexpr std::array<const char*, 5> parameter_names = {"cd1", "cd2", "cm", "mu", "restitution"};
+inline constexpr std::array<const char*, 5> parameter_long_names = {
+    "drag coefficient, flow toward a face", "drag coefficient, flow leaving a face", "inertia coefficient Cm = 1 + Ca",
+    "friction coefficient with the ground (Fc)", "coefficient of restitution against obstacles"};
 using ParamValues = std::array<double, 5>;  // cd1, cd2, cm, mu [-], restitution [-]
 
 struct ParameterSet {

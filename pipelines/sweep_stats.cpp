@@ -309,10 +309,7 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         const int vgb = var("group_body", NC_STRING, {dg}, "", "body of the group");
         const int vgv = var("group_variant", NC_STRING, {dg}, "", "model variant of the group (friction + collision)");
         const int vgm = var("group_members", NC_INT, {dg}, "", "trajectories in the group");
-        const int vpl = var("param_set_label", NC_STRING, {dp}, "", "parameter set label");
-        const int vpc = var("param_set_is_control", NC_BYTE, {dp}, "", "1: the control set of R(t)");
-        std::array<int, 5> vpv{};
-        for (std::size_t q = 0; q < 5; ++q) vpv[q] = var(std::string("param_set_") + parameter_names[q], NC_DOUBLE, {dp}, "1", parameter_names[q]);
+        const ParameterSetVariables set_vars = define_parameter_set_variables(f, dp);
         const int vpm = var("param_members", NC_INT, {dg, dp}, "", "trajectories of the group with this parameter set");
         const int vsn = var("section_name", NC_STRING, {dsec}, "", "cross-section name");
         const int vsx = var("section_x", NC_DOUBLE, {dsec}, "m", "x of the north-south cross-section");
@@ -416,19 +413,7 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         f.put(vgb, gb);
         f.put(vgv, gv);
         f.put(vgm, gm);
-        std::vector<std::string> pl;
-        std::vector<std::int8_t> pc;
-        for (const auto& p : s.params) {
-            pl.push_back(p.label);
-            pc.push_back(p.is_control ? 1 : 0);
-        }
-        f.put(vpl, pl);
-        f.put(vpc, pc);
-        for (std::size_t q = 0; q < 5; ++q) {
-            std::vector<double> v;
-            for (const auto& p : s.params) v.push_back(p.values[q]);
-            f.put(vpv[q], v);
-        }
+        put_parameter_sets(f, set_vars, s.params);
         std::vector<int> pm;
         for (const auto& row : s.param_members) pm.insert(pm.end(), row.begin(), row.end());
         f.put(vpm, pm);
