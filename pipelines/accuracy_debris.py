@@ -37,6 +37,9 @@ import sys
 import numpy as np
 import xarray as xr
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cached_run import run_once  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 STARTS = ["FD", "LD"]
 OFFSETS = [(dx, dy) for dy in (-0.03, 0.0, 0.03) for dx in (-0.03, 0.0, 0.03)]  # [m]
@@ -78,20 +81,15 @@ def flow_path(runs, k):
 
 def run_debris(a, out, flow, bodies, extra):
     """Runs flotsam debris unless `out` exists; returns its step count and CPU seconds."""
-    cost = out + ".cost"
-    if not (os.path.exists(out) and os.path.exists(cost)):
-        cmd = [a.flotsam, "debris", "--flow", flow, "--scene", a.scene, "--threads", "1", "--output-interval", "0.5",
-               "--out", out] + bodies + extra
-        p = subprocess.run(cmd, stderr=subprocess.PIPE, text=True)
-        if p.returncode != 0:
-            sys.exit(f"accuracy_debris: {' '.join(cmd)} failed:\n{p.stderr[-2000:]}")
-        m = re.search(r"debris cost: (\d+) bodies, (\d+) steps, ([0-9.]+) s CPU stepping, ([0-9.]+) s CPU reading", p.stderr)
-        if not m:
-            sys.exit(f"accuracy_debris: {out}: no cost line in the output")
-        with open(cost + ".part", "w") as f:
-            f.write(f"{m.group(1)},{m.group(2)},{m.group(3)},{m.group(4)}\n")
-        os.replace(cost + ".part", cost)
-    n, steps, cpu, reading = open(cost).read().strip().split(",")
+    cmd = [a.flotsam, "debris", "--flow", flow, "--scene", a.scene, "--threads", "1", "--output-interval", "0.5",
+           "--out", out] + bodies + extra
+
+    def parse(stderr, _cpu):
+        m = re.search(r"debris cost: (\d+) bodies, (\d+) steps, ([0-9.]+) s CPU stepping, ([0-9.]+) s CPU reading",
+                      stderr)
+        return list(m.groups()) if m else None
+
+    n, steps, cpu, reading = run_once("accuracy_debris", out, out + ".cost", cmd, parse)
     return {"bodies": int(n), "steps": int(steps), "stepping_cpu_s": float(cpu), "reading_cpu_s": float(reading)}
 
 

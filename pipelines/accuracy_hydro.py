@@ -17,7 +17,6 @@ import argparse
 import csv
 import os
 import re
-import resource
 import subprocess
 import sys
 
@@ -25,6 +24,7 @@ import xarray as xr
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import flow_error  # noqa: E402
+from cached_run import run_once  # noqa: E402
 
 NEST_X = -1.2  # the interface: on the flume's slope, about 15 cm deep at rest
 
@@ -40,28 +40,20 @@ def run(args, cfg):
     if not os.path.exists(scene):
         subprocess.run([args.flotsam, "scene", "import", "--dem", args.dem, "--resolution", res, "--out", scene], check=True)
     flow = os.path.join(args.runs, tag(cfg) + ".nc")
-    timing = flow + ".timing"
-    if not (os.path.exists(flow) and os.path.exists(timing)):
-        cmd = [args.flotsam, "hydro", "--scene", scene, "--west", "pump", "--duration", str(args.duration),
-               "--output-interval", "5", "--threads", str(args.threads), "--label", tag(cfg), "--out", flow]
-        if scheme != "fv":
-            cmd += ["--scheme", scheme]
-        if int(nest) > 1:
-            cmd += ["--nest-ratio", nest, "--nest-x", str(NEST_X)]
+    cmd = [args.flotsam, "hydro", "--scene", scene, "--west", "pump", "--duration", str(args.duration),
+           "--output-interval", "5", "--threads", str(args.threads), "--label", tag(cfg), "--out", flow]
+    if scheme != "fv":
+        cmd += ["--scheme", scheme]
+    if int(nest) > 1:
+        cmd += ["--nest-ratio", nest, "--nest-x", str(NEST_X)]
+
+    def parse(stderr, cpu):
+        m = re.search(r"after (\d+) steps in ([0-9.]+) s wall", stderr)
+        return [m.group(1), m.group(2), f"{cpu:.1f}"] if m else None
+
+    if not os.path.exists(flow + ".timing"):
         print("accuracy_hydro:", " ".join(cmd), flush=True)
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        p = subprocess.run(cmd, stderr=subprocess.PIPE, text=True)
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-        if p.returncode != 0:
-            sys.exit(f"accuracy_hydro: {tag(cfg)} failed:\n{p.stderr[-2000:]}")
-        m = re.search(r"after (\d+) steps in ([0-9.]+) s wall", p.stderr)
-        if not m:
-            sys.exit(f"accuracy_hydro: {tag(cfg)}: no timing line in the output")
-        with open(timing + ".part", "w") as f:
-            f.write(f"{m.group(1)},{m.group(2)},{cpu:.1f}\n")
-        os.replace(timing + ".part", timing)
-    steps, wall, cpu = open(timing).read().strip().split(",")
+    steps, wall, cpu = run_once("accuracy_hydro", flow, flow + ".timing", cmd, parse)
     return scene, flow, int(steps), float(wall), float(cpu)
 
 
