@@ -49,6 +49,24 @@ def arrival(ds, x, y):
     return float(v)
 
 
+def scene_point(scene, name):
+    """(x, y) [m] of the scene's named point (WG1, WG2, FD, LD ...)."""
+    names = [str(n) for n in scene.point_name.values]
+    if name not in names:
+        sys.exit(f"flow_error.py: the scene has no point '{name}' (it has {', '.join(names)})")
+    k = names.index(name)
+    return float(scene.point_x[k]), float(scene.point_y[k])
+
+
+def print_csv(rows):
+    """rows: [(flow path, {column: value})], all with the same columns."""
+    keys = list(rows[0][1].keys())
+    print("flow," + ",".join(keys))
+    for p, r in rows:
+        print(p + "," + ",".join(f"{r[k]:.4g}" for k in keys))
+    return keys
+
+
 def errors(scene, ref_path, ref, path):
     ds = xr.open_dataset(path)
     out = {}
@@ -59,10 +77,8 @@ def errors(scene, ref_path, ref, path):
     ri = np.interp(t, tr, er)
     out["wg2_rms_m"] = float(np.sqrt(np.mean((ef[: len(t)] - ri) ** 2)))
     out["wg2_max_err_m"] = float(ef[: len(t)].max() - ri.max())
-    names = [str(n) for n in scene.point_name.values]
     for p in ("FD", "LD"):
-        k = names.index(p)
-        x, y = float(scene.point_x[k]), float(scene.point_y[k])
+        x, y = scene_point(scene, p)
         t_f, h_f = point_series(ds, path, x, y)
         t_r, h_r = point_series(ref, ref_path, x, y)
         keep = t_f <= min(t_f[-1], t_r[-1]) + 1e-9
@@ -78,10 +94,7 @@ def main(argv):
     scene = xr.open_dataset(argv[1])
     ref = xr.open_dataset(argv[2], decode_timedelta=False)
     rows = [(p, errors(scene, argv[2], ref, p)) for p in argv[3:]]
-    keys = list(rows[0][1].keys())
-    print("flow," + ",".join(keys))
-    for p, r in rows:
-        print(p + "," + ",".join(f"{r[k]:.4g}" for k in keys))
+    print_csv(rows)
     return 0
 
 

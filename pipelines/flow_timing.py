@@ -14,9 +14,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-
-def seconds(t, t0):
-    return (t - t0) / np.timedelta64(1, "s")
+from flow_error import arrival, print_csv, scene_point, seconds
 
 
 def timing(scene, path):
@@ -32,12 +30,8 @@ def timing(scene, path):
         out["wg2_max_time_s"] = float(gt[k])
         above = np.nonzero(eta.values > 0.01)[0]
         out["wg2_1cm_time_s"] = float(gt[above[0]]) if above.size else float("nan")
-    arrival = ds.arrival_time
     for name in ("FD", "LD"):
-        k = [str(n) for n in scene.point_name.values].index(name)
-        x, y = float(scene.point_x[k]), float(scene.point_y[k])
-        a = arrival.sel(x=x, y=y, method="nearest")
-        out[f"{name}_draft_time_s"] = float(a) if np.isfinite(float(a)) else float("nan")
+        out[f"{name}_draft_time_s"] = arrival(ds, *scene_point(scene, name))
     return out
 
 
@@ -47,10 +41,7 @@ def main(argv):
         return 2
     scene = xr.open_dataset(argv[1])
     rows = [(p, timing(scene, p)) for p in argv[2:]]
-    keys = list(rows[0][1].keys())
-    print("flow," + ",".join(keys))
-    for p, r in rows:
-        print(p + "," + ",".join(f"{r[k]:.4g}" for k in keys))
+    keys = print_csv(rows)
     if len(rows) > 1:
         for label, f in (("mean", np.nanmean), ("std", np.nanstd)):
             print(label + "," + ",".join(f"{f([r[k] for _, r in rows]):.4g}" for k in keys))
