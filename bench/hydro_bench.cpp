@@ -20,6 +20,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -121,12 +122,17 @@ int main(int argc, char** argv) {
     std::printf("hydro_bench: %s at %.3g m (%d x %d cells), %.3g s simulated, second order, best of %d\n", what.c_str(), resolution,
                 scene.grid.nx, scene.grid.ny, seconds, repeat);
     std::printf("  load average before: %s; OMP_WAIT_POLICY=%s\n", load_average().c_str(), wait ? wait : "(unset)");
-    rd.out_file = scratch + "/flow-1.nc";
-    const Best one = best_of(repeat, 1, rd, sd);
-    print("benchmark", 1, one);
-    rd.out_file = scratch + "/flow-2.nc";
-    const Best two = best_of(repeat, 2, rd, sd);
-    print("benchmark", 2, two);
+    // One case on 1 and then 2 threads; its files are scratch/STEM-1.nc and STEM-2.nc.
+    auto on_one_and_two_threads = [&](const char* label, hydro::RunDef run, const std::string& stem) {
+        std::array<Best, 2> best;
+        for (int threads = 1; threads <= 2; ++threads) {
+            run.out_file = scratch + "/" + stem + "-" + std::to_string(threads) + ".nc";
+            best[std::size_t(threads - 1)] = best_of(repeat, threads, run, sd);
+            print(label, threads, best[std::size_t(threads - 1)]);
+        }
+        return best;
+    };
+    const auto [one, two] = on_one_and_two_threads("benchmark", rd, "flow");
     std::printf("  speed-up on 2 threads: %.2fx (wall)\n", two.wall_rate / one.wall_rate);
 
     hydro::RunDef wet = rd;
@@ -147,12 +153,7 @@ int main(int argc, char** argv) {
     // does one pass of fluxes instead of Heun's two.
     hydro::RunDef leapfrog = rd;
     leapfrog.scheme = hydro::Scheme::leapfrog;
-    leapfrog.out_file = scratch + "/flow-leapfrog-1.nc";
-    const Best lf1 = best_of(repeat, 1, leapfrog, sd);
-    print("leap-frog", 1, lf1);
-    leapfrog.out_file = scratch + "/flow-leapfrog-2.nc";
-    const Best lf2 = best_of(repeat, 2, leapfrog, sd);
-    print("leap-frog", 2, lf2);
+    const auto [lf1, lf2] = on_one_and_two_threads("leap-frog", leapfrog, "flow-leapfrog");
     std::printf("  leap-frog: %.2fx on 2 threads; %.3g simulated s per processor s against %.3g for finite volumes\n",
                 lf2.wall_rate / lf1.wall_rate, lf1.simulated / lf1.cpu, one.simulated / one.cpu);
 
