@@ -37,10 +37,10 @@ import sys
 import numpy as np
 import xarray as xr
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
 from cached_run import run_once  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 STARTS = ["FD", "LD"]
 OFFSETS = [(dx, dy) for dy in (-0.03, 0.0, 0.03) for dx in (-0.03, 0.0, 0.03)]  # [m]
 HORIZONS = [10, 30, 60]  # [s] after the reference body's release

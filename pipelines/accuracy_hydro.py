@@ -51,9 +51,7 @@ def run(args, cfg):
         m = re.search(r"after (\d+) steps in ([0-9.]+) s wall", stderr)
         return [m.group(1), m.group(2), f"{cpu:.1f}"] if m else None
 
-    if not os.path.exists(flow + ".timing"):
-        print("accuracy_hydro:", " ".join(cmd), flush=True)
-    steps, wall, cpu = run_once("accuracy_hydro", flow, flow + ".timing", cmd, parse)
+    steps, wall, cpu = run_once("accuracy_hydro", flow, flow + ".timing", cmd, parse, announce=True)
     return scene, flow, int(steps), float(wall), float(cpu)
 
 

@@ -10,14 +10,17 @@ import subprocess
 import sys
 
 
-def run_once(who, out, record, cmd, parse):
+def run_once(who, out, record, cmd, parse, announce=False):
     """Runs `cmd` unless `out` and `record` exist; returns the record's comma-separated fields.
 
     parse(stderr, cpu_s) gives the fields to record, or None when the command did not print
     what it should. cpu_s is the children's user + system time of this run; it is only
-    meaningful when runs are not started from several threads at once.
+    meaningful when runs are not started from several threads at once. With `announce`, the
+    command is printed when it runs.
     """
     if not (os.path.exists(out) and os.path.exists(record)):
+        if announce:
+            print(f"{who}:", " ".join(cmd), flush=True)
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, stderr=subprocess.PIPE, text=True)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)

@@ -53,7 +53,8 @@ def scene_point(scene, name):
     """(x, y) [m] of the scene's named point (WG1, WG2, FD, LD ...)."""
     names = [str(n) for n in scene.point_name.values]
     if name not in names:
-        sys.exit(f"flow_error.py: the scene has no point '{name}' (it has {', '.join(names)})")
+        path = scene.encoding.get("source", "the scene")
+        sys.exit(f"{path}: variable point_name: no point '{name}' (the scene has {', '.join(names)})")
     k = names.index(name)
     return float(scene.point_x[k]), float(scene.point_y[k])
 

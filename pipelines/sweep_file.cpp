@@ -55,7 +55,7 @@ ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim) {
     ParameterSetVariables vars{};
     vars.label = var("param_set_label", NC_STRING, "", "parameter set label");
     vars.is_control = var("param_set_is_control", NC_BYTE, "", "1: the control set that R(t) compares against");
-    for (std::size_t p = 0; p < 5; ++p)
+    for (std::size_t p = 0; p < parameter_names.size(); ++p)
         vars.value[p] = var(std::string("param_set_") + parameter_names[p], NC_DOUBLE, "1", parameter_long_names[p]);
     return vars;
 }
@@ -69,7 +69,7 @@ void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const st
     }
     f.put(vars.label, labels);
     f.put(vars.is_control, control);
-    for (std::size_t p = 0; p < 5; ++p) {
+    for (std::size_t p = 0; p < parameter_names.size(); ++p) {
         std::vector<double> values;
         for (const ParameterSet& s : sets) values.push_back(s.values[p]);
         f.put(vars.value[p], values);

@@ -48,7 +48,7 @@ struct SweepResult {
 // dimension `dim`: written alike in sweep files and statistics files.
 struct ParameterSetVariables {
     int label, is_control;
-    std::array<int, 5> value;  // in the order of parameter_names
+    std::array<int, parameter_names.size()> value;  // in the order of parameter_names
 };
 ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim);
 void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const std::vector<ParameterSet>& sets);
