@@ -1,5 +1,5 @@
-// Registration of the subcommands. Each stage owns its command-line surface in its own
-// folder (hydro/cli.cpp, data/cli.cpp, debris/cli.cpp, pipelines/cli.cpp); the callbacks
+// Registration of the subcommands. Each stage's command-line surface is a file of its own
+// here (hydro_cli.cpp, data_cli.cpp, debris_cli.cpp, sweep_cli.cpp); the callbacks
 // run the work and throw flotsam::Error on bad input.
 #pragma once
 #include <CLI/CLI.hpp>
@@ -21,9 +21,9 @@ void add_config_option(CLI::App* sub);
 // flotsam::Error naming the file and key for an unknown setting.
 std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** argv);
 
-void register_hydro_commands(CLI::App& app, const std::string& command_line);     // hydro/cli.cpp
-void register_data_commands(CLI::App& app, const std::string& command_line);      // data/cli.cpp: scene, boundary
-void register_debris_commands(CLI::App& app, const std::string& command_line);    // debris/cli.cpp: debris
-void register_pipeline_commands(CLI::App& app, const std::string& command_line);  // pipelines/cli.cpp: sweep, stats
+void register_hydro_commands(CLI::App& app, const std::string& command_line);     // app/hydro_cli.cpp
+void register_data_commands(CLI::App& app, const std::string& command_line);      // app/data_cli.cpp: scene, boundary
+void register_debris_commands(CLI::App& app, const std::string& command_line);    // app/debris_cli.cpp: debris
+void register_pipeline_commands(CLI::App& app, const std::string& command_line);  // app/sweep_cli.cpp: sweep, stats
 
 }  // namespace flotsam

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "debris/world.hpp"
-#include "hydro/flow_file.hpp"
+#include "formats/flow_file.hpp"
 
 using namespace flotsam;
 using namespace flotsam::debris;

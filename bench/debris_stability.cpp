@@ -1,6 +1,6 @@
 // Debris stability maps as CSV on stdout, for docs/img/debris_stability.png (make
 // -f Makefile.pipeline accuracy-debris). The cases are those of
-// tests/debris_stability_test.cpp (tests/debris_stability_cases.hpp), over a finer grid
+// tests/debris_stability_test.cpp (cases/debris_stability_cases.hpp), over a finer grid
 // of parameters:
 //   added_mass: Cm × {explicit, implicit}: growth per step of the explicit oscillation
 //               (from steps 1 to 4) and |v|/U after 2 s (the analytic relaxation for
@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "tests/debris_stability_cases.hpp"
+#include "cases/debris_stability_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::debris;

@@ -19,7 +19,7 @@
 #include "common/atomic_file.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/solver.hpp"
-#include "tests/hydro_cases.hpp"
+#include "cases/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "common/atomic_file.hpp"
-#include "pipelines/sweep.hpp"
+#include "sweep/sweep.hpp"
 
 using namespace flotsam;
 

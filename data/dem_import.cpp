@@ -12,7 +12,7 @@
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "data/resample.hpp"
-#include "data/toml_lite.hpp"
+#include "common/toml_lite.hpp"
 
 namespace flotsam {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/grid.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "data/kainan_features.hpp"
 
 namespace flotsam {

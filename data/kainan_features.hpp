@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/grid.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam {
 

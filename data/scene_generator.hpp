@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam {
 

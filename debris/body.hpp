@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "formats/trajectory_file.hpp"
+
 namespace flotsam::debris {
 
 // Friction model: the whole bottom at the centre (CC, STOC-DM) or cell by cell under
@@ -57,15 +59,6 @@ struct BodyParams {
     double step_height = 0.0; // step_tolerance × draft [m]
 };
 BodyParams make_body_params(const BodyDef& def, double water_density);  // throws on bad values
-
-// Bits of BodyState::flags (and of the trajectory file's `status` variable).
-enum BodyFlag : std::uint8_t {
-    flag_released = 1,   // the depth at the centre has exceeded the draft at least once
-    flag_moving = 2,     // translating or turning
-    flag_grounded = 4,   // bottom touches the ground (some friction patch active)
-    flag_colliding = 8,  // touched an obstacle since the last output
-    flag_pivoting = 16,  // rotating about the contact centroid (axis shift)
-};
 
 // The per-step state: small, read and written every step.
 struct BodyState {

@@ -6,7 +6,7 @@
 #include <ctime>
 
 #include "common/error.hpp"
-#include "hydro/flow_file.hpp"
+#include "formats/flow_file.hpp"
 
 namespace flotsam::debris {
 

@@ -1,4 +1,4 @@
-// Replays a stage-one flow file (hydro/flow_file.hpp) at any point and time.
+// Replays a stage-one flow file (formats/flow_file.hpp) at any point and time.
 //
 // Only the frames around the current time are held, over a sub-window of the grid
 // (OpenDrift/Parcels style): the pair that brackets t for the linear interpolant in time,

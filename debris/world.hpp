@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "debris/body.hpp"
 #include "debris/dynamics.hpp"
 #include "debris/flow_reader.hpp"

@@ -67,7 +67,7 @@
 #include <array>
 #include <vector>
 
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/solver.hpp"
 

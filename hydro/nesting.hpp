@@ -23,7 +23,7 @@
 #pragma once
 #include <vector>
 
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "hydro/solver.hpp"
 
 namespace flotsam::hydro {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "hydro/flow_file.hpp"
+#include "formats/flow_file.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/nesting.hpp"
 #include "hydro/solver.hpp"

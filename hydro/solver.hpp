@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "common/timeseries.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/swe_kernels.hpp"

@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "common/error.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "common/sha256.hpp"
 #include "common/timeseries.hpp"
 #include "tests/test_support.hpp"

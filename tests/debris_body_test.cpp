@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "debris/world.hpp"
-#include "tests/debris_flows.hpp"
+#include "cases/debris_flows.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

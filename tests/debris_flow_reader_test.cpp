@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "common/error.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "debris/flow_reader.hpp"
-#include "tests/debris_flows.hpp"
+#include "cases/debris_flows.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "common/netcdf.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "common/sha256.hpp"
 #include "debris/world.hpp"
-#include "tests/debris_flows.hpp"
+#include "cases/debris_flows.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

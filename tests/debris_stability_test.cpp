@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "tests/debris_stability_cases.hpp"
+#include "cases/debris_stability_cases.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

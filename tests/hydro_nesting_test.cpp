@@ -7,7 +7,7 @@
 
 #include "hydro/nesting.hpp"
 #include "test_support.hpp"
-#include "tests/hydro_cases.hpp"
+#include "cases/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;

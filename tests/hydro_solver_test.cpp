@@ -9,7 +9,7 @@
 
 #include "hydro/solver.hpp"
 #include "hydro/swe_kernels.hpp"
-#include "tests/hydro_cases.hpp"
+#include "cases/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;

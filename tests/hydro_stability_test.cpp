@@ -7,7 +7,7 @@
 
 #include "hydro/leapfrog.hpp"
 #include "hydro/solver.hpp"
-#include "tests/hydro_cases.hpp"
+#include "cases/hydro_cases.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

@@ -10,9 +10,9 @@
 
 #include "common/netcdf.hpp"
 #include "common/sha256.hpp"
-#include "pipelines/sweep_file.hpp"
-#include "pipelines/sweep_stats.hpp"
-#include "pipelines/trajectory_kernels.hpp"
+#include "sweep/sweep_file.hpp"
+#include "sweep/sweep_stats.hpp"
+#include "sweep/trajectory_kernels.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

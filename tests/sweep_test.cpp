@@ -8,11 +8,11 @@
 #include <set>
 
 #include "common/error.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "common/sha256.hpp"
-#include "pipelines/sweep.hpp"
-#include "pipelines/sweep_spec.hpp"
-#include "tests/debris_flows.hpp"
+#include "sweep/sweep.hpp"
+#include "sweep/sweep_spec.hpp"
+#include "cases/debris_flows.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -207,7 +207,7 @@ TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
     scene.z.assign(grid.size(), -0.1);
     scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}, {"WG2", "gauge", 0.1, 0.1, 0.0}};
     write_scene(dir + "/scene.nc", scene, "test");
-    const SweepSpec spec = read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/pipelines/examples/paper_sensitivity.toml", dir + "/scene.nc", flows);
+    const SweepSpec spec = read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity.toml", dir + "/scene.nc", flows);
     ASSERT_EQ(spec.bodies.size(), 2u);
     EXPECT_EQ(spec.bodies[1].name, "LD");
     EXPECT_DOUBLE_EQ(spec.bodies[1].x, 0.6);

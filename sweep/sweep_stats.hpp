@@ -1,14 +1,14 @@
 // The paper's statistics over a sweep, plus the maps it lacks. Grouped by body × model
 // variant ("group"), and within a group by parameter set where that means something.
 // Definitions (and every output variable) in docs/sweep.md; the per-trajectory pieces
-// are the kernels of pipelines/trajectory_kernels.hpp.
+// are the kernels of sweep/trajectory_kernels.hpp.
 #pragma once
 #include <string>
 #include <vector>
 
 #include "common/grid.hpp"
-#include "common/scene.hpp"
-#include "pipelines/sweep_file.hpp"
+#include "formats/scene.hpp"
+#include "sweep/sweep_file.hpp"
 
 namespace flotsam::sweep {
 

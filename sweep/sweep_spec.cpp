@@ -1,4 +1,4 @@
-#include "pipelines/sweep_spec.hpp"
+#include "sweep/sweep_spec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "common/error.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "common/sha256.hpp"
-#include "data/toml_lite.hpp"
+#include "common/toml_lite.hpp"
 
 namespace flotsam::sweep {
 

@@ -1,4 +1,4 @@
-#include "hydro/flow_file.hpp"
+#include "formats/flow_file.hpp"
 
 #include <algorithm>
 

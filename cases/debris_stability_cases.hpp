@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "debris/world.hpp"
-#include "tests/debris_flows.hpp"
+#include "cases/debris_flows.hpp"
 
 namespace flotsam::test {
 

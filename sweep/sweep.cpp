@@ -1,4 +1,4 @@
-#include "pipelines/sweep.hpp"
+#include "sweep/sweep.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -7,7 +7,8 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
+#include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 
 namespace flotsam::sweep {

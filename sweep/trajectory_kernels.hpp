@@ -1,5 +1,5 @@
 // Small pure functions on sampled trajectories and samples, shared by the sweep summary
-// and the statistics (pipelines/sweep_stats.cpp). Definitions in docs/sweep.md.
+// and the statistics (sweep/sweep_stats.cpp). Definitions in docs/sweep.md.
 #pragma once
 #include <algorithm>
 #include <cmath>

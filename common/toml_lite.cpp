@@ -1,4 +1,4 @@
-#include "data/toml_lite.hpp"
+#include "common/toml_lite.hpp"
 
 #include <algorithm>
 #include <cmath>

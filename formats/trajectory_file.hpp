@@ -14,31 +14,24 @@
 // No time stamps anywhere: the same inputs give the same bytes.
 #pragma once
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "common/netcdf.hpp"
-#include "debris/world.hpp"
 
 namespace flotsam::debris {
+
+// Status bits of a body: BodyState::flags in debris/, the `status` variable in the file.
+enum BodyFlag : std::uint8_t {
+    flag_released = 1,   // the depth at the centre has exceeded the draft at least once
+    flag_moving = 2,     // translating or turning
+    flag_grounded = 4,   // bottom touches the ground (some friction patch active)
+    flag_colliding = 8,  // touched an obstacle since the last output
+    flag_pivoting = 16,  // rotating about the contact centroid (axis shift)
+};
 
 struct Track {
     std::vector<double> x, y, yaw_deg, u, v, omega;
     std::vector<std::int8_t> status;
-};
-
-struct TrajectorySeries {
-    std::vector<double> time;  // [s]
-    std::vector<Track> tracks; // one per body
-};
-
-// Appends the bodies' current states at world.time() and clears their event bits.
-void record(World& world, TrajectorySeries& series);
-
-struct TrajectoryFileDef {
-    std::string history;                      // the command line
-    std::string flow_file;                    // the replayed flow
-    std::vector<std::string> start_names;     // per body: the scene point, or "" for --at
 };
 
 // The time axis and the per-time variables of a trajectory file (time; x, y, yaw, u, v,
@@ -51,8 +44,5 @@ struct TrackVariables {
 TrackVariables define_track_variables(nc::File& f, int trajectory_dim, int time_dim);
 // Writes the track of trajectory `index` (its series must have one value per time).
 void put_track(nc::File& f, const TrackVariables& vars, std::size_t index, const Track& track);
-
-// Writes atomically (temporary file, then rename).
-void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series, const TrajectoryFileDef& def);
 
 }  // namespace flotsam::debris

@@ -1,4 +1,4 @@
-#include "pipelines/sweep_file.hpp"
+#include "sweep/sweep_file.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -8,8 +8,8 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
-#include "hydro/flow_file.hpp"
-#include "pipelines/trajectory_kernels.hpp"
+#include "formats/flow_file.hpp"
+#include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
 

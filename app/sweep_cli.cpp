@@ -5,9 +5,9 @@
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
-#include "common/scene.hpp"
-#include "pipelines/sweep.hpp"
-#include "pipelines/sweep_stats.hpp"
+#include "formats/scene.hpp"
+#include "sweep/sweep.hpp"
+#include "sweep/sweep_stats.hpp"
 
 namespace flotsam {
 

@@ -1,4 +1,4 @@
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 
 #include <cmath>
 

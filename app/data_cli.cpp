@@ -4,7 +4,7 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "data/boundary_generator.hpp"
 #include "data/dem_import.hpp"
 #include "data/scene_generator.hpp"

@@ -6,7 +6,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/grid.hpp"
-#include "hydro/flow_file.hpp"
+#include "formats/flow_file.hpp"
 
 namespace flotsam::test {
 

@@ -1,5 +1,5 @@
 // flotsam debris: replay one or more bodies through a stored flow and write their
-// trajectories (debris/trajectory_file.hpp).
+// trajectories (debris/trajectory_output.hpp, schema in formats/trajectory_file.hpp).
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -10,8 +10,8 @@
 #include "app/commands.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "common/scene.hpp"
-#include "debris/trajectory_file.hpp"
+#include "formats/scene.hpp"
+#include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 
 namespace flotsam {

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "common/scene.hpp"
+#include "formats/scene.hpp"
 #include "hydro/solver.hpp"
 
 namespace flotsam::test {

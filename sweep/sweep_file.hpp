@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "common/netcdf.hpp"
-#include "debris/trajectory_file.hpp"
-#include "pipelines/sweep_spec.hpp"
+#include "formats/trajectory_file.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace flotsam::sweep {
 

@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <string>
 
-#include "pipelines/sweep_file.hpp"
-#include "pipelines/sweep_spec.hpp"
+#include "sweep/sweep_file.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace flotsam::sweep {
 
