@@ -22,8 +22,9 @@ std::string join_command_line(int argc, char** argv) {
 void add_config_option(CLI::App* sub) {
     // Read by expand_config_files() before parsing: CLI11 2.1 only reads config files
     // for the top-level app, so a subcommand's file is turned into arguments instead.
-    sub->add_option("--config", "TOML file of settings: keys are the long option names (duration = 420), "
-                                "optionally under a [section] named after the command; unknown keys are an error");
+    sub->add_option("--config",
+                    "TOML file of settings: keys are the long option names (duration = 420), "
+                    "optionally under a [section] named after the command; unknown keys are an error");
 }
 
 namespace {
@@ -87,16 +88,19 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
         }
         const CLI::Option* opt = sub->get_option_no_throw("--" + item.name);
         if (!opt || item.name == "config" || item.name == "help")
-            fail(path, "key '" + item.name + "'", "is not a setting of 'flotsam " + [&] {
-                std::string c;
-                for (const auto& s : chain) c += (c.empty() ? "" : " ") + s;
-                return c;
-            }() + "' (see --help)");
+            fail(
+                path, "key '" + item.name + "'", "is not a setting of 'flotsam " + [&] {
+                    std::string c;
+                    for (const auto& s : chain) c += (c.empty() ? "" : " ") + s;
+                    return c;
+                }() + "' (see --help)");
         if (on_command_line(rest, 0, item.name)) continue;  // the command line wins
-        if (opt->get_type_size() == 0) {  // a flag
+        if (opt->get_type_size() == 0) {                    // a flag
             const std::string v = item.inputs.empty() ? "true" : item.inputs.front();
-            if (v == "true" || v == "1") from_file.push_back("--" + item.name);
-            else if (v != "false" && v != "0") fail(path, "key '" + item.name + "'", "a flag takes true or false, not '" + v + "'");
+            if (v == "true" || v == "1")
+                from_file.push_back("--" + item.name);
+            else if (v != "false" && v != "0")
+                fail(path, "key '" + item.name + "'", "a flag takes true or false, not '" + v + "'");
             continue;
         }
         from_file.push_back("--" + item.name);

@@ -3,7 +3,6 @@
 // run the work and throw flotsam::Error on bad input.
 #pragma once
 #include <CLI/CLI.hpp>
-
 #include <string>
 #include <vector>
 

@@ -4,10 +4,10 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "formats/scene.hpp"
 #include "data/boundary_generator.hpp"
 #include "data/dem_import.hpp"
 #include "data/scene_generator.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam {
 
@@ -16,25 +16,29 @@ namespace {
 void register_scene_generate(CLI::App* scene, const std::string& command_line) {
     auto def = std::make_shared<SceneGenDef>();
     auto out = std::make_shared<std::string>();
-    CLI::App* sub = scene->add_subcommand("generate",
-        "Write the synthetic analogue of the Kainan port-city flume (SCENE.md) at any grid spacing; "
-        "deterministic from --seed; marked synthetic in its metadata");
+    CLI::App* sub =
+        scene->add_subcommand("generate",
+                              "Write the synthetic analogue of the Kainan port-city flume (SCENE.md) at any grid spacing; "
+                              "deterministic from --seed; marked synthetic in its metadata");
     sub->add_option("--resolution", def->resolution, "grid spacing [m], e.g. 0.01, 0.02, 0.04")->capture_default_str();
     sub->add_option("--seed", def->seed, "seed of the building layout")->capture_default_str();
     sub->add_option("--out", *out, "output scene file (NetCDF)")->required();
-    sub->add_option("--lot-build-probability", def->lot_build_probability, "chance that a city lot holds a building")->capture_default_str();
+    sub->add_option("--lot-build-probability", def->lot_build_probability, "chance that a city lot holds a building")
+        ->capture_default_str();
     add_config_option(sub);
     sub->callback([def, out, command_line] {
         const GeneratedScene g = generate_scene(*def);
         write_scene(*out, g.scene, command_line);
-        std::printf("scene: %s (%d x %d cells of %.4g m, synthetic)\n", out->c_str(), g.scene.grid.nx, g.scene.grid.ny, def->resolution);
+        std::printf("scene: %s (%d x %d cells of %.4g m, synthetic)\n", out->c_str(), g.scene.grid.nx, g.scene.grid.ny,
+                    def->resolution);
     });
 }
 
 void register_scene_import(CLI::App* scene, const std::string& command_line) {
     auto def = std::make_shared<ImportDef>();
     auto out = std::make_shared<std::string>();
-    CLI::App* sub = scene->add_subcommand("import",
+    CLI::App* sub = scene->add_subcommand(
+        "import",
         "Import a user DEM (NetCDF with x, y, z(y, x), or ESRI ASCII grid .asc) as a scene: resampled to --resolution "
         "(cell-area average when coarsening, bilinear when refining), with points, sections, regions, Manning rules and "
         "a building rule from --features (TOML; see docs/scene.md). Without --features, a DEM with the Kainan extent "
@@ -49,15 +53,17 @@ void register_scene_import(CLI::App* scene, const std::string& command_line) {
         write_scene(*out, s, command_line);
         std::size_t roofs = 0;
         for (auto b : s.building) roofs += std::size_t(b);
-        std::printf("scene: %s (%d x %d cells of %.4g m; %zu building cells; %zu points, %zu sections, %zu regions)\n", out->c_str(),
-                    s.grid.nx, s.grid.ny, def->resolution, roofs, s.points.size(), s.sections.size(), s.regions.size());
+        std::printf("scene: %s (%d x %d cells of %.4g m; %zu building cells; %zu points, %zu sections, %zu regions)\n",
+                    out->c_str(), s.grid.nx, s.grid.ny, def->resolution, roofs, s.points.size(), s.sections.size(),
+                    s.regions.size());
     });
 }
 
 void register_boundary_generate(CLI::App* boundary) {
     auto def = std::make_shared<BoundaryGenDef>();
     auto dir = std::make_shared<std::string>();
-    CLI::App* sub = boundary->add_subcommand("generate",
+    CLI::App* sub = boundary->add_subcommand(
+        "generate",
         "Write synthetic WG1 water-level records (CSV time,eta in s, m) wg1_r00.csv ... for the west boundary: "
         "one smooth leading wave (peak at the end of pumping, then return flow) plus smooth departures with "
         "ensemble std --spread; deterministic from --seed. Prints a summary.");
@@ -75,9 +81,12 @@ void register_boundary_generate(CLI::App* boundary) {
         const auto records = generate_boundary_records(*def);
         const auto paths = write_boundary_records(*dir, records);
         const BoundarySummary s = summarise_boundary(records);
-        std::printf("boundary: %zu records in %s (%s ... %s)\n", paths.size(), dir->c_str(), paths.front().c_str(), paths.back().c_str());
-        std::printf("boundary summary: max ensemble mean %.4f m at %.1f s; ensemble std over t >= %.0f s: min %.3f mm, mean %.3f mm, max %.3f mm\n",
-                    s.max_mean, s.time_of_max, s.std_from, 1e3 * s.std_min, 1e3 * s.std_mean, 1e3 * s.std_max);
+        std::printf("boundary: %zu records in %s (%s ... %s)\n", paths.size(), dir->c_str(), paths.front().c_str(),
+                    paths.back().c_str());
+        std::printf(
+            "boundary summary: max ensemble mean %.4f m at %.1f s; ensemble std over t >= %.0f s: min %.3f mm, mean %.3f mm, max "
+            "%.3f mm\n",
+            s.max_mean, s.time_of_max, s.std_from, 1e3 * s.std_min, 1e3 * s.std_mean, 1e3 * s.std_max);
     });
 }
 

@@ -10,9 +10,9 @@
 #include "app/commands.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "formats/scene.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam {
 
@@ -128,7 +128,8 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     progress.finish(t_end, steps);
     if (!o.quiet) {  // for cost charts (pipelines/accuracy_debris.py); CPU time of all threads
         const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC, reading = world.flow().load_cpu_seconds();
-        std::fprintf(stderr, "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
+        std::fprintf(stderr,
+                     "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
                      world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
     }
     debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names});
@@ -152,7 +153,8 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--restitution", opts->body.restitution, "coefficient of restitution against obstacles")->capture_default_str();
     sub->add_option("--contact", opts->contact, "friction model: center (CC) or local (LC)")->capture_default_str();
     sub->add_option("--collision", opts->collision, "collision model: single (SC) or multi (MC)")->capture_default_str();
-    sub->add_option("--added-mass", opts->added_mass, "implicit (stable) or explicit (for the stability study only)")->capture_default_str();
+    sub->add_option("--added-mass", opts->added_mass, "implicit (stable) or explicit (for the stability study only)")
+        ->capture_default_str();
     sub->add_flag("--no-axis-shift", opts->no_axis_shift, "local contact without the rotation about the contact centroid");
     sub->add_option("--length", opts->body.length, "body length [m]")->capture_default_str();
     sub->add_option("--width", opts->body.width, "body width [m]")->capture_default_str();
@@ -169,7 +171,8 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str();
     sub->add_option("--integrator", opts->integrator, "fluid-force stage: euler (semi-implicit) or heun (predictor-corrector)")
         ->capture_default_str();
-    sub->add_option("--time-interpolation", opts->time_interpolation, "between stored frames: linear or cubic (Catmull-Rom, guarded)")
+    sub->add_option("--time-interpolation", opts->time_interpolation,
+                    "between stored frames: linear or cubic (Catmull-Rom, guarded)")
         ->capture_default_str();
     sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
     sub->add_flag("--quiet", opts->quiet, "no progress lines");

@@ -56,10 +56,12 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     o.run.config_text = sub->config_to_str(true, false);
     const RunResult r = run_hydro(o.run, s);
     if (!o.run.quiet)
-        std::fprintf(stderr, "%s: %s after %ld steps in %.1f s wall (%.1f s processor), %.3g cell-updates/s (%.0f%% dry land skipped), volume %.6g -> %.6g m^3%s%s\n",
-                     o.run.label.c_str(), r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)", r.steps,
-                     r.wall_seconds, r.cpu_seconds, r.cell_updates_per_second, 100.0 * r.dry_skipped_fraction, r.volume_start, r.volume_end,
-                     r.negative_depth_fixes ? ", negative depths clamped" : "",
+        std::fprintf(stderr,
+                     "%s: %s after %ld steps in %.1f s wall (%.1f s processor), %.3g cell-updates/s (%.0f%% dry land skipped), "
+                     "volume %.6g -> %.6g m^3%s%s\n",
+                     o.run.label.c_str(), r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)",
+                     r.steps, r.wall_seconds, r.cpu_seconds, r.cell_updates_per_second, 100.0 * r.dry_skipped_fraction,
+                     r.volume_start, r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "",
                      r.outflow_limits ? (", outflow limited in " + std::to_string(r.outflow_limits) + " cell-steps").c_str() : "");
 }
 
@@ -71,42 +73,58 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     add_config_option(sub);
     auto& r = o->run;
     auto& s = o->solver;
-    sub->add_option("--scene", r.scene_file, "Scene NetCDF (x, y, z; optional manning_n, building, eta0/u0/v0)")->required()->check(CLI::ExistingFile);
+    sub->add_option("--scene", r.scene_file, "Scene NetCDF (x, y, z; optional manning_n, building, eta0/u0/v0)")
+        ->required()
+        ->check(CLI::ExistingFile);
     sub->add_option("--out", r.out_file, "Output flow file (.nc); written as <out>.part and renamed when complete")->required();
     sub->add_option("--duration", r.duration, "Simulated time [s]")->capture_default_str();
     sub->add_option("--output-interval", r.output_interval, "Time between stored frames [s]")->capture_default_str();
     sub->add_option("--output-window", o->window, "Store frames only in x_min,x_max,y_min,y_max [m]")->expected(4)->delimiter(',');
     sub->add_option("--gauge-interval", r.gauge_interval, "Time between gauge samples [s]")->capture_default_str();
     sub->add_option("--gauge", o->gauges, "Extra gauge NAME,X,Y (repeatable); the scene's gauge points are always recorded");
-    sub->add_option("--arrival-depth", r.arrival_depth, "Depth threshold of the arrival-time map [m] (the debris draft)")->capture_default_str();
-    sub->add_option("--checkpoint-interval", r.checkpoint_interval, "Simulated time between checkpoints [s]; 0: none")->capture_default_str();
+    sub->add_option("--arrival-depth", r.arrival_depth, "Depth threshold of the arrival-time map [m] (the debris draft)")
+        ->capture_default_str();
+    sub->add_option("--checkpoint-interval", r.checkpoint_interval, "Simulated time between checkpoints [s]; 0: none")
+        ->capture_default_str();
     sub->add_flag("--restart", r.restart, "Continue an interrupted run from <out>.checkpoint.nc and <out>.part");
     sub->add_option("--stop-after", r.stop_after, "Stop as if interrupted once past this time [s] (leaves a checkpoint)");
     sub->add_option("--realisation", r.realisation, "Boundary realisation id recorded in the file")->capture_default_str();
-    sub->add_option("--deflate", r.deflate_level, "Deflate level of stored fields, 0-9")->check(CLI::Range(0, 9))->capture_default_str();
+    sub->add_option("--deflate", r.deflate_level, "Deflate level of stored fields, 0-9")
+        ->check(CLI::Range(0, 9))
+        ->capture_default_str();
     sub->add_option("--label", r.label, "Progress label")->capture_default_str();
     sub->add_flag("--quiet", r.quiet, "No progress output");
     sub->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")->capture_default_str();
     // Scheme.
-    sub->add_option("--scheme", o->scheme, "fv: finite volumes (MUSCL + HLL + Heun); leapfrog: staggered leap-frog of the classic tsunami codes")
-        ->check(CLI::IsMember({"fv", "leapfrog"}))->capture_default_str();
+    sub->add_option("--scheme", o->scheme,
+                    "fv: finite volumes (MUSCL + HLL + Heun); leapfrog: staggered leap-frog of the classic tsunami codes")
+        ->check(CLI::IsMember({"fv", "leapfrog"}))
+        ->capture_default_str();
     sub->add_option("--courant", r.leapfrog.courant,
                     "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1")
         ->capture_default_str();
-    sub->add_option("--order", s.order, "1: first order; 2: MUSCL + Heun (default)")->check(CLI::IsMember({1, 2}))->capture_default_str();
+    sub->add_option("--order", s.order, "1: first order; 2: MUSCL + Heun (default)")
+        ->check(CLI::IsMember({1, 2}))
+        ->capture_default_str();
     sub->add_option("--cfl", s.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")->capture_default_str();
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")->capture_default_str();
-    sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")->check(CLI::Range(1.0, 2.0))->capture_default_str();
-    sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
-    sub->add_option("--friction", o->friction, "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
+    sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")
+        ->check(CLI::Range(1.0, 2.0))
         ->capture_default_str();
-    sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
-                  "Stability study only: accept --cfl above 0.5 and let the leap-frog run past Courant number 1 (to see the failure)");
+    sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
+    sub->add_option("--friction", o->friction,
+                    "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
+        ->capture_default_str();
+    sub->add_flag(
+        "--study-past-stability-limit", s.study_past_stability_limit,
+        "Stability study only: accept --cfl above 0.5 and let the leap-frog run past Courant number 1 (to see the failure)");
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
-        ->check(CLI::Range(1, 16))->capture_default_str();
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
     sub->add_option("--nest-x", r.nest.x, "x of the nesting interface [m]; keep it in water that stays wet")->capture_default_str();
-    sub->add_option("--manning-n", s.default_manning_n, "Manning n where the scene has no manning_n [s m^-1/3]")->capture_default_str();
+    sub->add_option("--manning-n", s.default_manning_n, "Manning n where the scene has no manning_n [s m^-1/3]")
+        ->capture_default_str();
     // Boundaries.
     const std::string kinds = "wall, transmissive, level, discharge or pump";
     sub->add_option("--west", o->west, "West boundary: " + kinds)->capture_default_str();
@@ -117,11 +135,16 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--east-series", s.east.series_file, "CSV for an east level/discharge boundary");
     sub->add_option("--south-series", s.south.series_file, "CSV for a south level/discharge boundary");
     sub->add_option("--north-series", s.north.series_file, "CSV for a north level/discharge boundary");
-    sub->add_option("--level-mode", o->level_mode, "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the 'incident' wave (reflections leave)")->capture_default_str();
+    sub->add_option("--level-mode", o->level_mode,
+                    "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the "
+                    "'incident' wave (reflections leave)")
+        ->capture_default_str();
     sub->add_option("--pump-discharge", s.west.pump_discharge, "Pump boundary: mass source [m^3/s]")->capture_default_str();
     sub->add_option("--pump-stop", s.west.pump_stop, "Pump boundary: end of pumping [s]")->capture_default_str();
-    sub->add_option("--pump-relax", s.west.pump_relax_time, "Pump boundary: relaxation time of the level after pumping [s]")->capture_default_str();
-    sub->add_option("--pump-length", s.west.pump_length, "Pump boundary: width of the source strip along x [m]")->capture_default_str();
+    sub->add_option("--pump-relax", s.west.pump_relax_time, "Pump boundary: relaxation time of the level after pumping [s]")
+        ->capture_default_str();
+    sub->add_option("--pump-length", s.west.pump_length, "Pump boundary: width of the source strip along x [m]")
+        ->capture_default_str();
     sub->callback([o, sub, command_line] { run_command(*o, sub, command_line); });
 }
 

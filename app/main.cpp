@@ -2,7 +2,6 @@
 // own subcommands (see the register_* functions); settings come from the command line
 // or from a TOML file given with --config, where unknown keys are an error.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -12,7 +11,8 @@
 #include "common/version.hpp"
 
 int main(int argc, char** argv) {
-    CLI::App app{"flotsam: tsunami debris transport in a port city (shallow-water flows, then rigid-body debris replayed through them)"};
+    CLI::App app{
+        "flotsam: tsunami debris transport in a port city (shallow-water flows, then rigid-body debris replayed through them)"};
     app.set_version_flag("--version", flotsam::version_string());
     app.require_subcommand(1);
     const std::string command_line = flotsam::join_command_line(argc, argv);

@@ -43,7 +43,8 @@ void run_sweep_command(const SweepOptions& o) {
     const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
     sweep::write_summary_csv(summary, r);
     if (!o.quiet)
-        std::fprintf(stderr, "sweep: %d of %d members (shard %s) over %zu flows, %zu frames read (%.1f s), %.1f s wall; wrote %s and %s\n",
+        std::fprintf(stderr,
+                     "sweep: %d of %d members (shard %s) over %zu flows, %zu frames read (%.1f s), %.1f s wall; wrote %s and %s\n",
                      st.members, r.member_count, o.shard.c_str(), st.flows_opened, st.frames_loaded, st.io_seconds, st.wall_seconds,
                      o.out.c_str(), summary.c_str());
 }
@@ -59,7 +60,8 @@ void run_merge_command(const MergeOptions& o) {
 void run_stats_command(const StatsOptions& o, const std::string& command_line) {
     const sweep::SweepResult r = sweep::read_sweep_file(o.sweep);
     const std::string scene_path = o.scene.empty() ? r.scene_file : o.scene;
-    if (scene_path.empty()) fail(o.sweep, "scene_file", "the sweep names no scene: give --scene (its sections and regions are needed)");
+    if (scene_path.empty())
+        fail(o.sweep, "scene_file", "the sweep names no scene: give --scene (its sections and regions are needed)");
     const Scene scene = read_scene(scene_path);
     const sweep::SweepStats s = sweep::compute_stats(r, scene, o.def);
     sweep::write_stats_file(o.out, s, o.def, o.sweep, scene_path, command_line);
@@ -70,12 +72,14 @@ void run_stats_command(const StatsOptions& o, const std::string& command_line) {
 
 void register_pipeline_commands(CLI::App& app, const std::string& command_line) {
     auto so = std::make_shared<SweepOptions>();
-    CLI::App* sweep_cmd = app.add_subcommand("sweep", "Run a sweep (flows x bodies x variants x parameter sets x start perturbations) from a TOML spec");
+    CLI::App* sweep_cmd = app.add_subcommand(
+        "sweep", "Run a sweep (flows x bodies x variants x parameter sets x start perturbations) from a TOML spec");
     add_config_option(sweep_cmd);
     sweep_cmd->add_option("--spec", so->spec, "sweep spec (TOML, see docs/sweep.md)")->check(CLI::ExistingFile);
     sweep_cmd->add_option("--out", so->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
     sweep_cmd->add_option("--summary", so->summary, "one-row-per-trajectory CSV (default: --out with .csv)");
-    sweep_cmd->add_option("--shard", so->shard, "run block i of n of the member list (i/n); join with `sweep merge`")->capture_default_str();
+    sweep_cmd->add_option("--shard", so->shard, "run block i of n of the member list (i/n); join with `sweep merge`")
+        ->capture_default_str();
     sweep_cmd->add_option("--threads", so->threads, "OpenMP threads over members (0: default)")->capture_default_str();
     sweep_cmd->add_option("--scene", so->scene, "scene file (overrides the spec's [sweep] scene)")->check(CLI::ExistingFile);
     sweep_cmd->add_option("--flow", so->flows, "flow file (repeatable; replaces the spec's [flows])")->check(CLI::ExistingFile);
@@ -83,7 +87,8 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     sweep_cmd->require_subcommand(0, 1);
 
     auto mo = std::make_shared<MergeOptions>();
-    CLI::App* merge = sweep_cmd->add_subcommand("merge", "Join the shards of one sweep into one file (same bytes as an unsharded run)");
+    CLI::App* merge =
+        sweep_cmd->add_subcommand("merge", "Join the shards of one sweep into one file (same bytes as an unsharded run)");
     merge->add_option("parts", mo->parts, "sweep files written with --shard")->required()->check(CLI::ExistingFile);
     merge->add_option("--out", mo->out, "merged trajectory file")->capture_default_str();
     merge->add_option("--summary", mo->summary, "one-row-per-trajectory CSV (default: --out with .csv)");
@@ -94,17 +99,23 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     });
 
     auto to = std::make_shared<StatsOptions>();
-    CLI::App* stats = app.add_subcommand("stats", "The paper's statistics over a sweep, and per-cell pass probability and largest speed");
+    CLI::App* stats =
+        app.add_subcommand("stats", "The paper's statistics over a sweep, and per-cell pass probability and largest speed");
     add_config_option(stats);
     stats->add_option("--sweep", to->sweep, "sweep file (flotsam sweep, or merged)")->required()->check(CLI::ExistingFile);
-    stats->add_option("--scene", to->scene, "scene with the sections and regions (default: the sweep's scene)")->check(CLI::ExistingFile);
+    stats->add_option("--scene", to->scene, "scene with the sections and regions (default: the sweep's scene)")
+        ->check(CLI::ExistingFile);
     stats->add_option("--out", to->out, "statistics file to write (NetCDF)")->capture_default_str();
     stats->add_option("--csv", to->csv, "also write CSV tables into this folder");
     stats->add_option("--arrival-time", to->def.arrival_time, "region counts at this time [s]")->capture_default_str();
-    stats->add_option("--yaw-window", to->def.yaw_window, "yaw statistics over this long after motion starts [s]")->capture_default_str();
-    stats->add_option("--yaw-min-speed", to->def.yaw_min_speed, "yaw against the motion only when faster than this [m/s]")->capture_default_str();
+    stats->add_option("--yaw-window", to->def.yaw_window, "yaw statistics over this long after motion starts [s]")
+        ->capture_default_str();
+    stats->add_option("--yaw-min-speed", to->def.yaw_min_speed, "yaw against the motion only when faster than this [m/s]")
+        ->capture_default_str();
     stats->add_option("--yaw-bin", to->def.yaw_bin_width, "yaw histogram bin width [degree]")->capture_default_str();
-    stats->add_option("--r-min-distance", to->def.r_min_distance, "R(t) undefined where the control's mean distance is below this [m]")
+    stats
+        ->add_option("--r-min-distance", to->def.r_min_distance,
+                     "R(t) undefined where the control's mean distance is below this [m]")
         ->capture_default_str();
     stats->add_option("--kde-points", to->def.kde_points, "points on the speed axis of the densities")->capture_default_str();
     stats->add_option("--map-coarsen", to->def.map_coarsen, "map cell = this many scene cells per side")->capture_default_str();

@@ -28,8 +28,9 @@ bool building(double x, double y) {
 }
 double bed(double x, double y) {
     if (building(x, y)) return 0.045;
-    if (x > 0.9 && x < 3.75 && y > -2.65 && y < -2.05) return -0.03 + 0.01 * std::fabs(y + 2.35) / 0.3;  // basin, shallower at the quays
-    return 0.01 + 0.005 * std::max(0.0, y + 2.0);                                                      // land
+    if (x > 0.9 && x < 3.75 && y > -2.65 && y < -2.05)
+        return -0.03 + 0.01 * std::fabs(y + 2.35) / 0.3;  // basin, shallower at the quays
+    return 0.01 + 0.005 * std::max(0.0, y + 2.0);         // land
 }
 // Level: a smooth rise to 6 cm at 300 s, then the return flow back to still water.
 double level(double t) { return t < 300 ? 0.06 * std::sin(0.5 * M_PI * t / 300) : 0.06 * std::cos(0.5 * M_PI * (t - 300) / 120); }
@@ -78,7 +79,10 @@ int main(int argc, char** argv) {
     for (int j = 0; j < window.ny; ++j)
         for (int i = 0; i < window.nx; ++i) mask[window.index(i, j)] = building(window.x(i), window.y(j)) ? 1 : 0;
 
-    struct Case { const char* name; double x, y, heading_deg; };
+    struct Case {
+        const char* name;
+        double x, y, heading_deg;
+    };
     for (const Case c : {Case{"FD", 1.37, -2.15, 0.0}, Case{"LD", 2.94, -1.26, 90.0}}) {
         for (int repeat = 0; repeat < 2; ++repeat) {
             WorldDef def = default_world_def();
@@ -96,10 +100,11 @@ int main(int argc, char** argv) {
             const double io = w.flow().load_seconds(), compute = wall - io;
             const BodyState& s = w.states()[0];
             const BodyStats& st = w.stats()[0];
-            std::printf("%s run %d: %ld steps, compute %.3f s (%.0f steps/s), frame I/O %.3f s for %zu frames, "
-                        "end (%.2f, %.2f) yaw %.0f deg, collisions %ld, unresolved %ld, axis shifts %ld\n",
-                        c.name, repeat, st.steps, compute, double(st.steps) / compute, io, w.flow().frames_loaded(), s.x, s.y,
-                        s.theta * 180 / M_PI, st.collisions, st.unresolved, st.axis_shifts);
+            std::printf(
+                "%s run %d: %ld steps, compute %.3f s (%.0f steps/s), frame I/O %.3f s for %zu frames, "
+                "end (%.2f, %.2f) yaw %.0f deg, collisions %ld, unresolved %ld, axis shifts %ld\n",
+                c.name, repeat, st.steps, compute, double(st.steps) / compute, io, w.flow().frames_loaded(), s.x, s.y,
+                s.theta * 180 / M_PI, st.collisions, st.unresolved, st.axis_shifts);
         }
     }
     return 0;

@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
     const std::string dir = argc > 1 ? argv[1] : (std::filesystem::temp_directory_path() / "flotsam-debris-stability").string();
     std::filesystem::create_directories(dir);
     const std::string am_flow = test::added_mass_flow(dir);
-    std::printf("map,cm,method,growth_per_step,speed_ratio_2s,cell_m,heading_deg,vertex_step_fraction,step_travel_m,tunnelled_of_8\n");
+    std::printf(
+        "map,cm,method,growth_per_step,speed_ratio_2s,cell_m,heading_deg,vertex_step_fraction,step_travel_m,tunnelled_of_8\n");
     for (double cm = 1.25; cm <= 4.0 + 1e-9; cm += 0.25) {
         const auto imp = test::added_mass_velocities(am_flow, cm, AddedMass::implicit, 200);
         const auto exp = test::added_mass_velocities(am_flow, cm, AddedMass::explicit_, 200);

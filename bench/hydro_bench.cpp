@@ -61,9 +61,10 @@ Best best_of(int repeat, int threads, hydro::RunDef rd, const hydro::SolverDef& 
 }
 
 void print(const char* what, int threads, const Best& b) {
-    std::printf("  %-9s %d thread%s: %.3g cell-updates/s (%.3g per processor second); %ld steps, %.2f s wall, %.2f s processor; "
-                "%.0f%% dry land skipped\n",
-                what, threads, threads > 1 ? "s" : " ", b.wall_rate, b.cpu_rate, b.steps, b.wall, b.cpu, 100.0 * b.dry_skipped);
+    std::printf(
+        "  %-9s %d thread%s: %.3g cell-updates/s (%.3g per processor second); %ld steps, %.2f s wall, %.2f s processor; "
+        "%.0f%% dry land skipped\n",
+        what, threads, threads > 1 ? "s" : " ", b.wall_rate, b.cpu_rate, b.steps, b.wall, b.cpu, 100.0 * b.dry_skipped);
 }
 
 std::string load_average() {
@@ -82,11 +83,16 @@ int main(int argc, char** argv) {
     std::string scratch = (std::filesystem::temp_directory_path() / "flotsam-hydro-bench").string();
     for (int k = 1; k + 1 < argc; k += 2) {
         const std::string a = argv[k];
-        if (a == "--dem") dem = argv[k + 1];
-        else if (a == "--resolution") resolution = std::atof(argv[k + 1]);
-        else if (a == "--seconds") seconds = std::atof(argv[k + 1]);
-        else if (a == "--repeat") repeat = std::max(1, std::atoi(argv[k + 1]));
-        else if (a == "--scratch") scratch = argv[k + 1];
+        if (a == "--dem")
+            dem = argv[k + 1];
+        else if (a == "--resolution")
+            resolution = std::atof(argv[k + 1]);
+        else if (a == "--seconds")
+            seconds = std::atof(argv[k + 1]);
+        else if (a == "--repeat")
+            repeat = std::max(1, std::atoi(argv[k + 1]));
+        else if (a == "--scratch")
+            scratch = argv[k + 1];
     }
     std::filesystem::create_directories(scratch);
     Scene scene;

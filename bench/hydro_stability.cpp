@@ -16,10 +16,10 @@
 #include <functional>
 #include <string>
 
+#include "cases/hydro_cases.hpp"
 #include "common/atomic_file.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/solver.hpp"
-#include "cases/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;
@@ -98,9 +98,10 @@ int main(int argc, char** argv) {
         const double c_over_dx = std::sqrt(c.def.gravity * deepest(c.scene)) / c.scene.grid.dx;
         auto emit = [&](const char* scheme, const char* friction, double setting, const Row& r) {
             char line[512];
-            std::snprintf(line, sizeof line, "\"%s\",%s,%s,%.3g,%.6g,%.4f,%ld,%s,%.3g,%ld,%ld,%.4g,%.4g,%.4g,%ld,%.3g,%s,%s\n", c.name.c_str(), scheme,
-                          friction, setting, r.w.first_step, r.w.first_step * c_over_dx, r.w.steps, r.outcome.c_str(), r.stats.min_depth_seen,
-                          r.stats.negative_depth_fixes, r.stats.outflow_limits, r.w.level_rise, r.w.max_speed, r.w.roof_depth, r.w.reversals, r.w.volume_error,
+            std::snprintf(line, sizeof line, "\"%s\",%s,%s,%.3g,%.6g,%.4f,%ld,%s,%.3g,%ld,%ld,%.4g,%.4g,%.4g,%ld,%.3g,%s,%s\n",
+                          c.name.c_str(), scheme, friction, setting, r.w.first_step, r.w.first_step * c_over_dx, r.w.steps,
+                          r.outcome.c_str(), r.stats.min_depth_seen, r.stats.negative_depth_fixes, r.stats.outflow_limits,
+                          r.w.level_rise, r.w.max_speed, r.w.roof_depth, r.w.reversals, r.w.volume_error,
                           r.max_courant < 0.0 ? "" : std::to_string(r.max_courant).c_str(), r.guard.c_str());
             csv += line;
             std::fprintf(stderr, "%-22s %-8s %-8s %5.3g  dt sqrt(gh)/dx %.3f  %s\n", c.name.c_str(), scheme, friction, setting,

@@ -29,9 +29,12 @@ int main(int argc, char** argv) {
     std::vector<std::string> args;
     for (int k = 1; k < argc; ++k) {
         const std::string a = argv[k];
-        if (a == "--threads" && k + 1 < argc) threads = std::atoi(argv[++k]);
-        else if (a == "--out" && k + 1 < argc) dir = argv[++k];
-        else args.push_back(a);
+        if (a == "--threads" && k + 1 < argc)
+            threads = std::atoi(argv[++k]);
+        else if (a == "--out" && k + 1 < argc)
+            dir = argv[++k];
+        else
+            args.push_back(a);
     }
     if (args.size() < 2) {
         std::fprintf(stderr, "usage: sweep_bench [--threads N] [--out DIR] SCENE FLOW [FLOW ...]\n");
@@ -67,18 +70,20 @@ int main(int argc, char** argv) {
         const double wall = run + write, io = st.io_seconds + write, compute = wall - io;
 
         std::printf("sweep bench: %zu distinct flow file(s) given", given.size());
-        if (given.size() < 10) std::printf(", reused in turn to make the paper's ten (each reuse re-reads the file; the OS may cache it)");
+        if (given.size() < 10)
+            std::printf(", reused in turn to make the paper's ten (each reuse re-reads the file; the OS may cache it)");
         std::printf("\n  scene %s, first flow %s\n", scene.c_str(), given.front().c_str());
-        std::printf("  members: %d = %zu flows x %zu bodies x %zu variants x %zu parameter sets; %zu output times (%.0f s)\n", st.members,
-                    spec.flows.size(), spec.bodies.size(), spec.variants.size(), spec.params.size(), r.time.size(), r.time.back());
+        std::printf("  members: %d = %zu flows x %zu bodies x %zu variants x %zu parameter sets; %zu output times (%.0f s)\n",
+                    st.members, spec.flows.size(), spec.bodies.size(), spec.variants.size(), spec.params.size(), r.time.size(),
+                    r.time.back());
         std::printf("  threads: %d (OpenMP max %d)\n", threads, omp_get_max_threads());
         std::printf("  wall time: %.1f s (run %.1f s, writing outputs %.1f s)\n", wall, run, write);
         std::printf("  body-runs/s: %.2f (one 420 s body-run: %.3f s of wall time)\n", st.members / wall, wall / st.members);
         std::printf("  body steps: %ld (%.0f steps/s over compute time)\n", st.steps, double(st.steps) / compute);
         std::printf("  frames read: %zu over %zu flow openings (%.1f per flow)\n", st.frames_loaded, st.flows_opened,
                     double(st.frames_loaded) / double(st.flows_opened));
-        std::printf("  I/O: %.1f s (%.0f %%) = frame reading %.1f s + output writing %.1f s; compute %.1f s (%.0f %%)\n", io, 100 * io / wall,
-                    st.io_seconds, write, compute, 100 * compute / wall);
+        std::printf("  I/O: %.1f s (%.0f %%) = frame reading %.1f s + output writing %.1f s; compute %.1f s (%.0f %%)\n", io,
+                    100 * io / wall, st.io_seconds, write, compute, 100 * compute / wall);
         std::printf("  floor (paper sweep under 300 s on 2 cores at 2 cm): %s\n", wall < 300 ? "met" : "NOT met");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "sweep_bench: %s\n", e.what());

@@ -49,8 +49,11 @@ inline std::string uniform_flow(const std::string& path, const Grid& g, double t
                                 double bed = -0.1) {
     std::vector<double> times;
     for (double t = 0; t <= t_end + 1e-9; t += 1.0) times.push_back(t);
-    return write_flow(path, g, times, [=](double, double) { return bed; },
-                      [=](double, double, double) { return FlowState{float(depth), float(u), float(v)}; });
+    return write_flow(
+        path, g, times, [=](double, double) { return bed; },
+        [=](double, double, double) {
+            return FlowState{float(depth), float(u), float(v)};
+        });
 }
 
 }  // namespace flotsam::test

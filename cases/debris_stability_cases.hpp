@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "debris/world.hpp"
 #include "cases/debris_flows.hpp"
+#include "debris/world.hpp"
 
 namespace flotsam::test {
 
@@ -44,7 +44,8 @@ inline std::vector<double> added_mass_velocities(const std::string& flow, double
 // Growth per step of the explicit scheme's step-to-step oscillation: o = v_explicit −
 // v_implicit, δ_k = o_k − o_(k−1) ∝ (−C_a)^k (docs/debris.md), measured from step
 // `from` to `to` as (|δ_to| / |δ_from|)^(1/(to − from)).
-inline double explicit_growth_per_step(const std::vector<double>& v_explicit, const std::vector<double>& v_implicit, int from, int to) {
+inline double explicit_growth_per_step(const std::vector<double>& v_explicit, const std::vector<double>& v_implicit, int from,
+                                       int to) {
     auto delta = [&](int k) { return (v_explicit[k] - v_implicit[k]) - (v_explicit[k - 1] - v_implicit[k - 1]); };
     return std::pow(std::fabs(delta(to)) / std::fabs(delta(from)), 1.0 / (to - from));
 }
@@ -74,7 +75,8 @@ inline double wall_x(double cell) {
 }
 
 inline std::string wall_flow(const std::string& dir, double cell) {
-    return uniform_flow(dir + "/wall_" + std::to_string(int(std::lround(cell * 1000))) + "mm.nc", wall_grid(cell), 2, 0.1, 3.0, 0.0);
+    return uniform_flow(dir + "/wall_" + std::to_string(int(std::lround(cell * 1000))) + "mm.nc", wall_grid(cell), 2, 0.1, 3.0,
+                        0.0);
 }
 
 struct WallRun {
@@ -110,10 +112,12 @@ inline WallRun wall_run(const std::string& flow, double cell, double heading_deg
 
 // Of `phases` runs started at evenly spaced points within one step's travel (the
 // outcome depends on where the steps fall relative to the wall), how many went through.
-inline int wall_tunnelling_count(const std::string& flow, double cell, double heading_deg, double vertex_step_fraction, int phases) {
+inline int wall_tunnelling_count(const std::string& flow, double cell, double heading_deg, double vertex_step_fraction,
+                                 int phases) {
     int n = 0;
     for (int p = 0; p < phases; ++p)
-        n += wall_run(flow, cell, heading_deg, vertex_step_fraction, 0.1, -vertex_step_fraction * cell * p / phases).tunnelled ? 1 : 0;
+        n += wall_run(flow, cell, heading_deg, vertex_step_fraction, 0.1, -vertex_step_fraction * cell * p / phases).tunnelled ? 1
+                                                                                                                               : 0;
     return n;
 }
 

@@ -172,16 +172,16 @@ inline Scene film_on_slope() {
 
 // What happened in a run watched step by step (run_watched).
 struct Watch {
-    bool finite = true;          // every depth and velocity stayed finite
-    double level_rise = 0.0;     // largest level above the highest initial level [m]
-    double max_speed = 0.0;      // [m/s]
-    double min_depth = 0.0;      // smallest depth after any step [m]
-    double roof_depth = 0.0;     // deepest water on a cell marked as building [m]
-    long reversals = 0;          // cell-steps where a wet cell's x-velocity changed sign
-    double volume_error = 0.0;   // relative, end against start
+    bool finite = true;         // every depth and velocity stayed finite
+    double level_rise = 0.0;    // largest level above the highest initial level [m]
+    double max_speed = 0.0;     // [m/s]
+    double min_depth = 0.0;     // smallest depth after any step [m]
+    double roof_depth = 0.0;    // deepest water on a cell marked as building [m]
+    long reversals = 0;         // cell-steps where a wet cell's x-velocity changed sign
+    double volume_error = 0.0;  // relative, end against start
     long steps = 0;
-    double first_step = 0.0;     // [s]
-    double level_bound = 0.01;   // [m] a level this far above the highest initial one is growth, not flow
+    double first_step = 0.0;    // [s]
+    double level_bound = 0.01;  // [m] a level this far above the highest initial one is growth, not flow
     bool blew_up() const { return !finite || level_rise > level_bound || max_speed > 50.0; }
 };
 
@@ -209,7 +209,10 @@ Watch run_watched(S& solver, const Scene& s, double t_end, double level_bound = 
         for (int j = 0; j < g.ny; ++j)
             for (int i = 0; i < g.nx; ++i) {
                 const double h = solver.depth(i, j), u = solver.x_velocity(i, j), v = solver.y_velocity(i, j);
-                if (!std::isfinite(h) || !std::isfinite(u) || !std::isfinite(v)) { w.finite = false; continue; }
+                if (!std::isfinite(h) || !std::isfinite(u) || !std::isfinite(v)) {
+                    w.finite = false;
+                    continue;
+                }
                 w.min_depth = std::min(w.min_depth, h);
                 if (h > dry) w.level_rise = std::max(w.level_rise, solver.level(i, j) - level0);
                 w.max_speed = std::max(w.max_speed, std::hypot(u, v));

@@ -15,7 +15,7 @@ public:
 
     const std::string& temp_path() const { return temp_; }
     const std::string& final_path() const { return final_; }
-    void commit();             // rename temp -> final; throws naming both paths on failure
+    void commit();                         // rename temp -> final; throws naming both paths on failure
     void keep_partial() { keep_ = true; }  // leave the .part (a checkpointed run resumes from it)
 
 private:

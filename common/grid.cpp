@@ -1,7 +1,8 @@
+#include "common/grid.hpp"
+
 #include <string>
 
 #include "common/error.hpp"
-#include "common/grid.hpp"
 
 namespace flotsam {
 
@@ -9,9 +10,11 @@ namespace {
 // Spacing of a coordinate vector; uniform to 1e-6 of a cell (coordinates written as
 // float or rounded decimals are accepted, real irregular grids are not).
 double uniform_spacing(const std::vector<double>& c, const std::string& file, const char* name) {
-    if (c.size() < 2) fail(file, std::string("coordinate '") + name + "'", "needs at least 2 values, has " + std::to_string(c.size()));
+    if (c.size() < 2)
+        fail(file, std::string("coordinate '") + name + "'", "needs at least 2 values, has " + std::to_string(c.size()));
     for (std::size_t k = 0; k < c.size(); ++k)
-        if (!std::isfinite(c[k])) fail(file, std::string("coordinate '") + name + "'", "value " + std::to_string(k) + " is not finite");
+        if (!std::isfinite(c[k]))
+            fail(file, std::string("coordinate '") + name + "'", "value " + std::to_string(k) + " is not finite");
     const double d = (c.back() - c.front()) / double(c.size() - 1);
     if (!(d > 0)) fail(file, std::string("coordinate '") + name + "'", "must increase monotonically");
     for (std::size_t k = 1; k < c.size(); ++k) {

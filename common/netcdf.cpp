@@ -301,8 +301,8 @@ std::vector<double> read_finite(const File& f, const std::string& name) {
     for (std::size_t k = 0; k < values.size(); ++k) {
         if (!std::isfinite(values[k]) || (fill && values[k] == *fill))
             fail(f.path(), "variable '" + name + "'",
-                 "value at flat index " + std::to_string(k) + " is " + (std::isfinite(values[k]) ? "the fill value" : "NaN or infinite") +
-                     " (missing data is not allowed here)");
+                 "value at flat index " + std::to_string(k) + " is " +
+                     (std::isfinite(values[k]) ? "the fill value" : "NaN or infinite") + " (missing data is not allowed here)");
     }
     return values;
 }

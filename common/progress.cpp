@@ -7,8 +7,13 @@
 namespace flotsam {
 
 Progress::Progress(std::string label, double total, double log_interval, bool quiet)
-    : label_(std::move(label)), total_(total), log_interval_(log_interval), quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : label_(std::move(label)),
+      total_(total),
+      log_interval_(log_interval),
+      quiet_(quiet),
+      tty_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 void Progress::update(double sim_time, double dt, long steps) {
     if (quiet_) return;
@@ -29,8 +34,8 @@ void Progress::update(double sim_time, double dt, long steps) {
 void Progress::finish(double sim_time, long steps) {
     if (quiet_) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    std::fprintf(stderr, "%s%s done: t=%.2f s, %ld steps in %.1f s wall%s\n", tty_ && printed_ ? "\r" : "", label_.c_str(), sim_time,
-                 steps, elapsed, tty_ ? "\x1b[K" : "");
+    std::fprintf(stderr, "%s%s done: t=%.2f s, %ld steps in %.1f s wall%s\n", tty_ && printed_ ? "\r" : "", label_.c_str(),
+                 sim_time, steps, elapsed, tty_ ? "\x1b[K" : "");
     std::fflush(stderr);
 }
 

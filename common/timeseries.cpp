@@ -14,8 +14,9 @@ namespace flotsam {
 double TimeSeries::at(double t) const {
     if (time.empty()) fail(source, "", "empty time series");
     if (t < time.front() - 1e-9 || t > time.back() + 1e-9)
-        fail(source, "", "time " + std::to_string(t) + " s is outside the series [" + std::to_string(time.front()) + ", " +
-                             std::to_string(time.back()) + "] s");
+        fail(source, "",
+             "time " + std::to_string(t) + " s is outside the series [" + std::to_string(time.front()) + ", " +
+                 std::to_string(time.back()) + "] s");
     if (t <= time.front()) return value.front();
     if (t >= time.back()) return value.back();
     const auto it = std::upper_bound(time.begin(), time.end(), t);
@@ -61,16 +62,20 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
                 header_allowed = false;
                 continue;
             }
-            if (cols.size() != 2) fail(path, here, "expected 2 comma-separated columns (time,value), found " + std::to_string(cols.size()));
+            if (cols.size() != 2)
+                fail(path, here, "expected 2 comma-separated columns (time,value), found " + std::to_string(cols.size()));
             fail(path, here, "not a number: '" + line + "'");
         }
         header_allowed = false;
         if (!std::isfinite(t) || !std::isfinite(v)) fail(path, here, "NaN or infinite value");
         if (!s.time.empty()) {
             if (!(t > s.time.back()))
-                fail(path, here, "time " + std::to_string(t) + " s does not increase (previous " + std::to_string(s.time.back()) + " s)");
+                fail(path, here,
+                     "time " + std::to_string(t) + " s does not increase (previous " + std::to_string(s.time.back()) + " s)");
             if (t - s.time.back() > max_gap)
-                fail(path, here, "gap of " + std::to_string(t - s.time.back()) + " s between samples (at most " + std::to_string(max_gap) + " s allowed)");
+                fail(path, here,
+                     "gap of " + std::to_string(t - s.time.back()) + " s between samples (at most " + std::to_string(max_gap) +
+                         " s allowed)");
         }
         s.time.push_back(t);
         s.value.push_back(v);
@@ -81,8 +86,9 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
 
 void require_coverage(const TimeSeries& s, double t0, double t1) {
     if (s.time.front() > t0 + 1e-9 || s.time.back() < t1 - 1e-9)
-        fail(s.source, "", "covers [" + std::to_string(s.time.front()) + ", " + std::to_string(s.time.back()) +
-                               "] s but the run needs [" + std::to_string(t0) + ", " + std::to_string(t1) + "] s");
+        fail(s.source, "",
+             "covers [" + std::to_string(s.time.front()) + ", " + std::to_string(s.time.back()) + "] s but the run needs [" +
+                 std::to_string(t0) + ", " + std::to_string(t1) + "] s");
 }
 
 void write_time_series_csv(const std::string& path, const TimeSeries& s, const std::string& value_name) {

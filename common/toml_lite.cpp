@@ -74,7 +74,8 @@ TomlValue parse_value(const std::string& path, int line, const std::string& key,
             }
         }
     } else if (!parse_number(raw, v.number)) {
-        fail(path, here, "key '" + key + "': value '" + raw + "' is not a number, \"string\", true/false, [numbers] or [\"strings\"]");
+        fail(path, here,
+             "key '" + key + "': value '" + raw + "' is not a number, \"string\", true/false, [numbers] or [\"strings\"]");
     }
     return v;
 }
@@ -111,7 +112,8 @@ TomlDoc read_toml_lite(const std::string& path) {
             if (s.back() != ']') fail(path, here, "unterminated [table] header");
             const std::string name = trim(s.substr(1, s.size() - 2));
             for (const auto& t : doc.tables)
-                if (t.name == name) fail(path, here, "table [" + name + "] defined twice (first at line " + std::to_string(t.line) + ")");
+                if (t.name == name)
+                    fail(path, here, "table [" + name + "] defined twice (first at line " + std::to_string(t.line) + ")");
             doc.tables.push_back({name, line, {}});
             continue;
         }

@@ -17,7 +17,7 @@ struct TomlValue {
     bool flag = false;
     std::vector<double> numbers;
     std::vector<std::string> texts;  // StringArray
-    int line = 0;  // 1-based line in the file
+    int line = 0;                    // 1-based line in the file
 };
 
 // A table: the root (name ""), a [name] table, or one element of an [[name]] array.

@@ -41,7 +41,8 @@ void check(const BoundaryGenDef& d) {
     if (d.count < 1) fail("--count", "", "needs at least one record");
     if (!(d.dt > 0.0) || !(d.duration > d.dt)) fail("--dt/--duration", "", "need 0 < dt < duration");
     if (!(d.spread >= 0.0) || !(d.peak > 0.0)) fail("--peak/--spread", "", "need peak > 0 and spread >= 0");
-    if (!(d.period_min > 0.0 && d.period_max >= d.period_min) || d.modes < 1) fail("boundary generate", "periods", "need 0 < period_min <= period_max and modes >= 1");
+    if (!(d.period_min > 0.0 && d.period_max >= d.period_min) || d.modes < 1)
+        fail("boundary generate", "periods", "need 0 < period_min <= period_max and modes >= 1");
 }
 
 // One realisation's raw departure: random-phase sinusoids, periods log-uniform in
@@ -118,7 +119,10 @@ BoundarySummary summarise_boundary(const std::vector<TimeSeries>& recs, double s
         for (const auto& r : recs) mean += r.value[k];
         mean /= double(c);
         for (const auto& r : recs) var += (r.value[k] - mean) * (r.value[k] - mean);
-        if (mean > s.max_mean) { s.max_mean = mean; s.time_of_max = recs.front().time[k]; }
+        if (mean > s.max_mean) {
+            s.max_mean = mean;
+            s.time_of_max = recs.front().time[k];
+        }
         if (c < 2 || recs.front().time[k] < std_from) continue;
         const double sd = std::sqrt(var / double(c - 1));
         s.std_min = std::min(s.std_min, sd);
@@ -126,8 +130,10 @@ BoundarySummary summarise_boundary(const std::vector<TimeSeries>& recs, double s
         std_sum += sd;
         ++std_count;
     }
-    if (std_count == 0) s.std_min = 0.0;
-    else s.std_mean = std_sum / std_count;
+    if (std_count == 0)
+        s.std_min = 0.0;
+    else
+        s.std_mean = std_sum / std_count;
     return s;
 }
 

@@ -11,8 +11,8 @@
 
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
-#include "data/resample.hpp"
 #include "common/toml_lite.hpp"
+#include "data/resample.hpp"
 
 namespace flotsam {
 
@@ -25,7 +25,8 @@ std::string lower(std::string s) {
 
 void flip_rows(std::vector<double>& z, int nx, int ny) {
     for (int j = 0; j < ny / 2; ++j)
-        std::swap_ranges(z.begin() + std::ptrdiff_t(j) * nx, z.begin() + std::ptrdiff_t(j + 1) * nx, z.begin() + std::ptrdiff_t(ny - 1 - j) * nx);
+        std::swap_ranges(z.begin() + std::ptrdiff_t(j) * nx, z.begin() + std::ptrdiff_t(j + 1) * nx,
+                         z.begin() + std::ptrdiff_t(ny - 1 - j) * nx);
 }
 
 Dem read_netcdf_dem(const std::string& path) {
@@ -58,7 +59,10 @@ int read_ascii_header(std::ifstream& in, const std::string& path, std::map<std::
         std::string key, rest;
         double value = 0.0;
         if (!(ss >> key)) continue;
-        if (!std::isalpha(static_cast<unsigned char>(key[0]))) { first_data = line; return lineno; }
+        if (!std::isalpha(static_cast<unsigned char>(key[0]))) {
+            first_data = line;
+            return lineno;
+        }
         if (!(ss >> value) || (ss >> rest)) fail(path, "line " + std::to_string(lineno), "header '" + key + "' needs one number");
         header[lower(key)] = value;
     }
@@ -112,7 +116,8 @@ Dem read_ascii_grid(const std::string& path) {
         ++lineno;
     } while (std::getline(in, line));
     if (d.z.size() != d.grid.size())
-        fail(path, "data", "expected nrows x ncols = " + std::to_string(d.grid.size()) + " values, found " + std::to_string(d.z.size()));
+        fail(path, "data",
+             "expected nrows x ncols = " + std::to_string(d.grid.size()) + " values, found " + std::to_string(d.z.size()));
     flip_rows(d.z, d.grid.nx, d.grid.ny);  // the file lists rows north to south
     return d;
 }
@@ -142,14 +147,16 @@ ScenePoint read_point(const TomlDoc& doc, const TomlTable& t) {
     ScenePoint p{toml_string(doc, t, "name"), toml_string(doc, t, "kind"), toml_number(doc, t, "x"), toml_number(doc, t, "y"),
                  optional_number(doc, t, "heading").value_or(0.0)};
     if (p.kind != "gauge" && p.kind != "start")
-        fail(doc.path, "line " + std::to_string(t.values.at("kind").line), "point kind must be \"gauge\" or \"start\", found \"" + p.kind + "\"");
+        fail(doc.path, "line " + std::to_string(t.values.at("kind").line),
+             "point kind must be \"gauge\" or \"start\", found \"" + p.kind + "\"");
     return p;
 }
 
 Section read_section(const TomlDoc& doc, const TomlTable& t) {
     toml_allow_only(doc, t, {"name", "x", "y_min", "y_max"});
     Section s{toml_string(doc, t, "name"), toml_number(doc, t, "x"), toml_number(doc, t, "y_min"), toml_number(doc, t, "y_max")};
-    if (!(s.y_max > s.y_min)) fail(doc.path, "line " + std::to_string(t.values.at("y_max").line), "section '" + s.name + "': y_max must exceed y_min");
+    if (!(s.y_max > s.y_min))
+        fail(doc.path, "line " + std::to_string(t.values.at("y_max").line), "section '" + s.name + "': y_max must exceed y_min");
     return s;
 }
 
@@ -158,7 +165,8 @@ Region read_region(const TomlDoc& doc, const TomlTable& t) {
     Region r{toml_string(doc, t, "name"), {}};
     const auto xs = toml_numbers(doc, t, "x"), ys = toml_numbers(doc, t, "y");
     if (xs.size() != ys.size() || xs.size() < 3)
-        fail(doc.path, "line " + std::to_string(t.values.at("y").line), "region '" + r.name + "': x and y need the same length, at least 3");
+        fail(doc.path, "line " + std::to_string(t.values.at("y").line),
+             "region '" + r.name + "': x and y need the same length, at least 3");
     for (std::size_t k = 0; k < xs.size(); ++k) r.polygon.push_back({xs[k], ys[k]});
     return r;
 }
@@ -167,7 +175,8 @@ ManningRule read_manning(const TomlDoc& doc, const TomlTable& t) {
     toml_allow_only(doc, t, {"n", "x_min", "x_max", "y_min", "y_max"});
     ManningRule m{toml_number(doc, t, "n"), optional_number(doc, t, "x_min"), optional_number(doc, t, "x_max"),
                   optional_number(doc, t, "y_min"), optional_number(doc, t, "y_max")};
-    if (!(m.n >= 0.0 && m.n < 1.0)) fail(doc.path, "line " + std::to_string(t.values.at("n").line), "Manning n must be in [0, 1) s m^-1/3");
+    if (!(m.n >= 0.0 && m.n < 1.0))
+        fail(doc.path, "line " + std::to_string(t.values.at("n").line), "Manning n must be in [0, 1) s m^-1/3");
     return m;
 }
 
@@ -189,13 +198,25 @@ ImportFeatures read_import_features(const std::string& path, const ImportFeature
     for (const TomlTable& t : doc.tables) {
         const bool first = !seen[t.name];
         seen[t.name] = true;
-        if (t.name.empty()) toml_allow_only(doc, t, {});
-        else if (t.name == "point") { if (first) f.features.points.clear(); f.features.points.push_back(read_point(doc, t)); }
-        else if (t.name == "section") { if (first) f.features.sections.clear(); f.features.sections.push_back(read_section(doc, t)); }
-        else if (t.name == "region") { if (first) f.features.regions.clear(); f.features.regions.push_back(read_region(doc, t)); }
-        else if (t.name == "manning") { if (first) f.manning.clear(); f.manning.push_back(read_manning(doc, t)); }
-        else if (t.name == "buildings") f.buildings = read_buildings(doc, t, defaults.buildings);
-        else fail(path, "line " + std::to_string(t.line), "unknown table '" + t.name + "' (known: [[point]], [[section]], [[region]], [[manning]], [buildings])");
+        if (t.name.empty())
+            toml_allow_only(doc, t, {});
+        else if (t.name == "point") {
+            if (first) f.features.points.clear();
+            f.features.points.push_back(read_point(doc, t));
+        } else if (t.name == "section") {
+            if (first) f.features.sections.clear();
+            f.features.sections.push_back(read_section(doc, t));
+        } else if (t.name == "region") {
+            if (first) f.features.regions.clear();
+            f.features.regions.push_back(read_region(doc, t));
+        } else if (t.name == "manning") {
+            if (first) f.manning.clear();
+            f.manning.push_back(read_manning(doc, t));
+        } else if (t.name == "buildings")
+            f.buildings = read_buildings(doc, t, defaults.buildings);
+        else
+            fail(path, "line " + std::to_string(t.line),
+                 "unknown table '" + t.name + "' (known: [[point]], [[section]], [[region]], [[manning]], [buildings])");
     }
     return f;
 }
@@ -228,7 +249,8 @@ std::vector<double> manning_field(const Grid& g, const std::vector<ManningRule>&
             const double x = g.x(i), y = g.y(j);
             double value = rules.back().n;
             for (const ManningRule& r : rules)
-                if ((!r.x_min || x >= *r.x_min) && (!r.x_max || x < *r.x_max) && (!r.y_min || y >= *r.y_min) && (!r.y_max || y < *r.y_max)) {
+                if ((!r.x_min || x >= *r.x_min) && (!r.x_max || x < *r.x_max) && (!r.y_min || y >= *r.y_min) &&
+                    (!r.y_max || y < *r.y_max)) {
                     value = r.n;
                     break;
                 }
@@ -259,15 +281,17 @@ Scene import_scene(const ImportDef& def) {
     const ImportFeatures defaults = kainan ? kainan_import_features() : ImportFeatures{};
     const ImportFeatures f = def.features_path.empty() ? defaults : read_import_features(def.features_path, defaults);
     Scene s;
-    s.grid = grid_covering(dem.grid.x_min_edge(), dem.grid.x_max_edge(), dem.grid.y_min_edge(), dem.grid.y_max_edge(), def.resolution);
+    s.grid =
+        grid_covering(dem.grid.x_min_edge(), dem.grid.x_max_edge(), dem.grid.y_min_edge(), dem.grid.y_max_edge(), def.resolution);
     s.z = resample(dem.grid, dem.z, s.grid);
     s.manning_n = manning_field(s.grid, f.manning);
     s.building = building_mask(s.grid, s.z, f.buildings);
     apply_features(s, f.features);
     s.title = dem.title.empty() ? "Scene imported from " + std::filesystem::path(def.dem_path).filename().string() : dem.title;
-    s.comment = "Imported by flotsam scene import from " + def.dem_path + " at grid spacing " + std::to_string(def.resolution) +
-                " m; features from " + (def.features_path.empty() ? (kainan ? std::string("the Kainan defaults") : std::string("none"))
-                                                                   : def.features_path);
+    s.comment =
+        "Imported by flotsam scene import from " + def.dem_path + " at grid spacing " + std::to_string(def.resolution) +
+        " m; features from " +
+        (def.features_path.empty() ? (kainan ? std::string("the Kainan defaults") : std::string("none")) : def.features_path);
     s.synthetic = false;
     return s;
 }

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "common/grid.hpp"
-#include "formats/scene.hpp"
 #include "data/kainan_features.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam {
 
@@ -17,7 +17,7 @@ struct Dem {
     Grid grid;
     std::vector<double> z;  // [m], j * nx + i, j = 0 the southern row
     std::string path;
-    std::string title;      // the file's title attribute, if any
+    std::string title;  // the file's title attribute, if any
 };
 
 // Reads `.asc` as an ESRI ASCII grid, anything else as NetCDF with variables x, y and
@@ -38,9 +38,9 @@ struct ManningRule {
 // building counts as ground at still-water level); or, when min_elevation is set,
 // simply z > min_elevation.
 struct BuildingRule {
-    double min_height = 0.03;              // [m] above local ground
-    double window = 0.25;                  // half-width of the ground search square [m]
-    std::optional<double> min_elevation;   // [m] above still water; replaces the above
+    double min_height = 0.03;             // [m] above local ground
+    double window = 0.25;                 // half-width of the ground search square [m]
+    std::optional<double> min_elevation;  // [m] above still water; replaces the above
 };
 
 // Everything a features file can set.
@@ -60,8 +60,8 @@ ImportFeatures read_import_features(const std::string& path, const ImportFeature
 // What to import.
 struct ImportDef {
     std::string dem_path;
-    std::string features_path;   // empty: Kainan defaults when the DEM's extent matches, else none
-    double resolution = 0.02;    // target grid spacing [m]
+    std::string features_path;  // empty: Kainan defaults when the DEM's extent matches, else none
+    double resolution = 0.02;   // target grid spacing [m]
 };
 
 Scene import_scene(const ImportDef& def);

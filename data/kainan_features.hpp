@@ -12,9 +12,9 @@ namespace flotsam {
 
 // The feature tables a scene carries besides its fields.
 struct SceneFeatures {
-    std::vector<ScenePoint> points;   // gauges and debris starts [m, degrees]
-    std::vector<Section> sections;    // north-south passage lines [m]
-    std::vector<Region> regions;      // arrival-count polygons [m]
+    std::vector<ScenePoint> points;  // gauges and debris starts [m, degrees]
+    std::vector<Section> sections;   // north-south passage lines [m]
+    std::vector<Region> regions;     // arrival-count polygons [m]
 };
 
 // Kainan extent (cell edges) [m]: the real file's 1 cm centres -12.36..8.00, -4.00..-0.01.

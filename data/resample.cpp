@@ -38,9 +38,17 @@ std::vector<Weights> axis_weights(int n_from, double c0_from, double d_from, int
             double total = 0.0;
             for (int s = s0; s <= s1; ++s) {
                 const double a = std::max(lo, lo_from + s * d_from), b = std::min(hi, lo_from + (s + 1) * d_from);
-                if (b > a) { w.index.push_back(s); w.weight.push_back(b - a); total += b - a; }
+                if (b > a) {
+                    w.index.push_back(s);
+                    w.weight.push_back(b - a);
+                    total += b - a;
+                }
             }
-            if (total <= 0.0) { w.index = {std::clamp(int(std::floor((c - lo_from) / d_from)), 0, n_from - 1)}; w.weight = {1.0}; continue; }
+            if (total <= 0.0) {
+                w.index = {std::clamp(int(std::floor((c - lo_from) / d_from)), 0, n_from - 1)};
+                w.weight = {1.0};
+                continue;
+            }
             for (double& v : w.weight) v /= total;
         } else {
             const double u = std::clamp((c - c0_from) / d_from, 0.0, double(n_from - 1));
@@ -48,7 +56,10 @@ std::vector<Weights> axis_weights(int n_from, double c0_from, double d_from, int
             const double f = u - s;
             w.index = {s};
             w.weight = {1.0 - f};
-            if (n_from > 1) { w.index.push_back(s + 1); w.weight.push_back(f); }
+            if (n_from > 1) {
+                w.index.push_back(s + 1);
+                w.weight.push_back(f);
+            }
         }
     }
     return out;
@@ -74,7 +85,8 @@ std::vector<double> resample(const Grid& from, const std::vector<double>& field,
     for (int j = 0; j < to.ny; ++j)
         for (int i = 0; i < to.nx; ++i) {
             double s = 0.0;
-            for (std::size_t k = 0; k < wy[j].index.size(); ++k) s += wy[j].weight[k] * rows[std::size_t(wy[j].index[k]) * to.nx + i];
+            for (std::size_t k = 0; k < wy[j].index.size(); ++k)
+                s += wy[j].weight[k] * rows[std::size_t(wy[j].index[k]) * to.nx + i];
             out[to.index(i, j)] = s;
         }
     return out;

@@ -12,13 +12,13 @@ namespace flotsam {
 
 // What to generate. Defaults give the project's default scene.
 struct SceneGenDef {
-    double resolution = 0.04;           // grid spacing [m]
-    std::uint64_t seed = 1;             // building layout seed
-    double lot_build_probability = 0.7; // chance that a lot holds a building [-]
-    double building_height_min = 0.04;  // building height above the local ground [m]
-    double building_height_max = 0.05;  // [m]
-    double quay_clearance = 0.08;       // open ground kept between a building and water [m]
-    double ld_clearance = 0.20;         // open ground around the LD start [m]
+    double resolution = 0.04;            // grid spacing [m]
+    std::uint64_t seed = 1;              // building layout seed
+    double lot_build_probability = 0.7;  // chance that a lot holds a building [-]
+    double building_height_min = 0.04;   // building height above the local ground [m]
+    double building_height_max = 0.05;   // [m]
+    double quay_clearance = 0.08;        // open ground kept between a building and water [m]
+    double ld_clearance = 0.20;          // open ground around the LD start [m]
 };
 
 // The scene and the ground it stands on.

@@ -36,7 +36,8 @@ BodyParams make_body_params(const BodyDef& def, double water_density) {
     positive(def.width, "width");
     positive(def.height, "height");
     positive(def.specific_gravity, "specific gravity");
-    if (def.specific_gravity >= 1.0) fail("body '" + def.name + "'", "specific gravity", "must be below 1 (the model floats the body)");
+    if (def.specific_gravity >= 1.0)
+        fail("body '" + def.name + "'", "specific gravity", "must be below 1 (the model floats the body)");
     if (def.cd1 < 0 || def.cd2 < 0) fail("body '" + def.name + "'", "drag coefficients", "must not be negative");
     if (def.cm < 1.0) fail("body '" + def.name + "'", "cm", "must be at least 1 (Cm = 1 + C_a)");
     if (def.mu < 0) fail("body '" + def.name + "'", "mu", "must not be negative");

@@ -26,61 +26,61 @@ CollisionModel parse_collision_model(const std::string& s);  // "single" | "mult
 AddedMass parse_added_mass(const std::string& s);            // "implicit" | "explicit"
 
 struct BodyDef {
-    std::string name;               // label in outputs (e.g. the scene point "FD")
-    double x = 0.0;                 // initial centre [m]
-    double y = 0.0;                 // initial centre [m]
-    double heading = 0.0;           // long axis from +x, counter-clockwise [rad]
-    double length = 0.25;           // L, along the heading [m]
-    double width = 0.10;            // B [m]
-    double height = 0.10;           // D [m]
-    double specific_gravity = 0.25; // body density / water density [-]
-    double cd1 = 0.8;               // drag coefficient, flow toward a face [-]
-    double cd2 = 0.4;               // drag coefficient, flow leaving a face [-]
-    double cm = 2.0;                // inertia coefficient Cm = 1 + C_a [-]
-    double mu = 0.4;                // Coulomb friction coefficient with the ground [-]
-    double restitution = 0.5;       // e in collisions with obstacles, 0..1 [-]
+    std::string name;                // label in outputs (e.g. the scene point "FD")
+    double x = 0.0;                  // initial centre [m]
+    double y = 0.0;                  // initial centre [m]
+    double heading = 0.0;            // long axis from +x, counter-clockwise [rad]
+    double length = 0.25;            // L, along the heading [m]
+    double width = 0.10;             // B [m]
+    double height = 0.10;            // D [m]
+    double specific_gravity = 0.25;  // body density / water density [-]
+    double cd1 = 0.8;                // drag coefficient, flow toward a face [-]
+    double cd2 = 0.4;                // drag coefficient, flow leaving a face [-]
+    double cm = 2.0;                 // inertia coefficient Cm = 1 + C_a [-]
+    double mu = 0.4;                 // Coulomb friction coefficient with the ground [-]
+    double restitution = 0.5;        // e in collisions with obstacles, 0..1 [-]
     ContactModel contact = ContactModel::local;
     CollisionModel collision = CollisionModel::multi;
     AddedMass added_mass = AddedMass::implicit;
-    bool axis_shift = true;         // LC only: rotate about the contact centroid (paper Eqs. 6-10)
-    int samples_per_face = 4;       // drag sample points along each side face [-]
-    double step_tolerance = 0.2;    // ground higher than the bottom by more than this × draft blocks [-]
+    bool axis_shift = true;       // LC only: rotate about the contact centroid (paper Eqs. 6-10)
+    int samples_per_face = 4;     // drag sample points along each side face [-]
+    double step_tolerance = 0.2;  // ground higher than the bottom by more than this × draft blocks [-]
 };
 BodyDef default_body_def();  // the paper's control case, LC + MC
 
 // Derived once from a BodyDef.
 struct BodyParams {
     BodyDef def;
-    double mass = 0.0;        // m = s.g. ρ L B D [kg]
-    double draft = 0.0;       // d = m / (ρ L B) [m]
-    double inertia = 0.0;     // I = m (L² + B²) / 12 about the vertical axis through the centre [kg m²]
-    double plan_area = 0.0;   // L B [m²]
-    double radius_sq = 0.0;   // (L² + B²) / 12, I / m [m²]
-    double step_height = 0.0; // step_tolerance × draft [m]
+    double mass = 0.0;         // m = s.g. ρ L B D [kg]
+    double draft = 0.0;        // d = m / (ρ L B) [m]
+    double inertia = 0.0;      // I = m (L² + B²) / 12 about the vertical axis through the centre [kg m²]
+    double plan_area = 0.0;    // L B [m²]
+    double radius_sq = 0.0;    // (L² + B²) / 12, I / m [m²]
+    double step_height = 0.0;  // step_tolerance × draft [m]
 };
 BodyParams make_body_params(const BodyDef& def, double water_density);  // throws on bad values
 
 // The per-step state: small, read and written every step.
 struct BodyState {
-    double x = 0.0, y = 0.0;      // centre [m]
-    double theta = 0.0;           // heading [rad]
-    double vx = 0.0, vy = 0.0;    // centre velocity [m/s]
-    double omega = 0.0;           // yaw rate about the centre [rad/s]
-    double pivot_rate = 0.0;      // yaw rate about the contact centroid while the axis is shifted [rad/s]
-    double pivot_ax = 0.0, pivot_ay = 0.0;  // that centroid relative to the centre [m]
-    double torque_prev = 0.0;     // T' of the last step: flow torque without friction [N m]
+    double x = 0.0, y = 0.0;                                // centre [m]
+    double theta = 0.0;                                     // heading [rad]
+    double vx = 0.0, vy = 0.0;                              // centre velocity [m/s]
+    double omega = 0.0;                                     // yaw rate about the centre [rad/s]
+    double pivot_rate = 0.0;                                // yaw rate about the contact centroid while the axis is shifted [rad/s]
+    double pivot_ax = 0.0, pivot_ay = 0.0;                  // that centroid relative to the centre [m]
+    double torque_prev = 0.0;                               // T' of the last step: flow torque without friction [N m]
     double ax_prev = 0.0, ay_prev = 0.0, alpha_prev = 0.0;  // last accelerations, explicit added mass only [m/s², rad/s²]
-    double time = 0.0;            // [s]
-    std::uint8_t flags = 0;       // BodyFlag bits
+    double time = 0.0;                                      // [s]
+    std::uint8_t flags = 0;                                 // BodyFlag bits
 };
 BodyState initial_state(const BodyDef& def, double time);
 
 // Counters over a run, for reports and tests (cold: written only on events).
 struct BodyStats {
     long steps = 0;
-    long collisions = 0;           // steps with at least one obstacle contact
-    long unresolved = 0;           // MC: steps that hit the pass bound with contact left
-    long axis_shifts = 0;          // steps rotated about the contact centroid
+    long collisions = 0;                // steps with at least one obstacle contact
+    long unresolved = 0;                // MC: steps that hit the pass bound with contact left
+    long axis_shifts = 0;               // steps rotated about the contact centroid
     double max_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
 };
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/error.hpp"
 #include "debris/box.hpp"
 #include "debris/collision.hpp"
-#include "common/error.hpp"
 #include "debris/kernels.hpp"
 
 namespace flotsam::debris {
@@ -43,12 +43,12 @@ double bottom_elevation(const ObstacleMap& obstacles, double x, double y, double
 
 // The body's pose and velocities as the fluid force sees them.
 struct Motion {
-    Vec2 centre;              // x_g [m]
-    double theta;             // heading [rad]
-    Vec2 velocity;            // V [m/s]
-    double omega;             // ω about the centre [rad/s]
-    double pivot_rate;        // ω_p about the contact centroid [rad/s]
-    Vec2 pivot_arm;           // that centroid relative to the centre [m]
+    Vec2 centre;        // x_g [m]
+    double theta;       // heading [rad]
+    Vec2 velocity;      // V [m/s]
+    double omega;       // ω about the centre [rad/s]
+    double pivot_rate;  // ω_p about the contact centroid [rad/s]
+    Vec2 pivot_arm;     // that centroid relative to the centre [m]
 };
 
 // The flow's force on the body without friction: inertia ρ V_s Cm Du/Dt at the centre
@@ -57,7 +57,8 @@ struct FluidLoad {
     Vec2 force;
     double torque = 0.0;
 };
-FluidLoad fluid_load(const StepContext& ctx, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged, double t) {
+FluidLoad fluid_load(const StepContext& ctx, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
+                     double t) {
     const BodyDef& def = b.def;
     const double rho = ctx.def.water_density;
     const Box box = Box::make(m.centre, m.theta, def.length, def.width);
@@ -65,7 +66,8 @@ FluidLoad fluid_load(const StepContext& ctx, const BodyParams& b, const Motion& 
     // centre, and rotation about the pivot while the axis is shifted.
     auto point_velocity = [&](Vec2 r) { return m.velocity + spin(m.omega, r) + spin(m.pivot_rate, r - m.pivot_arm); };
     FluidLoad load;
-    load.force = (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
+    load.force =
+        (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
     const int ns = def.samples_per_face;
     for (int face = 0; face < 4; ++face) {
         const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
@@ -151,7 +153,8 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
         if (centre.depth < b.draft)
             patches.push_back({Vec2{}, b.plan_area, friction_capacity(def.mu, 1.0, b.mass, rho, b.plan_area, centre.depth, g)});
     } else {
-        const CellWindow cells = ctx.flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
+        const CellWindow cells =
+            ctx.flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
         if (ctx.flow.min_depth(cells) < b.draft) {  // else no point under the body can be shallower than the draft
             scratch.footprint.clear();
             footprint_patches(box, ctx.obstacles.grid(), scratch.footprint);
@@ -200,10 +203,13 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     if (def.contact == ContactModel::local && def.axis_shift && !patches.empty()) {
         Vec2 r_sub;  // contact-area centroid relative to the centre
         double area = 0.0;
-        for (const auto& p : patches) { r_sub += p.area * p.r; area += p.area; }
+        for (const auto& p : patches) {
+            r_sub += p.area * p.r;
+            area += p.area;
+        }
         r_sub = (1.0 / area) * r_sub;
-        const Vec2 arm = -1.0 * r_sub;                       // centre relative to the axis
-        const double torque_sub = T + cross(arm, F);         // flow force moved to the axis
+        const Vec2 arm = -1.0 * r_sub;                // centre relative to the axis
+        const double torque_sub = T + cross(arm, F);  // flow force moved to the axis
         const double torque_now = (s.flags & flag_pivoting) ? torque_sub : T;
         if (norm(arm) > 1e-9 && s.omega * omega_new <= 0.0 && s.torque_prev * torque_now >= 0.0 && norm(F) <= capacity) {
             shifted = true;
@@ -216,8 +222,8 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
             w = std::fabs(w) <= brake ? 0.0 : w - std::copysign(brake, w);
             pivot_rate = w;
             turn = w * dt;
-            shift = r_sub + rotate(arm, turn);   // x_g* − x_g^n = (x_sub − x_g^n) + R (x_g^n − x_sub)
-            pivot_arm_new = rotate(r_sub, turn); // the axis stays put; seen from the moved centre
+            shift = r_sub + rotate(arm, turn);    // x_g* − x_g^n = (x_sub − x_g^n) + R (x_g^n − x_sub)
+            pivot_arm_new = rotate(r_sub, turn);  // the axis stays put; seen from the moved centre
             if (w != 0.0) ++stats.axis_shifts;
         }
     }

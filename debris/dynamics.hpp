@@ -21,11 +21,11 @@ const char* to_string(Integrator m);
 Integrator parse_integrator(const std::string& s);  // "euler" | "heun"
 
 struct StepDef {
-    double water_density = 1000.0;     // ρw [kg/m³]
-    double gravity = 9.81;             // g [m/s²]
-    double dt_max = 0.01;              // upper bound of the time step [s]
-    double vertex_step_fraction = 0.25; // largest corner displacement per step, in cells [-]
-    int max_collision_passes = 10;     // MC pass bound [-]
+    double water_density = 1000.0;       // ρw [kg/m³]
+    double gravity = 9.81;               // g [m/s²]
+    double dt_max = 0.01;                // upper bound of the time step [s]
+    double vertex_step_fraction = 0.25;  // largest corner displacement per step, in cells [-]
+    int max_collision_passes = 10;       // MC pass bound [-]
     Integrator integrator = Integrator::euler;
 };
 StepDef default_step_def();
@@ -33,9 +33,9 @@ StepDef default_step_def();
 // Working memory of one thread (reused, so steps do not allocate).
 struct StepScratch {
     struct Patch {
-        Vec2 r;                // overlap centroid relative to the centre [m]
-        double area = 0.0;     // S_ij [m²]
-        double capacity = 0.0; // μ (S_ij / LB)(m − ρ L B h_ij) g [N]
+        Vec2 r;                 // overlap centroid relative to the centre [m]
+        double area = 0.0;      // S_ij [m²]
+        double capacity = 0.0;  // μ (S_ij / LB)(m − ρ L B h_ij) g [N]
     };
     std::vector<FootprintPatch> footprint;
     std::vector<Patch> patches;
@@ -50,7 +50,8 @@ struct StepContext {
 
 // One step of length dt from state.time. Returns the largest displacement of a corner
 // by the free motion (before collisions) [m], which the caller checks against the cell.
-double step_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double dt, StepScratch& scratch);
+double step_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double dt,
+                 StepScratch& scratch);
 
 // The step the vertex-speed limit allows at this state [s] (≤ def.dt_max).
 double stable_step(const StepContext& ctx, const BodyParams& body, const BodyState& state);
@@ -61,6 +62,7 @@ double window_pad(const StepContext& ctx, const BodyParams& body);
 
 // Steps the body to t_end. Returns false, early, when the body would need flow outside
 // the reader's loaded window (the caller moves the window and calls again).
-bool advance_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double t_end, StepScratch& scratch);
+bool advance_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double t_end,
+                  StepScratch& scratch);
 
 }  // namespace flotsam::debris

@@ -38,8 +38,9 @@ int find_field(const nc::File& f, const char* standard_name, const char* short_n
         if (!sn || *sn != standard_name) continue;
         if (f.dim_names(v) == std::vector<std::string>{"time", "y", "x"}) return v;
     }
-    fail(f.path(), "", std::string("not a flow file: no variable (time, y, x) with standard_name '") + standard_name + "' (the " +
-                           short_name + " of a stage-one flow)");
+    fail(f.path(), "",
+         std::string("not a flow file: no variable (time, y, x) with standard_name '") + standard_name + "' (the " + short_name +
+             " of a stage-one flow)");
 }
 
 }  // namespace
@@ -55,7 +56,8 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
     if (grid_.nx < 2 || grid_.ny < 2) fail(path, "x, y", "a flow needs at least 2 x 2 cells");
     if (times_.empty()) fail(path, "variable 'time'", "no frames");
     for (std::size_t k = 1; k < times_.size(); ++k)
-        if (!(times_[k] > times_[k - 1])) fail(path, "variable 'time'", "frame times must increase (frame " + std::to_string(k) + ")");
+        if (!(times_[k] > times_[k - 1]))
+            fail(path, "variable 'time'", "frame times must increase (frame " + std::to_string(k) + ")");
     const int vz = file_.var("z");
     if (file_.shape(vz) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)})
         fail(path, "variable 'z'", "shape is not (y, x)");
@@ -134,7 +136,8 @@ void FlowReader::prepare(double t) {
 }
 
 void FlowReader::set_window(const CellWindow& w) {
-    CellWindow c{std::clamp(w.i0, 0, grid_.nx - 2), std::clamp(w.i1, 2, grid_.nx), std::clamp(w.j0, 0, grid_.ny - 2), std::clamp(w.j1, 2, grid_.ny)};
+    CellWindow c{std::clamp(w.i0, 0, grid_.nx - 2), std::clamp(w.i1, 2, grid_.nx), std::clamp(w.j0, 0, grid_.ny - 2),
+                 std::clamp(w.j1, 2, grid_.ny)};
     c.i1 = std::max(c.i1, c.i0 + 2);
     c.j1 = std::max(c.j1, c.j0 + 2);
     if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
@@ -149,17 +152,18 @@ CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) con
     // The bilinear stencil of x uses nodes floor(fx) and floor(fx) + 1.
     const int i0 = int(std::floor((x0 - grid_.x0) / grid_.dx)), i1 = int(std::floor((x1 - grid_.x0) / grid_.dx)) + 2;
     const int j0 = int(std::floor((y0 - grid_.y0) / grid_.dy)), j1 = int(std::floor((y1 - grid_.y0) / grid_.dy)) + 2;
-    return CellWindow{std::clamp(i0, 0, grid_.nx - 2), std::clamp(i1, 2, grid_.nx), std::clamp(j0, 0, grid_.ny - 2), std::clamp(j1, 2, grid_.ny)};
+    return CellWindow{std::clamp(i0, 0, grid_.nx - 2), std::clamp(i1, 2, grid_.nx), std::clamp(j0, 0, grid_.ny - 2),
+                      std::clamp(j1, 2, grid_.ny)};
 }
 
 struct FlowReader::Stencil {
-    std::size_t n[4] = {0, 0, 0, 0};        // node offsets in the window arrays: 00, 10, 01, 11
-    double wx = 0.0, wy = 0.0;              // bilinear weights of the +1 nodes
-    double a = 0.0;                         // linear: weight of frame k+1
-    double inv_dt = 0.0;                    // 1 / frame interval, 0 where the flow is held
+    std::size_t n[4] = {0, 0, 0, 0};               // node offsets in the window arrays: 00, 10, 01, 11
+    double wx = 0.0, wy = 0.0;                     // bilinear weights of the +1 nodes
+    double a = 0.0;                                // linear: weight of frame k+1
+    double inv_dt = 0.0;                           // 1 / frame interval, 0 where the flow is held
     bool cubic[4] = {false, false, false, false};  // node c uses the cubic (it passed the guard)
-    TimeWeights cubic_weights;              // set where the cubic interpolant is on
-    bool inside_x = true, inside_y = true;  // false where the point was clamped to the grid
+    TimeWeights cubic_weights;                     // set where the cubic interpolant is on
+    bool inside_x = true, inside_y = true;         // false where the point was clamped to the grid
 };
 
 FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
@@ -186,7 +190,8 @@ FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
             s.cubic_weights = catmull_rom_time_weights(s.a, s.inv_dt, (t1 - t0) / (t1 - tp), (t1 - t0) / (tn - t0));
             for (int c = 0; c < 4; ++c) {
                 const double h[4] = {h_.role[0][s.n[c]], h_.role[1][s.n[c]], h_.role[2][s.n[c]], h_.role[3][s.n[c]]};
-                s.cubic[c] = cubic_depth_admissible(apply_time_weights(s.cubic_weights.w, h[0], h[1], h[2], h[3]), h, def_.dry_depth);
+                s.cubic[c] =
+                    cubic_depth_admissible(apply_time_weights(s.cubic_weights.w, h[0], h[1], h[2], h[3]), h, def_.dry_depth);
             }
         }
     }

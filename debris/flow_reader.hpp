@@ -41,15 +41,15 @@ FlowReaderDef default_flow_reader_def();
 
 // Depth and velocity at a point.
 struct FlowPoint {
-    double depth = 0.0;   // h [m]
-    double u = 0.0;       // [m/s]
-    double v = 0.0;       // [m/s]
+    double depth = 0.0;  // h [m]
+    double u = 0.0;      // [m/s]
+    double v = 0.0;      // [m/s]
 };
 
 // Plus the material acceleration Du/Dt = ∂u/∂t + (u·∇)u of the same interpolant.
 struct FlowPointAccel : FlowPoint {
-    double du_dt = 0.0;   // [m/s²]
-    double dv_dt = 0.0;   // [m/s²]
+    double du_dt = 0.0;  // [m/s²]
+    double dv_dt = 0.0;  // [m/s²]
 };
 
 // Index ranges [i0, i1) × [j0, j1) of grid cells.
@@ -69,7 +69,7 @@ public:
     const std::vector<double>& frame_times() const { return times_; }
     double start_time() const { return times_.front(); }
     double end_time() const { return times_.back(); }
-    const std::vector<float>& bed() const { return z_; }   // z on the whole grid [m]
+    const std::vector<float>& bed() const { return z_; }  // z on the whole grid [m]
     const std::string& path() const { return file_.path(); }
 
     const FlowReaderDef& def() const { return def_; }

@@ -9,8 +9,8 @@
 namespace flotsam::debris {
 
 struct FootprintPatch {
-    Vec2 centroid;       // centre of the overlap of the footprint with one cell [m]
-    double area = 0.0;   // S_ij [m²]
+    Vec2 centroid;      // centre of the overlap of the footprint with one cell [m]
+    double area = 0.0;  // S_ij [m²]
 };
 
 // Appends one patch per grid cell that overlaps `box` (cells outside the grid are

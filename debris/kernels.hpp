@@ -13,7 +13,11 @@ struct Vec2 {
 inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
 inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
-inline Vec2& operator+=(Vec2& a, Vec2 b) { a.x += b.x; a.y += b.y; return a; }
+inline Vec2& operator+=(Vec2& a, Vec2 b) {
+    a.x += b.x;
+    a.y += b.y;
+    return a;
+}
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 // z-component of a × b.
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
@@ -44,7 +48,8 @@ inline Vec2 face_drag(Vec2 u_rel, Vec2 normal, double area, double cd_toward, do
 // Coulomb friction capacity of a patch of the bottom: μ times its share of the weight
 // less buoyancy. area_fraction = S/(L B); depth: water depth over the patch [m]. Never
 // negative (a patch deeper than the draft carries no load and is not in contact anyway).
-inline double friction_capacity(double mu, double area_fraction, double mass, double rho, double plan_area, double depth, double g) {
+inline double friction_capacity(double mu, double area_fraction, double mass, double rho, double plan_area, double depth,
+                                double g) {
     const double load = (mass - rho * plan_area * depth) * g;
     return load > 0.0 ? mu * area_fraction * load : 0.0;
 }

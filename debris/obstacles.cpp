@@ -51,7 +51,10 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
             ObstacleContact best;
             best.depth = 1e300;
             auto consider = [&](Vec2 n, double pen) {
-                if (pen < best.depth) { best.depth = pen; best.normal = n; }
+                if (pen < best.depth) {
+                    best.depth = pen;
+                    best.normal = n;
+                }
             };
             if (!blocked(i + 1, j, bottom, step_height)) consider({1, 0}, pen_px);
             if (!blocked(i - 1, j, bottom, step_height)) consider({-1, 0}, pen_mx);
@@ -69,9 +72,15 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
             Vec2 sum;
             int count = 0;
             for (const Vec2& p : corners)
-                if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) { sum += p; ++count; }
+                if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
+                    sum += p;
+                    ++count;
+                }
             for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
-                if (box.contains(c + d)) { sum += c + d; ++count; }
+                if (box.contains(c + d)) {
+                    sum += c + d;
+                    ++count;
+                }
             best.point = count ? (1.0 / count) * sum : 0.5 * (box.centre + c);
             out.push_back(best);
         }

@@ -15,9 +15,9 @@
 namespace flotsam::debris {
 
 struct ObstacleContact {
-    Vec2 normal;          // unit, from the obstacle into the body (the direction that separates) [-]
-    double depth = 0.0;   // penetration along normal [m]
-    Vec2 point;           // where the impulse acts [m]
+    Vec2 normal;         // unit, from the obstacle into the body (the direction that separates) [-]
+    double depth = 0.0;  // penetration along normal [m]
+    Vec2 point;          // where the impulse acts [m]
 };
 
 class ObstacleMap {

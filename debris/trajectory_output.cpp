@@ -26,7 +26,8 @@ void record(World& world, TrajectorySeries& series) {
     world.clear_event_flags();
 }
 
-void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series, const TrajectoryFileDef& def) {
+void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series,
+                           const TrajectoryFileDef& def) {
     ensure_parent_dir(path);
     AtomicOutput out(path);
     {

@@ -10,20 +10,21 @@
 namespace flotsam::debris {
 
 struct TrajectorySeries {
-    std::vector<double> time;  // [s]
-    std::vector<Track> tracks; // one per body
+    std::vector<double> time;   // [s]
+    std::vector<Track> tracks;  // one per body
 };
 
 // Appends the bodies' current states at world.time() and clears their event bits.
 void record(World& world, TrajectorySeries& series);
 
 struct TrajectoryFileDef {
-    std::string history;                      // the command line
-    std::string flow_file;                    // the replayed flow
-    std::vector<std::string> start_names;     // per body: the scene point, or "" for --at
+    std::string history;                   // the command line
+    std::string flow_file;                 // the replayed flow
+    std::vector<std::string> start_names;  // per body: the scene point, or "" for --at
 };
 
 // Writes atomically (temporary file, then rename).
-void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series, const TrajectoryFileDef& def);
+void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series,
+                           const TrajectoryFileDef& def);
 
 }  // namespace flotsam::debris

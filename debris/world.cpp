@@ -25,7 +25,8 @@ std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid
 
 World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def)
     : def_(def), flow_(flow_path, def.flow) {
-    if (!building.empty() && building.size() != flow_.grid().size()) fail(flow_path, "building mask", "does not match the flow grid");
+    if (!building.empty() && building.size() != flow_.grid().size())
+        fail(flow_path, "building mask", "does not match the flow grid");
     obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
     time_ = flow_.start_time();
 }

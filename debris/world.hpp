@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "formats/scene.hpp"
 #include "debris/body.hpp"
 #include "debris/dynamics.hpp"
 #include "debris/flow_reader.hpp"
 #include "debris/obstacles.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam::debris {
 

@@ -39,7 +39,8 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
     f.put_att(vz, "positive", std::string("up"));
     f.put_att(vz, "long_name", std::string("bed elevation above still water level, buildings included"));
 
-    const std::size_t cy = std::min<std::size_t>(ny_, std::size_t(def.chunk)), cx = std::min<std::size_t>(nx_, std::size_t(def.chunk));
+    const std::size_t cy = std::min<std::size_t>(ny_, std::size_t(def.chunk)),
+                      cx = std::min<std::size_t>(nx_, std::size_t(def.chunk));
     auto field3 = [&](const char* name, const char* sn, const char* units, const char* ln) {
         const int v = f.def_var(name, NC_FLOAT, {dt, dy, dx});
         f.def_chunking(v, {1, cy, cx});
@@ -90,7 +91,8 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
             f.put_att(v, "coordinates", std::string("gauge_time gauge_x gauge_y gauge_name"));
             return v;
         };
-        geta_ = gauge_var("gauge_eta", "sea_surface_height_above_mean_sea_level", "m", "water level above still water at the gauge (bed level where dry)");
+        geta_ = gauge_var("gauge_eta", "sea_surface_height_above_mean_sea_level", "m",
+                          "water level above still water at the gauge (bed level where dry)");
         gh_ = gauge_var("gauge_h", "", "m", "water depth at the gauge");  // no standard_name: h alone carries it
         gu_ = gauge_var("gauge_u", "", "m s-1", "x velocity at the gauge");
         gv_ = gauge_var("gauge_v", "", "m s-1", "y velocity at the gauge");
@@ -100,7 +102,11 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
         f.enddef();
         std::vector<std::string> names;
         std::vector<double> xs, ys;
-        for (const auto& g2 : def.gauges) { names.push_back(g2.name); xs.push_back(g2.x); ys.push_back(g2.y); }
+        for (const auto& g2 : def.gauges) {
+            names.push_back(g2.name);
+            xs.push_back(g2.x);
+            ys.push_back(g2.y);
+        }
         f.put(gn, names);
         f.put(gx, xs);
         f.put(gy, ys);
@@ -159,7 +165,8 @@ void FlowWriter::write_gauges(std::size_t first, std::size_t count, const std::v
     file_.put_slab(gv_, s, c, v.data());
 }
 
-void FlowWriter::write_summary(const std::vector<float>& max_depth, const std::vector<float>& max_speed, const std::vector<float>& arrival_time) {
+void FlowWriter::write_summary(const std::vector<float>& max_depth, const std::vector<float>& max_speed,
+                               const std::vector<float>& arrival_time) {
     file_.put(maxd_, max_depth);
     file_.put(maxs_, max_speed);
     file_.put(arr_, arrival_time);

@@ -33,15 +33,15 @@ struct FlowGauge {
 };
 
 struct FlowFileDef {
-    Grid window;                             // the grid of the stored fields
-    std::vector<float> z;                    // bed elevation on `window` [m]
-    std::vector<double> frame_times;         // output times [s], all of them, fixed up front
+    Grid window;                      // the grid of the stored fields
+    std::vector<float> z;             // bed elevation on `window` [m]
+    std::vector<double> frame_times;  // output times [s], all of them, fixed up front
     std::vector<FlowGauge> gauges;
-    std::size_t gauge_samples = 0;           // length of the gauge time axis
-    double gauge_interval = 0.05;            // [s]
-    double arrival_depth = 0.025;            // threshold of arrival_time [m]
-    int deflate_level = 1;                   // 0..9; 1 is nearly as small as 9 and much faster
-    int chunk = 64;                          // tile edge of the (1, chunk, chunk) chunks [cells]
+    std::size_t gauge_samples = 0;                  // length of the gauge time axis
+    double gauge_interval = 0.05;                   // [s]
+    double arrival_depth = 0.025;                   // threshold of arrival_time [m]
+    int deflate_level = 1;                          // 0..9; 1 is nearly as small as 9 and much faster
+    int chunk = 64;                                 // tile edge of the (1, chunk, chunk) chunks [cells]
     std::map<std::string, std::string> attributes;  // global attributes (title, history, ...)
 };
 
@@ -57,7 +57,8 @@ public:
     // Gauge samples [first, first + count) for all gauges; arrays are (sample, gauge).
     void write_gauges(std::size_t first, std::size_t count, const std::vector<double>& time, const std::vector<float>& eta,
                       const std::vector<float>& h, const std::vector<float>& u, const std::vector<float>& v);
-    void write_summary(const std::vector<float>& max_depth, const std::vector<float>& max_speed, const std::vector<float>& arrival_time);
+    void write_summary(const std::vector<float>& max_depth, const std::vector<float>& max_speed,
+                       const std::vector<float>& arrival_time);
     void sync() { file_.sync(); }
     void close() { file_.close(); }
 

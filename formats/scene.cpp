@@ -32,9 +32,13 @@ std::vector<double> read_field(const nc::File& f, const std::string& name, const
     const int v = f.var(name);
     const auto shape = f.shape(v);
     if (shape.size() != 2 || shape[0] != std::size_t(g.ny) || shape[1] != std::size_t(g.nx))
-        fail(f.path(), "variable '" + name + "'",
-             "shape must be (y, x) = (" + std::to_string(g.ny) + ", " + std::to_string(g.nx) + "), found " +
-                 [&] { std::string s = "("; for (std::size_t k = 0; k < shape.size(); ++k) s += (k ? ", " : "") + std::to_string(shape[k]); return s + ")"; }());
+        fail(
+            f.path(), "variable '" + name + "'",
+            "shape must be (y, x) = (" + std::to_string(g.ny) + ", " + std::to_string(g.nx) + "), found " + [&] {
+                std::string s = "(";
+                for (std::size_t k = 0; k < shape.size(); ++k) s += (k ? ", " : "") + std::to_string(shape[k]);
+                return s + ")";
+            }());
     const auto dims = f.dim_names(v);
     if (dims[0] != f.dim_names(f.var("y"))[0] || dims[1] != f.dim_names(f.var("x"))[0])
         fail(f.path(), "variable '" + name + "'", "dimensions must be (y, x), found (" + dims[0] + ", " + dims[1] + ")");
@@ -59,22 +63,27 @@ Scene read_scene(const std::string& path) {
         s.manning_n = read_field(f, "manning_n", s.grid);
         for (std::size_t k = 0; k < s.manning_n.size(); ++k)
             if (!(s.manning_n[k] >= 0.0 && s.manning_n[k] < 1.0))
-                fail(path, "variable 'manning_n'", "value " + std::to_string(s.manning_n[k]) + " at flat index " + std::to_string(k) +
-                                                       " is outside [0, 1) s m^-1/3");
+                fail(path, "variable 'manning_n'",
+                     "value " + std::to_string(s.manning_n[k]) + " at flat index " + std::to_string(k) +
+                         " is outside [0, 1) s m^-1/3");
     }
     if (f.has_var("building")) {
         const auto b = read_field(f, "building", s.grid);
         s.building.resize(b.size());
         for (std::size_t k = 0; k < b.size(); ++k) {
             if (b[k] != 0.0 && b[k] != 1.0)
-                fail(path, "variable 'building'", "must be 0 or 1, found " + std::to_string(b[k]) + " at flat index " + std::to_string(k));
+                fail(path, "variable 'building'",
+                     "must be 0 or 1, found " + std::to_string(b[k]) + " at flat index " + std::to_string(k));
             s.building[k] = std::int8_t(b[k]);
         }
     }
     const bool has_eta0 = f.has_var("eta0"), has_u0 = f.has_var("u0"), has_v0 = f.has_var("v0");
     if (has_eta0) s.eta0 = read_field(f, "eta0", s.grid);
     if (has_u0 != has_v0) fail(path, has_u0 ? "variable 'u0'" : "variable 'v0'", "u0 and v0 must be given together");
-    if (has_u0) { s.u0 = read_field(f, "u0", s.grid); s.v0 = read_field(f, "v0", s.grid); }
+    if (has_u0) {
+        s.u0 = read_field(f, "u0", s.grid);
+        s.v0 = read_field(f, "v0", s.grid);
+    }
 
     if (f.has_var("point_name")) {
         const auto names = read_names(f, "point_name");
@@ -84,7 +93,8 @@ Scene read_scene(const std::string& path) {
     }
     if (f.has_var("section_name")) {
         const auto names = read_names(f, "section_name");
-        const auto sx = nc::read_finite(f, "section_x"), s0 = nc::read_finite(f, "section_y_min"), s1 = nc::read_finite(f, "section_y_max");
+        const auto sx = nc::read_finite(f, "section_x"), s0 = nc::read_finite(f, "section_y_min"),
+                   s1 = nc::read_finite(f, "section_y_max");
         for (std::size_t k = 0; k < names.size(); ++k) s.sections.push_back({names[k], sx[k], s0[k], s1[k]});
     }
     if (f.has_var("region_name")) {
@@ -153,18 +163,24 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
             pn = f.def_var("point_name", NC_STRING, {d});
             pk = f.def_var("point_kind", NC_STRING, {d});
             f.put_att(pk, "long_name", std::string("gauge: record a time series; start: a debris start"));
-            px = f.def_var("point_x", NC_DOUBLE, {d}); f.put_att(px, "units", std::string("m"));
-            py = f.def_var("point_y", NC_DOUBLE, {d}); f.put_att(py, "units", std::string("m"));
-            ph = f.def_var("point_heading", NC_DOUBLE, {d}); f.put_att(ph, "units", std::string("degree"));
+            px = f.def_var("point_x", NC_DOUBLE, {d});
+            f.put_att(px, "units", std::string("m"));
+            py = f.def_var("point_y", NC_DOUBLE, {d});
+            f.put_att(py, "units", std::string("m"));
+            ph = f.def_var("point_heading", NC_DOUBLE, {d});
+            f.put_att(ph, "units", std::string("degree"));
             f.put_att(ph, "long_name", std::string("debris long axis from +x, counter-clockwise"));
         }
         int sn = -1, sx = -1, s0 = -1, s1 = -1;
         if (!s.sections.empty()) {
             const int d = f.def_dim("section", s.sections.size());
             sn = f.def_var("section_name", NC_STRING, {d});
-            sx = f.def_var("section_x", NC_DOUBLE, {d}); f.put_att(sx, "units", std::string("m"));
-            s0 = f.def_var("section_y_min", NC_DOUBLE, {d}); f.put_att(s0, "units", std::string("m"));
-            s1 = f.def_var("section_y_max", NC_DOUBLE, {d}); f.put_att(s1, "units", std::string("m"));
+            sx = f.def_var("section_x", NC_DOUBLE, {d});
+            f.put_att(sx, "units", std::string("m"));
+            s0 = f.def_var("section_y_min", NC_DOUBLE, {d});
+            f.put_att(s0, "units", std::string("m"));
+            s1 = f.def_var("section_y_max", NC_DOUBLE, {d});
+            f.put_att(s1, "units", std::string("m"));
         }
         int rn = -1, rs = -1, rc = -1, rx = -1, ry = -1;
         std::vector<int> start, count;
@@ -173,15 +189,20 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
             for (const auto& r : s.regions) {
                 start.push_back(int(vxs.size()));
                 count.push_back(int(r.polygon.size()));
-                for (const auto& p : r.polygon) { vxs.push_back(p[0]); vys.push_back(p[1]); }
+                for (const auto& p : r.polygon) {
+                    vxs.push_back(p[0]);
+                    vys.push_back(p[1]);
+                }
             }
             const int d = f.def_dim("region", s.regions.size());
             const int dv = f.def_dim("region_vertex", vxs.size());
             rn = f.def_var("region_name", NC_STRING, {d});
             rs = f.def_var("region_vertex_start", NC_INT, {d});
             rc = f.def_var("region_vertex_count", NC_INT, {d});
-            rx = f.def_var("region_vertex_x", NC_DOUBLE, {dv}); f.put_att(rx, "units", std::string("m"));
-            ry = f.def_var("region_vertex_y", NC_DOUBLE, {dv}); f.put_att(ry, "units", std::string("m"));
+            rx = f.def_var("region_vertex_x", NC_DOUBLE, {dv});
+            f.put_att(rx, "units", std::string("m"));
+            ry = f.def_var("region_vertex_y", NC_DOUBLE, {dv});
+            f.put_att(ry, "units", std::string("m"));
         }
         f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
         f.put_att(NC_GLOBAL, "title", s.title);
@@ -198,23 +219,48 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         if (vn >= 0) f.put(vn, as_float(s.manning_n));
         if (vb >= 0) f.put(vb, s.building);
         if (ve >= 0) f.put(ve, as_float(s.eta0));
-        if (vu >= 0) { f.put(vu, as_float(s.u0)); f.put(vv, as_float(s.v0)); }
+        if (vu >= 0) {
+            f.put(vu, as_float(s.u0));
+            f.put(vv, as_float(s.v0));
+        }
         if (pn >= 0) {
             std::vector<std::string> names, kinds;
             std::vector<double> x, y, h;
-            for (const auto& p : s.points) { names.push_back(p.name); kinds.push_back(p.kind); x.push_back(p.x); y.push_back(p.y); h.push_back(p.heading_deg); }
-            f.put(pn, names); f.put(pk, kinds); f.put(px, x); f.put(py, y); f.put(ph, h);
+            for (const auto& p : s.points) {
+                names.push_back(p.name);
+                kinds.push_back(p.kind);
+                x.push_back(p.x);
+                y.push_back(p.y);
+                h.push_back(p.heading_deg);
+            }
+            f.put(pn, names);
+            f.put(pk, kinds);
+            f.put(px, x);
+            f.put(py, y);
+            f.put(ph, h);
         }
         if (sn >= 0) {
             std::vector<std::string> names;
             std::vector<double> x, y0, y1;
-            for (const auto& c : s.sections) { names.push_back(c.name); x.push_back(c.x); y0.push_back(c.y_min); y1.push_back(c.y_max); }
-            f.put(sn, names); f.put(sx, x); f.put(s0, y0); f.put(s1, y1);
+            for (const auto& c : s.sections) {
+                names.push_back(c.name);
+                x.push_back(c.x);
+                y0.push_back(c.y_min);
+                y1.push_back(c.y_max);
+            }
+            f.put(sn, names);
+            f.put(sx, x);
+            f.put(s0, y0);
+            f.put(s1, y1);
         }
         if (rn >= 0) {
             std::vector<std::string> names;
             for (const auto& r : s.regions) names.push_back(r.name);
-            f.put(rn, names); f.put(rs, start); f.put(rc, count); f.put(rx, vxs); f.put(ry, vys);
+            f.put(rn, names);
+            f.put(rs, start);
+            f.put(rc, count);
+            f.put(rx, vxs);
+            f.put(ry, vys);
         }
         f.close();
     }

@@ -19,19 +19,19 @@
 namespace flotsam {
 
 struct ScenePoint {
-    std::string name;            // e.g. "WG1", "FD"
-    std::string kind;            // "gauge" (record a time series) or "start" (a debris start)
-    double x = 0.0;              // [m]
-    double y = 0.0;              // [m]
-    double heading_deg = 0.0;    // debris long axis from +x, counter-clockwise [degrees]
+    std::string name;          // e.g. "WG1", "FD"
+    std::string kind;          // "gauge" (record a time series) or "start" (a debris start)
+    double x = 0.0;            // [m]
+    double y = 0.0;            // [m]
+    double heading_deg = 0.0;  // debris long axis from +x, counter-clockwise [degrees]
 };
 
 // A north-south line x = const between y_min and y_max, for passage statistics.
 struct Section {
     std::string name;
-    double x = 0.0;              // [m]
-    double y_min = 0.0;          // [m]
-    double y_max = 0.0;          // [m]
+    double x = 0.0;      // [m]
+    double y_min = 0.0;  // [m]
+    double y_max = 0.0;  // [m]
 };
 
 // A named closed polygon (vertices in order, not repeated), for arrival counts.
@@ -43,18 +43,18 @@ struct Region {
 
 struct Scene {
     Grid grid;
-    std::vector<double> z;                  // bed elevation above still water [m], size grid.size()
-    std::vector<double> manning_n;          // [s m^-1/3]; empty: use the run's default
-    std::vector<std::int8_t> building;      // 1 where a building stands; empty: none marked
-    std::vector<double> eta0, u0, v0;       // initial level [m] and velocity [m/s]; empty: still water
+    std::vector<double> z;              // bed elevation above still water [m], size grid.size()
+    std::vector<double> manning_n;      // [s m^-1/3]; empty: use the run's default
+    std::vector<std::int8_t> building;  // 1 where a building stands; empty: none marked
+    std::vector<double> eta0, u0, v0;   // initial level [m] and velocity [m/s]; empty: still water
     std::vector<ScenePoint> points;
     std::vector<Section> sections;
     std::vector<Region> regions;
     std::string title;
     std::string source;
     std::string comment;
-    bool synthetic = false;                 // generated analogue, not a measured layout
-    std::string path;                       // the file it was read from (for messages)
+    bool synthetic = false;  // generated analogue, not a measured layout
+    std::string path;        // the file it was read from (for messages)
 
     const ScenePoint* find_point(const std::string& name) const;
 };

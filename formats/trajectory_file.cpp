@@ -37,9 +37,10 @@ TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime) {
     f.put_att(vars.status, "flag_masks",
               std::vector<std::int8_t>{flag_released, flag_moving, flag_grounded, flag_colliding, flag_pivoting});
     f.put_att(vars.status, "flag_meanings", std::string("released moving grounded colliding pivoting"));
-    f.put_att(vars.status, "comment",
-              std::string("released: the depth at the centre has exceeded the draft; grounded: friction acts; colliding: touched an "
-                          "obstacle since the previous output; pivoting: rotating about the contact centroid (axis shift)"));
+    f.put_att(
+        vars.status, "comment",
+        std::string("released: the depth at the centre has exceeded the draft; grounded: friction acts; colliding: touched an "
+                    "obstacle since the previous output; pivoting: rotating about the contact centroid (axis shift)"));
     f.put_att(vars.status, "coordinates", std::string("time x y"));
     return vars;
 }

@@ -24,12 +24,18 @@ LevelMode parse_level_mode(const std::string& s, const std::string& option) {
 
 const char* to_string(BoundaryKind k) {
     switch (k) {
-        case BoundaryKind::wall: return "wall";
-        case BoundaryKind::transmissive: return "transmissive";
-        case BoundaryKind::level: return "level";
-        case BoundaryKind::discharge: return "discharge";
-        case BoundaryKind::pump: return "pump";
-        case BoundaryKind::nested: return "nested";
+        case BoundaryKind::wall:
+            return "wall";
+        case BoundaryKind::transmissive:
+            return "transmissive";
+        case BoundaryKind::level:
+            return "level";
+        case BoundaryKind::discharge:
+            return "discharge";
+        case BoundaryKind::pump:
+            return "pump";
+        case BoundaryKind::nested:
+            return "nested";
     }
     return "?";
 }
@@ -68,7 +74,10 @@ void discharge_ghost(double h_in, double un_in, double q_in, double g, double dr
         const double f = q_in / h - 2.0 * std::sqrt(g * h) - target;
         const double df = -q_in / (h * h) - std::sqrt(g / h);
         const double next = std::max(0.5 * h, h - f / df);
-        if (std::abs(next - h) < 1e-12 * h) { h = next; break; }
+        if (std::abs(next - h) < 1e-12 * h) {
+            h = next;
+            break;
+        }
         h = next;
     }
     h_out = std::max(h, critical);  // stay subcritical at the inflow
@@ -90,7 +99,8 @@ Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, cons
     for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
         const BoundaryDef& b = def(s);
         if (b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) {
-            if (b.series_file.empty()) fail("", std::string("boundary ") + to_string(b.kind), "needs a series file (time,value CSV)");
+            if (b.series_file.empty())
+                fail("", std::string("boundary ") + to_string(b.kind), "needs a series file (time,value CSV)");
             series_[int(s)] = read_time_series_csv(b.series_file);
         }
         if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");

@@ -37,12 +37,12 @@ enum class LevelMode {
 
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
-    std::string series_file;                  // CSV time,value for level / discharge
+    std::string series_file;  // CSV time,value for level / discharge
     LevelMode level_mode = LevelMode::total;
-    double pump_discharge = 0.0175;           // [m^3/s] mass source while pumping (half the flume pump)
-    double pump_stop = 300.0;                 // [s] end of pumping
-    double pump_relax_time = 50.0;            // [s] e-folding time of the level after pumping
-    double pump_length = 0.2;                 // [m] width of the strip of source cells along the side
+    double pump_discharge = 0.0175;  // [m^3/s] mass source while pumping (half the flume pump)
+    double pump_stop = 300.0;        // [s] end of pumping
+    double pump_relax_time = 50.0;   // [s] e-folding time of the level after pumping
+    double pump_length = 0.2;        // [m] width of the strip of source cells along the side
 };
 
 // Ghost values handed to a `nested` side: layer 1 (next to the edge) then layer 2, each
@@ -66,7 +66,7 @@ void discharge_ghost(double h_in, double un_in, double q_in, double g, double dr
 struct SideForcing {
     BoundaryKind kind = BoundaryKind::wall;  // never pump
     LevelMode mode = LevelMode::incident;
-    double given = 0.0;                      // level [m], or discharge per unit length of the side [m^2/s]
+    double given = 0.0;  // level [m], or discharge per unit length of the side [m^2/s]
 };
 
 // The state (depth h_out, inward velocity un_out) at an open side of kind level or
@@ -98,15 +98,18 @@ public:
     const std::vector<std::array<int, 2>>& pump_cells() const { return pump_cells_; }
     double pump_rate(double t) const;
     double pump_level_at_stop() const { return pump_level_at_stop_; }
-    void set_pump_level_at_stop(double v) { pump_level_at_stop_ = v; pump_stopped_ = true; }
+    void set_pump_level_at_stop(double v) {
+        pump_level_at_stop_ = v;
+        pump_stopped_ = true;
+    }
 
 private:
     std::array<BoundaryDef, 4> sides_;
-    std::array<TimeSeries, 4> series_;           // level [m] or discharge [m^3/s], where used
-    std::array<double, 4> length_{};             // [m] of each side
+    std::array<TimeSeries, 4> series_;  // level [m] or discharge [m^3/s], where used
+    std::array<double, 4> length_{};    // [m] of each side
     std::vector<std::array<int, 2>> pump_cells_;
-    double pump_area_ = 0.0;                     // [m^2]
-    double pump_level_at_stop_ = 0.0;            // [m]
+    double pump_area_ = 0.0;           // [m^2]
+    double pump_level_at_stop_ = 0.0;  // [m]
     bool pump_stopped_ = false;
 };
 

@@ -24,10 +24,12 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const L
     : grid_(scene.grid), def_(def), lf_(leapfrog), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
     for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north})
         if (b->kind == BoundaryKind::nested)
-            fail("", "--scheme leapfrog", "nested grids (--nest-ratio > 1) are written for the finite-volume scheme: use --scheme fv with "
-                                          "--nest-ratio, or --nest-ratio 1 with --scheme leapfrog");
+            fail("", "--scheme leapfrog",
+                 "nested grids (--nest-ratio > 1) are written for the finite-volume scheme: use --scheme fv with "
+                 "--nest-ratio, or --nest-ratio 1 with --scheme leapfrog");
     if (!(leapfrog.courant > 0.0)) fail("", "--courant", "must be positive");
-    if (!def.study_past_stability_limit && leapfrog.courant > 1.0) fail("", "--courant", "must be at most 1 (the leap-frog's linear stability limit)");
+    if (!def.study_past_stability_limit && leapfrog.courant > 1.0)
+        fail("", "--courant", "must be at most 1 (the leap-frog's linear stability limit)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     const int nx = grid_.nx, ny = grid_.ny;
     stride_ = std::size_t(nx + 2);
@@ -107,7 +109,8 @@ void LeapfrogSolver::boundary_faces(double t) {
         const std::vector<double>& vel = xs ? u_ : v_;
         const int n_along = xs ? ny : nx;
         // Neighbours along the inward normal: ghost - edge, faces at the side and inside.
-        const std::ptrdiff_t inward = xs ? (s == Side::west ? 1 : -1) : (s == Side::south ? std::ptrdiff_t(stride_) : -std::ptrdiff_t(stride_));
+        const std::ptrdiff_t inward =
+            xs ? (s == Side::west ? 1 : -1) : (s == Side::south ? std::ptrdiff_t(stride_) : -std::ptrdiff_t(stride_));
         for (int k = 0; k < n_along; ++k) {
             const std::size_t edge = edge_cell(s, k);
             const std::size_t ghost = edge - inward;
@@ -163,10 +166,12 @@ void LeapfrogSolver::momentum(double dt) {
 #pragma omp simd
             for (int i = 1; i < nx; ++i) {  // interior x-faces: cells L = p - 1, R = p
                 const std::size_t p = p0 + std::size_t(i), l = p - 1;
-                const double inflow = momentum_inflow(0.5 * (m[l] + m[p]), u[l], 0.5 * (m[p] + m[p + 1]), u[p + 1], u[p]) * idx +
-                                      momentum_inflow(0.5 * (n[l] + n[p]), u[p - s], 0.5 * (n[l + s] + n[p + s]), u[p + s], u[p]) * idy;
+                const double inflow =
+                    momentum_inflow(0.5 * (m[l] + m[p]), u[l], 0.5 * (m[p] + m[p + 1]), u[p + 1], u[p]) * idx +
+                    momentum_inflow(0.5 * (n[l] + n[p]), u[p - s], 0.5 * (n[l + s] + n[p + s]), u[p + s], u[p]) * idy;
                 const double v_mean = 0.25 * (v[l] + v[p] + v[l + s] + v[p + s]);
-                u_new[p] = face_step(u[p], v_mean, h[l], z[l], h[p], z[p], 0.5 * (gn2[l] + gn2[p]), dx, inflow, g, dt, dry, m_new[p]);
+                u_new[p] =
+                    face_step(u[p], v_mean, h[l], z[l], h[p], z[p], 0.5 * (gn2[l] + gn2[p]), dx, inflow, g, dt, dry, m_new[p]);
             }
         }
         if (j == 0 || j == ny) continue;
@@ -257,9 +262,10 @@ void LeapfrogSolver::continuity(double dt) {
             for (int i = 0; i < nx; ++i)
                 if (cell_courant(at(i, j)) >= courant) wi = i, wj = j;
         fail("", "--courant",
-             "the leap-frog step of " + std::to_string(dt_) + " s reached Courant number " + std::to_string(courant) + " > 1 at t = " +
-                 std::to_string(time_ + dt) + " s, x = " + std::to_string(grid_.x(wi)) + " m, y = " + std::to_string(grid_.y(wj)) +
-                 " m (depth " + std::to_string(depth(wi, wj)) + " m): the water got deeper or faster than the step was chosen for; "
+             "the leap-frog step of " + std::to_string(dt_) + " s reached Courant number " + std::to_string(courant) +
+                 " > 1 at t = " + std::to_string(time_ + dt) + " s, x = " + std::to_string(grid_.x(wi)) +
+                 " m, y = " + std::to_string(grid_.y(wj)) + " m (depth " + std::to_string(depth(wi, wj)) +
+                 " m): the water got deeper or faster than the step was chosen for; "
                  "lower --courant");
     }
 }

@@ -76,8 +76,8 @@ namespace flotsam::hydro {
 struct LeapfrogDef {
     // Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), with
     // h_max the deepest water at the start (and of a level boundary). Linear limit: 1.
-    double courant = 0.7;           // [-]
-    double step_divides = 0.0;      // [s] shorten the step to divide this (the output interval); 0: no
+    double courant = 0.7;       // [-]
+    double step_divides = 0.0;  // [s] shorten the step to divide this (the output interval); 0: no
 };
 LeapfrogDef default_leapfrog_def();
 
@@ -149,10 +149,10 @@ private:
     // columns of v_ copy the edge (tangential zero gradient, a slip wall).
     std::vector<double> h_, u_, v_, m_, n_;
     std::vector<double> u_new_, v_new_, m_new_, n_new_;  // the step's new values
-    std::vector<double> factor_;               // outflow factor per cell (1 in ghosts)
+    std::vector<double> factor_;                         // outflow factor per cell (1 in ghosts)
     // Cold data.
-    std::vector<double> z_;                    // bed [m]; ghosts copy the edge
-    std::vector<double> g_n2_;                 // g n^2 per cell
+    std::vector<double> z_;                          // bed [m]; ghosts copy the edge
+    std::vector<double> g_n2_;                       // g n^2 per cell
     std::array<std::vector<double>, 4> rest_depth_;  // initial depth of each side's edge cells [m] (transmissive sides)
 };
 

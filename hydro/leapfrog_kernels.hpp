@@ -50,8 +50,8 @@ inline double momentum_inflow(double q_behind, double u_behind, double q_ahead, 
 // so friction only slows a face and never reverses it, however thin the film. A closed
 // face (face_open) or one whose mean depth is dry gets u_new = 0. Returns u_new [m/s];
 // `discharge` [m^2/s] gets upstream_depth(u_new) u_new.
-inline double face_step(double u, double u_across, double hL, double zL, double hR, double zR, double g_n2, double spacing, double inflow,
-                        double g, double dt, double dry_depth, double& discharge) {
+inline double face_step(double u, double u_across, double hL, double zL, double hR, double zR, double g_n2, double spacing,
+                        double inflow, double g, double dt, double dry_depth, double& discharge) {
     const double h_mean = 0.5 * (hL + hR);
     const double h = h_mean > dry_depth ? h_mean : 1.0;  // keeps the arithmetic finite; the result is 0 there
     const double y = inverse_cube_root(h), y2 = y * y;

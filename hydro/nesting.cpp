@@ -15,7 +15,8 @@ constexpr int kLayers = 2;  // ghost layers of hydro::Solver
 int snapped_interface(const Scene& s, const NestDef& n) {
     if (n.ratio < 2) fail(s.path, "--nest-ratio", "must be 2 or more for a nested run");
     if (s.grid.ny % n.ratio != 0)
-        fail(s.path, "--nest-ratio", "the scene's " + std::to_string(s.grid.ny) + " rows are not a multiple of " + std::to_string(n.ratio));
+        fail(s.path, "--nest-ratio",
+             "the scene's " + std::to_string(s.grid.ny) + " rows are not a multiple of " + std::to_string(n.ratio));
     const int i = int(std::floor((n.x - s.grid.x_min_edge()) / s.grid.dx + 1e-9));
     const int snapped = (i / n.ratio) * n.ratio;
     if (snapped < 2 * n.ratio || s.grid.nx - snapped < 2 * n.ratio)

@@ -29,8 +29,8 @@
 namespace flotsam::hydro {
 
 struct NestDef {
-    double x = -2.0;   // interface [m]; moved west to the nearest multiple of `ratio` cells
-    int ratio = 1;     // coarse spacing / scene spacing (2, 3, 4 ...); 1: one uniform grid, no nesting
+    double x = -2.0;  // interface [m]; moved west to the nearest multiple of `ratio` cells
+    int ratio = 1;    // coarse spacing / scene spacing (2, 3, 4 ...); 1: one uniform grid, no nesting
 };
 NestDef default_nest_def();
 
@@ -48,7 +48,7 @@ public:
 
     double time() const { return time_; }
     void set_time(double t);
-    const Grid& grid() const { return grid_; }     // the scene's grid (output, gauges)
+    const Grid& grid() const { return grid_; }  // the scene's grid (output, gauges)
     const SolverDef& def() const { return def_; }
     SolverStats stats() const;
     double volume() const { return coarse_.volume() + fine_.volume(); }
@@ -86,7 +86,7 @@ private:
     Grid grid_;
     SolverDef def_;
     int ratio_ = 1, i_nest_ = 0;
-    std::vector<double> z_;   // scene bed [m]
+    std::vector<double> z_;  // scene bed [m]
     Solver coarse_, fine_;
     double time_ = 0.0;
     double cell_updates_ = 0.0;

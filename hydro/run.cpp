@@ -110,7 +110,11 @@ public:
     void flush(FlowWriter& w) {
         w.write_gauges(flushed_, time_.size(), time_, eta_, h_, u_, v_);
         flushed_ += time_.size();
-        time_.clear(); eta_.clear(); h_.clear(); u_.clear(); v_.clear();
+        time_.clear();
+        eta_.clear();
+        h_.clear();
+        u_.clear();
+        v_.clear();
     }
     std::size_t next() const { return next_; }
     void resume_at(std::size_t next) { next_ = flushed_ = next; }
@@ -156,8 +160,9 @@ void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
 
 // The maxima and arrival times of one row of cells, given their depth and velocities.
 // Out of line and branch-free: it runs after every step, so it must vectorise.
-[[gnu::noinline]] void accumulate_row(std::size_t n, const double* h, const double* u, const double* v, double t, double arrival_depth,
-                                      float* __restrict max_depth, float* __restrict max_speed, float* __restrict arrival) {
+[[gnu::noinline]] void accumulate_row(std::size_t n, const double* h, const double* u, const double* v, double t,
+                                      double arrival_depth, float* __restrict max_depth, float* __restrict max_speed,
+                                      float* __restrict arrival) {
     const float fill = float(kFill), arrival_time = float(t);
 #pragma omp simd
     for (std::size_t i = 0; i < n; ++i) {
@@ -191,7 +196,9 @@ struct Checkpoint {
 };
 
 // The conserved state of a solver, as arrays: h, hu, hv of each grid (padded layout).
-std::vector<std::vector<double>*> state_arrays(Solver& s) { return {&s.depth_data(), &s.x_discharge_data(), &s.y_discharge_data()}; }
+std::vector<std::vector<double>*> state_arrays(Solver& s) {
+    return {&s.depth_data(), &s.x_discharge_data(), &s.y_discharge_data()};
+}
 std::vector<std::vector<double>*> state_arrays(NestedSolver& s) { return s.state_arrays(); }
 std::vector<std::vector<double>*> state_arrays(LeapfrogSolver& s) { return s.state_arrays(); }
 
@@ -207,7 +214,8 @@ void write_checkpoint(const std::string& path, S& s, const Summary& sum, const C
             vs.push_back(f.def_var("state_" + std::to_string(k), NC_DOUBLE, {d}));
         }
         const int dw = f.def_dim("window_cell", sum.max_depth.size());
-        const int vmd = f.def_var("max_depth", NC_FLOAT, {dw}), vms = f.def_var("max_speed", NC_FLOAT, {dw}), va = f.def_var("arrival_time", NC_FLOAT, {dw});
+        const int vmd = f.def_var("max_depth", NC_FLOAT, {dw}), vms = f.def_var("max_speed", NC_FLOAT, {dw}),
+                  va = f.def_var("arrival_time", NC_FLOAT, {dw});
         f.put_att(NC_GLOBAL, "time", c.time);
         f.put_att(NC_GLOBAL, "steps", double(c.steps));
         f.put_att(NC_GLOBAL, "next_frame", double(c.next_frame));
@@ -247,7 +255,8 @@ Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     for (std::size_t k = 0; k < arrays.size(); ++k) {
         const std::string name = "state_" + std::to_string(k);
         auto v = f.get_double(f.var(name));
-        if (v.size() != arrays[k]->size()) fail(path, "variable '" + name + "'", "size does not match this scene's grid and solver");
+        if (v.size() != arrays[k]->size())
+            fail(path, "variable '" + name + "'", "size does not match this scene's grid and solver");
         *arrays[k] = std::move(v);
     }
     sum.max_depth = f.get_float(f.var("max_depth"));
@@ -272,7 +281,6 @@ std::string boundary_checksums(const SolverDef& d) {
     return s;
 }
 
-
 // Processor time of this process, all threads [s].
 double cpu_seconds() {
     timespec t{};
@@ -289,12 +297,14 @@ std::string scheme_description(const Solver& s) {
            (s.def().friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
 }
 std::string scheme_description(const LeapfrogSolver& s) {
-    return "staggered C-grid, leap-frog, first-order upwind momentum advection, semi-implicit Manning, outflow limiter; fixed step " +
+    return "staggered C-grid, leap-frog, first-order upwind momentum advection, semi-implicit Manning, outflow limiter; fixed "
+           "step " +
            std::to_string(s.stable_dt()) + " s (Courant " + std::to_string(s.leapfrog_def().courant) + ")";
 }
 std::string scheme_description(const NestedSolver& s) {
     return scheme_description(s.coarse()) + "; nested: " + std::to_string(s.coarse().grid().dx) +
-           " m west of x = " + std::to_string(s.grid().x_min_edge() + s.interface_column() * s.grid().dx) + " m, sub-cycled, refluxed";
+           " m west of x = " + std::to_string(s.grid().x_min_edge() + s.interface_column() * s.grid().dx) +
+           " m, sub-cycled, refluxed";
 }
 
 template <class S>
@@ -313,14 +323,16 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     sum.max_speed.assign(win.grid.size(), 0.0f);
     sum.arrival.assign(win.grid.size(), float(kFill));
 
-    const std::string config_sha = sha256_hex(run.config_text + "\n" + sha256_file(run.scene_file) + "\n" + boundary_checksums(solver_def));
+    const std::string config_sha =
+        sha256_hex(run.config_text + "\n" + sha256_file(run.scene_file) + "\n" + boundary_checksums(solver_def));
     AtomicOutput out(run.out_file);
     const std::string ckpt = checkpoint_path(run.out_file);
     std::optional<FlowWriter> writer;
     Checkpoint state;
     if (run.restart) {
         if (!std::filesystem::exists(ckpt)) fail(ckpt, "", "no checkpoint to restart from");
-        if (!std::filesystem::exists(out.temp_path())) fail(out.temp_path(), "", "the partial output of the interrupted run is missing");
+        if (!std::filesystem::exists(out.temp_path()))
+            fail(out.temp_path(), "", "the partial output of the interrupted run is missing");
         state = read_checkpoint(ckpt, solver, sum);
         if (state.config_sha != config_sha)
             fail(ckpt, "", "was written with other settings, scene or boundary files; rerun without --restart");
@@ -333,7 +345,8 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         fd.window = win.grid;
         fd.z.resize(win.grid.size());
         for (int j = win.j0; j <= win.j1; ++j)
-            for (int i = win.i0; i <= win.i1; ++i) fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+            for (int i = win.i0; i <= win.i1; ++i)
+                fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
         fd.frame_times = times;
         fd.gauges = gauge_points;
         fd.gauge_samples = gauges.samples();
@@ -362,7 +375,9 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     RunResult res;
     const auto wall0 = std::chrono::steady_clock::now();
     const double cpu0 = cpu_seconds();
-    double next_checkpoint = run.checkpoint_interval > 0.0 ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval : 1e300;
+    double next_checkpoint = run.checkpoint_interval > 0.0
+                                 ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval
+                                 : 1e300;
     long steps = state.steps;
     auto before = gauges.read(solver);
     bool stopped = false;
@@ -398,7 +413,10 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
             state.config_sha = config_sha;
             write_checkpoint(ckpt, solver, sum, state);
             next_checkpoint += run.checkpoint_interval;
-            if (run.stop_after >= 0.0 && t1 >= run.stop_after) { stopped = true; break; }
+            if (run.stop_after >= 0.0 && t1 >= run.stop_after) {
+                stopped = true;
+                break;
+            }
         }
         progress.update(t1, dt, steps);
     }
@@ -440,8 +458,9 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
         if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
     if (run.scheme == Scheme::leapfrog) {
         if (run.nest.ratio > 1)
-            fail("", "--nest-ratio", "nested grids are written for the finite-volume scheme: use --scheme fv with --nest-ratio " +
-                                         std::to_string(run.nest.ratio) + ", or --scheme leapfrog with --nest-ratio 1");
+            fail("", "--nest-ratio",
+                 "nested grids are written for the finite-volume scheme: use --scheme fv with --nest-ratio " +
+                     std::to_string(run.nest.ratio) + ", or --scheme leapfrog with --nest-ratio 1");
         LeapfrogDef lf = run.leapfrog;
         lf.step_divides = run.output_interval;
         LeapfrogSolver solver(scene, solver_def, lf);
@@ -456,4 +475,3 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
 }
 
 }  // namespace flotsam::hydro
-

@@ -22,38 +22,38 @@ Scheme parse_scheme(const std::string& s, const std::string& option);  // "fv" |
 struct RunDef {
     std::string scene_file;
     std::string out_file;
-    double duration = 420.0;                 // [s] simulated time
-    double output_interval = 1.0;            // [s] between stored frames
+    double duration = 420.0;                      // [s] simulated time
+    double output_interval = 1.0;                 // [s] between stored frames
     std::optional<std::array<double, 4>> window;  // x_min, x_max, y_min, y_max [m] of stored frames
-    double gauge_interval = 0.05;            // [s] between gauge samples
-    std::vector<FlowGauge> gauges;           // added to the scene's gauge points
+    double gauge_interval = 0.05;                 // [s] between gauge samples
+    std::vector<FlowGauge> gauges;                // added to the scene's gauge points
     Scheme scheme = Scheme::finite_volume;
     LeapfrogDef leapfrog = default_leapfrog_def();  // --scheme leapfrog only; its step divides output_interval
-    NestDef nest = default_nest_def();       // ratio > 1: coarse grid in the flume (hydro/nesting.hpp); fv only
-    double arrival_depth = 0.025;            // [m] threshold of the arrival-time map (the draft)
-    double checkpoint_interval = 0.0;        // [s] simulated time between checkpoints; 0: none
-    bool restart = false;                    // continue from <out>.checkpoint.nc
-    double stop_after = -1.0;                // [s] stop (as if interrupted) once past this time; < 0: never
-    int realisation = -1;                    // boundary realisation id, recorded in the file
-    int deflate_level = 1;                   // 0..9
-    std::string command_line;                // for `history`
-    std::string config_text;                 // effective configuration (TOML), for `flotsam_config`
-    std::string label = "hydro";             // progress label
+    NestDef nest = default_nest_def();              // ratio > 1: coarse grid in the flume (hydro/nesting.hpp); fv only
+    double arrival_depth = 0.025;                   // [m] threshold of the arrival-time map (the draft)
+    double checkpoint_interval = 0.0;               // [s] simulated time between checkpoints; 0: none
+    bool restart = false;                           // continue from <out>.checkpoint.nc
+    double stop_after = -1.0;                       // [s] stop (as if interrupted) once past this time; < 0: never
+    int realisation = -1;                           // boundary realisation id, recorded in the file
+    int deflate_level = 1;                          // 0..9
+    std::string command_line;                       // for `history`
+    std::string config_text;                        // effective configuration (TOML), for `flotsam_config`
+    std::string label = "hydro";                    // progress label
     bool quiet = false;
 };
 
 struct RunResult {
-    bool completed = false;                  // false when stopped by stop_after
+    bool completed = false;  // false when stopped by stop_after
     long steps = 0;
-    double simulated = 0.0;                  // [s]
-    double wall_seconds = 0.0;               // stepping only, excluding setup (with the per-step
-                                             // maxima, gauges, frames and checkpoints)
-    double cpu_seconds = 0.0;                // processor time of the same, all threads [s]
-    double cell_updates_per_second = 0.0;    // interior cells x steps / wall_seconds
-    double dry_skipped_fraction = 0.0;       // of the cell updates, skipped as dry land (solver.hpp)
+    double simulated = 0.0;                       // [s]
+    double wall_seconds = 0.0;                    // stepping only, excluding setup (with the per-step
+                                                  // maxima, gauges, frames and checkpoints)
+    double cpu_seconds = 0.0;                     // processor time of the same, all threads [s]
+    double cell_updates_per_second = 0.0;         // interior cells x steps / wall_seconds
+    double dry_skipped_fraction = 0.0;            // of the cell updates, skipped as dry land (solver.hpp)
     double volume_start = 0.0, volume_end = 0.0;  // [m^3]
     long negative_depth_fixes = 0;
-    long outflow_limits = 0;                 // leap-frog: cell-steps whose outflow was scaled down
+    long outflow_limits = 0;  // leap-frog: cell-steps whose outflow was scaled down
     std::size_t file_bytes = 0;
 };
 

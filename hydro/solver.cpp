@@ -97,14 +97,17 @@ Solver::Solver(const Scene& scene, const SolverDef& def)
 
 const BoundaryDef& Solver::boundary(Side s) const {
     switch (s) {
-        case Side::west: return def_.west;
-        case Side::east: return def_.east;
-        case Side::south: return def_.south;
-        case Side::north: return def_.north;
+        case Side::west:
+            return def_.west;
+        case Side::east:
+            return def_.east;
+        case Side::south:
+            return def_.south;
+        case Side::north:
+            return def_.north;
     }
     return def_.west;
 }
-
 
 double Solver::volume() const {
     double v = 0.0;  // serial: the same sum whatever the thread count
@@ -118,7 +121,7 @@ void Solver::state_row(int j, int i0, int i1, double* __restrict h, double* __re
     const double* qx = hu_.data() + at(i0, j);
     const double* qy = hv_.data() + at(i0, j);
     const double dry = def_.dry_depth;
-    #pragma omp simd
+#pragma omp simd
     for (int k = 0; k < i1 - i0; ++k) {
         h[k] = depth[k];
         u[k] = velocity(depth[k], qx[k], dry);
@@ -158,7 +161,8 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
     const int n_along = xs ? grid_.ny : grid_.nx;
     if (kind == BoundaryKind::nested) {
         const NestedGhosts& ng = nested_[s == Side::west ? 0 : 1];
-        if (ng.a.h.size() != std::size_t(kGhost * n_along)) fail("", "boundary nested", "ghost values were not set before stepping");
+        if (ng.a.h.size() != std::size_t(kGhost * n_along))
+            fail("", "boundary nested", "ghost values were not set before stepping");
         const double w = ng.t1 > ng.t0 ? std::clamp((t - ng.t0) / (ng.t1 - ng.t0), 0.0, 1.0) : 0.0;
         for (int layer = 1; layer <= kGhost; ++layer)
             for (int k = 0; k < n_along; ++k) {
@@ -211,7 +215,8 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
                     break;
                 }
                 case BoundaryKind::pump:
-                case BoundaryKind::nested: break;  // resolved above
+                case BoundaryKind::nested:
+                    break;  // resolved above
             }
         }
     }
@@ -289,9 +294,9 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 // Row pointers below point at padded column 0 of their row; ranges are interior columns.
 
 // eta = h + z, and velocities (zero where dry).
-[[gnu::noinline]] void primitives_row(const Sweep& s, ColumnRange cols, const double* h, const double* hu, const double* hv, const double* z,
-                    double* __restrict eta, double* __restrict u, double* __restrict v) {
-    #pragma omp simd
+[[gnu::noinline]] void primitives_row(const Sweep& s, ColumnRange cols, const double* h, const double* hu, const double* hv,
+                                      const double* z, double* __restrict eta, double* __restrict u, double* __restrict v) {
+#pragma omp simd
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         eta[c] = h[c] + z[c];
         const double inv = h[c] > s.dry ? 1.0 / h[c] : 0.0;
@@ -302,7 +307,8 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 
 // Limited y-slopes of one row from the rows below (m), at (0) and above (p); zero
 // (first order) next to a dry cell. Order 1: zero everywhere.
-[[gnu::noinline]] void y_slopes_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const double* hp, const RowBuffers& w, int r) {
+[[gnu::noinline]] void y_slopes_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const double* hp,
+                                    const RowBuffers& w, int r) {
     double* __restrict se = w.slope(r, 0);
     double* __restrict sh = w.slope(r, 1);
     double* __restrict su = w.slope(r, 2);
@@ -316,7 +322,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     const double *em = w.prim(r - 1, 0), *e0 = w.prim(r, 0), *ep = w.prim(r + 1, 0);
     const double *um = w.prim(r - 1, 1), *u0 = w.prim(r, 1), *up = w.prim(r + 1, 1);
     const double *vm = w.prim(r - 1, 2), *v0 = w.prim(r, 2), *vp = w.prim(r + 1, 2);
-    #pragma omp simd
+#pragma omp simd
     for (int c = c0; c < c1; ++c) {
         const bool wet = hm[c] > s.dry && h0[c] > s.dry && hp[c] > s.dry;
         const double wt = wet ? 1.0 : 0.0;
@@ -328,7 +334,8 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 }
 
 // Fluxes through the y-faces between padded rows r-1 (depth hm) and r (depth h0).
-[[gnu::noinline]] void y_faces_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const RowBuffers& w, int r) {
+[[gnu::noinline]] void y_faces_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const RowBuffers& w,
+                                   int r) {
     const double *em = w.prim(r - 1, 0), *e0 = w.prim(r, 0);
     const double *um = w.prim(r - 1, 1), *u0 = w.prim(r, 1);
     const double *vm = w.prim(r - 1, 2), *v0 = w.prim(r, 2);
@@ -338,7 +345,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     double* __restrict lo = w.face(r, 1);
     double* __restrict hi = w.face(r, 2);
     double* __restrict tan = w.face(r, 3);
-    #pragma omp simd
+#pragma omp simd
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         FaceFlux f;
         face_flux(em[c] + 0.5 * sem[c], hm[c] + 0.5 * shm[c], vm[c] + 0.5 * svm[c], um[c] + 0.5 * sum[c], e0[c] - 0.5 * se0[c],
@@ -353,7 +360,8 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 // Rates of change of the cells `cols` of padded row r: the x-direction (slopes, face
 // fluxes, bed slope; branch-free so it vectorises), then the y-faces below and above
 // and the y bed slope. Returns the mass fluxes through the west and east boundary faces.
-[[gnu::noinline]] std::pair<double, double> rates_row(const Sweep& s, ColumnRange cols, const double* h, const RowBuffers& w, int r) {
+[[gnu::noinline]] std::pair<double, double> rates_row(const Sweep& s, ColumnRange cols, const double* h, const RowBuffers& w,
+                                                      int r) {
     const double* __restrict e = w.prim(r, 0);
     const double* __restrict u = w.prim(r, 1);
     const double* __restrict v = w.prim(r, 2);
@@ -369,9 +377,9 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     double* __restrict dhu = w.rate(1);
     double* __restrict dhv = w.rate(2);
     const int c0 = cols.begin + kGhost, c1 = cols.end + kGhost;  // cells; faces c0-1 .. c1-1
-    // Slopes on the cells beside the faces; zero (first order) next to a dry cell, which
-    // keeps h >= 0 and the shoreline at rest. Order 1: the weight is zero everywhere.
-    #pragma omp simd
+// Slopes on the cells beside the faces; zero (first order) next to a dry cell, which
+// keeps h >= 0 and the shoreline at rest. Order 1: the weight is zero everywhere.
+#pragma omp simd
     for (int c = c0 - 1; c < c1 + 1; ++c) {
         const bool wet = (h[c - 1] > s.dry) & (h[c] > s.dry) & (h[c + 1] > s.dry);
         const double wt = wet ? s.order_weight : 0.0;
@@ -380,8 +388,8 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
         su[c] = wt * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], s.theta);
         sv[c] = wt * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], s.theta);
     }
-    // Face c+1/2 between padded columns c and c+1.
-    #pragma omp simd
+// Face c+1/2 between padded columns c and c+1.
+#pragma omp simd
     for (int c = c0 - 1; c < c1; ++c) {
         FaceFlux f;
         face_flux(e[c] + 0.5 * se[c], h[c] + 0.5 * sh[c], u[c] + 0.5 * su[c], v[c] + 0.5 * sv[c], e[c + 1] - 0.5 * se[c + 1],
@@ -391,7 +399,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
         fr[c] = f.normal_R;
         ft[c] = f.tangential;
     }
-    #pragma omp simd
+#pragma omp simd
     for (int c = c0; c < c1; ++c) {
         const double hw = h[c] - 0.5 * sh[c], he = h[c] + 0.5 * sh[c];
         const double zw = e[c] - 0.5 * se[c] - hw, ze = e[c] + 0.5 * se[c] - he;
@@ -402,7 +410,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     const double *sye = w.slope(r, 0), *syh = w.slope(r, 1);
     const double *gm = w.face(r, 0), *gm_n = w.face(r + 1, 0), *glo_n = w.face(r + 1, 1), *ghi = w.face(r, 2);
     const double *gt = w.face(r, 3), *gt_n = w.face(r + 1, 3);
-    #pragma omp simd
+#pragma omp simd
     for (int c = c0; c < c1; ++c) {
         const double hs = h[c] - 0.5 * syh[c], hn = h[c] + 0.5 * syh[c];
         const double zs = e[c] - 0.5 * sye[c] - hs, zn = e[c] + 0.5 * sye[c] - hn;
@@ -417,14 +425,15 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 // without a base (predictor), out = friction(in + dt * rate). `base` may be `out`: each
 // cell reads its base value before writing it. Counts round-off negative depths.
 template <bool kWithBase, Friction kFriction>
-[[gnu::noinline]] void update_row(const Sweep& s, ColumnRange cols, double dt, double a, const double* h, const double* hu, const double* hv,
-                const RowBuffers& w, const double* g_n2, const double* h0, const double* hu0, const double* hv0, double* h_out,
-                double* hu_out, double* hv_out, long& fixes_total, double& worst_total) {
+[[gnu::noinline]] void update_row(const Sweep& s, ColumnRange cols, double dt, double a, const double* h, const double* hu,
+                                  const double* hv, const RowBuffers& w, const double* g_n2, const double* h0, const double* hu0,
+                                  const double* hv0, double* h_out, double* hu_out, double* hv_out, long& fixes_total,
+                                  double& worst_total) {
     const double *dh = w.rate(0), *dhu = w.rate(1), *dhv = w.rate(2);
     const double dry_depth = s.dry;
     long fixes = 0;
     double worst = 0.0;
-    #pragma omp simd reduction(+ : fixes) reduction(min : worst)
+#pragma omp simd reduction(+ : fixes) reduction(min : worst)
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         double hn = h[c] + dt * dh[c];
         double qx = hu[c] + dt * dhu[c];
@@ -471,8 +480,9 @@ void update_row_with(Friction friction, Args&&... args) {
 // Largest CFL rate of the cells `cols` of a row.
 [[gnu::noinline]] double max_wave_rate_row(const Sweep& s, ColumnRange cols, const double* h, const double* hu, const double* hv) {
     double a = 0.0;
-    #pragma omp simd reduction(max : a)
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) a = std::max(a, wave_rate(h[c], hu[c], hv[c], s.g, s.dry, s.idx, s.idy));
+#pragma omp simd reduction(max : a)
+    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c)
+        a = std::max(a, wave_rate(h[c], hu[c], hv[c], s.g, s.dry, s.idx, s.idy));
     return a;
 }
 
@@ -486,8 +496,8 @@ void clear_outside(double* row, ColumnRange was, ColumnRange now) {
 
 }  // namespace
 
-void Solver::find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv,
-                                 bool pumping) {
+void Solver::find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu,
+                                 const std::vector<double>& hv, bool pumping) {
     const int nx = grid_.nx, ny = grid_.ny;
     // Where the input may be nonzero: what the last stage computed (whole rows when the
     // state was changed outside step()); ghost rows and columns always. Serial: each
@@ -498,7 +508,9 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
     for (int j = -kGhost; j < ny + kGhost; ++j) {
         const std::size_t row = std::size_t(j + kGhost) * stride_ + kGhost;  // column i at row + i
         auto at_column = [&](int i) { return std::size_t(std::ptrdiff_t(row) + i); };
-        auto state_nonzero = [&](int i) { return !(is_zero(h[at_column(i)]) && is_zero(hu[at_column(i)]) && is_zero(hv[at_column(i)])); };
+        auto state_nonzero = [&](int i) {
+            return !(is_zero(h[at_column(i)]) && is_zero(hu[at_column(i)]) && is_zero(hv[at_column(i)]));
+        };
         auto depth_nonzero = [&](int i) { return h[at_column(i)] != 0.0; };
         const bool ghost_row = j < 0 || j >= ny;
         const ColumnRange scan = ghost_row || whole_rows ? ColumnRange{0, nx} : bound[std::size_t(j)];
@@ -550,7 +562,8 @@ void Solver::stage(Stage which, double dt, double t) {
     find_active_columns(which, h, hu, hv, pumping);
     const bool last = corrector || def_.order == 1;  // the step's result: remember its CFL rate
     const int nx = grid_.nx, ny = grid_.ny;
-    const Sweep s{def_.gravity, def_.dry_depth, def_.limiter_theta, def_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
+    const Sweep s{
+        def_.gravity, def_.dry_depth, def_.limiter_theta, def_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
     auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
     auto row = [&](const std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     auto row_out = [&](std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
@@ -559,7 +572,8 @@ void Solver::stage(Stage which, double dt, double t) {
     // (with dry land skipped, rows cost different amounts; up to 10 % on 2 threads).
     cumulative_columns_.assign(std::size_t(ny) + 1, 0.0);
     for (int j = 0; j < ny; ++j)
-        cumulative_columns_[std::size_t(j) + 1] = cumulative_columns_[std::size_t(j)] + 1.0 + std::max(0, active(j).end - active(j).begin);
+        cumulative_columns_[std::size_t(j) + 1] =
+            cumulative_columns_[std::size_t(j)] + 1.0 + std::max(0, active(j).end - active(j).begin);
     long fixes = 0;
     double worst = 0.0, amax = 0.0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
@@ -588,7 +602,8 @@ void Solver::stage(Stage which, double dt, double t) {
         // This thread's strip of interior rows.
         auto first_row = [&](int k) {
             const double share = cumulative_columns_.back() * k / nt;
-            return int(std::lower_bound(cumulative_columns_.begin(), cumulative_columns_.end(), share) - cumulative_columns_.begin());
+            return int(std::lower_bound(cumulative_columns_.begin(), cumulative_columns_.end(), share) -
+                       cumulative_columns_.begin());
         };
         const int j0 = first_row(tid), j1 = tid + 1 == nt ? ny : first_row(tid + 1);
         if (j0 < j1) {
@@ -602,7 +617,8 @@ void Solver::stage(Stage which, double dt, double t) {
             faces(j + 1);
             const ColumnRange cols = active(j);
             if (!corrector)  // U1 is exactly zero outside the columns computed now
-                for (std::vector<double>* a : {&h_out, &hu_out, &hv_out}) clear_outside(row_out(*a, j), bound1_[std::size_t(j)], cols);
+                for (std::vector<double>* a : {&h_out, &hu_out, &hv_out})
+                    clear_outside(row_out(*a, j), bound1_[std::size_t(j)], cols);
             west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
             if (cols.empty()) continue;
             const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost);
@@ -612,11 +628,13 @@ void Solver::stage(Stage which, double dt, double t) {
             for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
                 dh[pump_cells_[k] % stride_] += pump_rate;
             if (corrector)
-                update_row_with<true>(def_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), row(h_, j), row(hu_, j), row(hv_, j),
-                                 row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
+                update_row_with<true>(def_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                                      row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
+                                      row_out(hv_out, j), fixes, worst);
             else
-                update_row_with<false>(def_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), nullptr, nullptr, nullptr,
-                                  row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
+                update_row_with<false>(def_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                                       nullptr, nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes,
+                                       worst);
             if (last) amax = std::max(amax, max_wave_rate_row(s, cols, row(h_out, j), row(hu_out, j), row(hv_out, j)));
         }
     }
@@ -627,10 +645,12 @@ void Solver::stage(Stage which, double dt, double t) {
 }
 
 void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {
-    if (!is_x_side(side) || boundary(side).kind != BoundaryKind::nested) fail("", "boundary nested", "ghosts given for a side that is not nested");
+    if (!is_x_side(side) || boundary(side).kind != BoundaryKind::nested)
+        fail("", "boundary nested", "ghosts given for a side that is not nested");
     const std::size_t n = std::size_t(kGhost * grid_.ny);
     for (const GhostState* g : {&a, &b})
-        if (g->h.size() != n || g->hu.size() != n || g->hv.size() != n) fail("", "boundary nested", "ghost arrays of the wrong size");
+        if (g->h.size() != n || g->hu.size() != n || g->hv.size() != n)
+            fail("", "boundary nested", "ghost arrays of the wrong size");
     NestedGhosts& ng = nested_[side == Side::west ? 0 : 1];
     ng.t0 = t0;
     ng.t1 = t1;
@@ -639,7 +659,8 @@ void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double
 }
 
 void Solver::set_ghost_bed(Side side, const std::vector<double>& z) {
-    if (!is_x_side(side) || z.size() != std::size_t(kGhost * grid_.ny)) fail("", "boundary nested", "ghost bed of the wrong size or side");
+    if (!is_x_side(side) || z.size() != std::size_t(kGhost * grid_.ny))
+        fail("", "boundary nested", "ghost bed of the wrong size or side");
     for (int layer = 1; layer <= kGhost; ++layer)
         for (int j = 0; j < grid_.ny; ++j)
             z_[at(side == Side::west ? -layer : grid_.nx - 1 + layer, j)] = z[std::size_t((layer - 1) * grid_.ny + j)];

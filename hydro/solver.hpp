@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "formats/scene.hpp"
 #include "common/timeseries.hpp"
+#include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
 #include "hydro/swe_kernels.hpp"
 
@@ -37,15 +37,15 @@ struct ColumnRange {
 };
 
 struct SolverDef {
-    double gravity = 9.81;           // [m s^-2]
+    double gravity = 9.81;  // [m s^-2]
     // The one dry tolerance: a cell with h <= dry_depth has no velocity and no friction.
     // 1e-5 m is a hundredth of a millimetre, far below any depth that moves debris
     // (draft 2.5 cm) and far above round-off on depths of order 1 m.
-    double dry_depth = 1e-5;         // [m]
-    double cfl = 0.45;               // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0
-    double max_dt = 0.05;            // [s] upper bound on the step
-    double limiter_theta = 1.3;      // 1 = minmod ... 2 = monotonised central
-    int order = 2;                   // 1: first order in space and time; 2: MUSCL + Heun
+    double dry_depth = 1e-5;           // [m]
+    double cfl = 0.45;                 // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0
+    double max_dt = 0.05;              // [s] upper bound on the step
+    double limiter_theta = 1.3;        // 1 = minmod ... 2 = monotonised central
+    int order = 2;                     // 1: first order in space and time; 2: MUSCL + Heun
     double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
     // Skip cells whose whole stencil is exactly dry (h = hu = hv = 0): the same result,
     // faster. false computes every cell (the tests check that skipping changes no bit).
@@ -61,11 +61,11 @@ SolverDef default_solver_def();
 // Counters that say how the run went.
 struct SolverStats {
     long steps = 0;
-    long negative_depth_fixes = 0;   // cells where round-off made h < 0 (set to 0)
-    double min_depth_seen = 0.0;     // most negative h before the fix [m]
-    double cell_stages = 0.0;        // interior cells x stages stepped
-    double cell_stages_dry = 0.0;    // of which skipped as dry land (all of the stencil exactly zero)
-    long outflow_limits = 0;         // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
+    long negative_depth_fixes = 0;  // cells where round-off made h < 0 (set to 0)
+    double min_depth_seen = 0.0;    // most negative h before the fix [m]
+    double cell_stages = 0.0;       // interior cells x stages stepped
+    double cell_stages_dry = 0.0;   // of which skipped as dry land (all of the stencil exactly zero)
+    long outflow_limits = 0;        // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
 };
 
 class Solver {
@@ -134,8 +134,8 @@ private:
     // E(U) = friction(U + dt L(U)). Fused: one sweep over the rows (see solver.cpp).
     void stage(Stage which, double dt, double t);
     // Columns of each row whose rate may be nonzero in this stage, into active_.
-    void find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv,
-                             bool pumping);
+    void find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu,
+                             const std::vector<double>& hv, bool pumping);
     std::vector<double>& changed_outside(std::vector<double>& v) {
         state_changed_outside_ = true;
         max_wave_rate_ = -1.0;
@@ -150,22 +150,22 @@ private:
     SolverStats stats_;
     // Hot state.
     std::vector<double> h_, hu_, hv_;
-    std::vector<double> h1_, hu1_, hv1_;            // Heun's intermediate stage
-    std::vector<std::vector<double>> work_;         // per thread: the row buffers of stage()
-    std::vector<double> cumulative_columns_;        // columns to compute below each row (splits rows over threads)
+    std::vector<double> h1_, hu1_, hv1_;      // Heun's intermediate stage
+    std::vector<std::vector<double>> work_;   // per thread: the row buffers of stage()
+    std::vector<double> cumulative_columns_;  // columns to compute below each row (splits rows over threads)
     // Skipping dry land (solver.cpp). Per interior row: the columns outside which h_
     // (bound_) and h1_ (bound1_) are exactly zero; those of the stage's input (and
     // base) with a nonzero h, hu or hv; the columns to compute. Per padded row: the
     // columns of the input with a nonzero depth.
     std::vector<ColumnRange> bound_, bound1_, state_nonzero_, base_nonzero_, active_;
     std::vector<ColumnRange> depth_nonzero_;
-    bool state_changed_outside_ = true;             // bound_ unknown: scan whole rows
-    mutable double max_wave_rate_ = -1.0;           // max(a_x/dx + a_y/dy) of the state [1/s]; < 0: not known
+    bool state_changed_outside_ = true;    // bound_ unknown: scan whole rows
+    mutable double max_wave_rate_ = -1.0;  // max(a_x/dx + a_y/dy) of the state [1/s]; < 0: not known
     // Cold data.
-    std::vector<double> z_;          // bed [m], ghosts filled once
-    std::vector<double> g_n2_;       // g * manning_n^2 per cell
-    Forcing forcing_;                // boundary series and the pump
-    std::vector<std::size_t> pump_cells_;  // padded indices of the pump's source strip (forcing_'s), row by row
+    std::vector<double> z_;                    // bed [m], ghosts filled once
+    std::vector<double> g_n2_;                 // g * manning_n^2 per cell
+    Forcing forcing_;                          // boundary series and the pump
+    std::vector<std::size_t> pump_cells_;      // padded indices of the pump's source strip (forcing_'s), row by row
     std::vector<std::size_t> pump_row_start_;  // the pump cells of interior row j: [start[j], start[j+1])
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
     struct NestedGhosts {
@@ -174,9 +174,9 @@ private:
     };
     NestedGhosts nested_[2];
     bool track_transfer_ = false;
-    std::vector<double> west_face_mass_, east_face_mass_;      // mass flux of the current stage [m^2/s]
-    std::vector<double> west_stage1_, east_stage1_;            // Heun's first-stage fluxes [m^2/s]
-    std::vector<double> west_transfer_, east_transfer_;        // [m^2]
+    std::vector<double> west_face_mass_, east_face_mass_;  // mass flux of the current stage [m^2/s]
+    std::vector<double> west_stage1_, east_stage1_;        // Heun's first-stage fluxes [m^2/s]
+    std::vector<double> west_transfer_, east_transfer_;    // [m^2]
 };
 
 }  // namespace flotsam::hydro

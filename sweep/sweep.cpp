@@ -7,9 +7,9 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
-#include "formats/scene.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam::sweep {
 
@@ -21,8 +21,9 @@ std::vector<double> sweep_output_times(const SweepSpec& spec) {
             t0 = probe.start_time();
             last = probe.end_time();
         } else if (probe.start_time() != t0) {
-            fail(spec.flows[f], "time", "starts at " + std::to_string(probe.start_time()) + " s, the sweep's first flow at " + std::to_string(t0) +
-                                            " s (all flows of a sweep share one time axis)");
+            fail(spec.flows[f], "time",
+                 "starts at " + std::to_string(probe.start_time()) + " s, the sweep's first flow at " + std::to_string(t0) +
+                     " s (all flows of a sweep share one time axis)");
         }
         last = std::min(last, probe.end_time());
     }

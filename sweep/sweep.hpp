@@ -11,9 +11,9 @@
 namespace flotsam::sweep {
 
 struct SweepRunDef {
-    Shard shard;          // which block of members to run
-    int threads = 0;      // OpenMP threads over members; 0: the OpenMP default
-    bool quiet = false;   // no progress lines
+    Shard shard;         // which block of members to run
+    int threads = 0;     // OpenMP threads over members; 0: the OpenMP default
+    bool quiet = false;  // no progress lines
 };
 
 // What the run cost, for reports and the benchmark.

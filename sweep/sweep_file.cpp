@@ -100,7 +100,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vflow = var("flow", NC_STRING, {dtraj}, "", "flow file replayed");
         const int vbody = var("body", NC_STRING, {dtraj}, "", "body name");
         const int vstart = var("start_name", NC_STRING, {dtraj}, "", "scene start point (empty: given by coordinates)");
-        const int vpert = var("perturbation", NC_INT, {dtraj}, "", "start perturbation: 0 exact start, k > 0 the k-th perturbed start");
+        const int vpert =
+            var("perturbation", NC_INT, {dtraj}, "", "start perturbation: 0 exact start, k > 0 the k-th perturbed start");
         const int vvariant = var("variant", NC_STRING, {dtraj}, "", "model variant: friction + collision (CC+SC, LC+MC)");
         const int vcontact = var("contact_model", NC_STRING, {dtraj}, "", "friction model: center (CC) or local (LC)");
         const int vcoll = var("collision_model", NC_STRING, {dtraj}, "", "collision model: single (SC) or multi (MC)");
@@ -118,7 +119,6 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vnc = var("collision_steps", NC_INT, {dtraj}, "", "steps with an obstacle contact");
         const int vnu = var("unresolved_collisions", NC_INT, {dtraj}, "", "steps whose collision passes left an overlap");
         const int vns = var("axis_shift_steps", NC_INT, {dtraj}, "", "steps rotated about the contact centroid");
-
 
         const int vflowpath = var("flow_path", NC_STRING, {dflow}, "", "flow files of the sweep, in order");
         const int vbodyname = var("body_name", NC_STRING, {dbody}, "", "bodies of the sweep, in order");
@@ -159,7 +159,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put(vcoll, column<std::string>(ms, [](const MemberRecord& m) { return m.collision; }));
         f.put(vset, column<int>(ms, [](const MemberRecord& m) { return m.param_set; }));
         f.put(vlabel, column<std::string>(ms, [&](const MemberRecord& m) { return r.params[std::size_t(m.param_set)].label; }));
-        for (std::size_t p = 0; p < 5; ++p) f.put(vparam[p], column<double>(ms, [p](const MemberRecord& m) { return m.params[p]; }));
+        for (std::size_t p = 0; p < 5; ++p)
+            f.put(vparam[p], column<double>(ms, [p](const MemberRecord& m) { return m.params[p]; }));
         f.put(vl, column<double>(ms, [](const MemberRecord& m) { return m.length; }));
         f.put(vw, column<double>(ms, [](const MemberRecord& m) { return m.width; }));
         f.put(vh, column<double>(ms, [](const MemberRecord& m) { return m.height; }));
@@ -171,7 +172,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put(vnu, column<int>(ms, [](const MemberRecord& m) { return m.unresolved_collisions; }));
         f.put(vns, column<int>(ms, [](const MemberRecord& m) { return m.axis_shift_steps; }));
         for (std::size_t b = 0; b < nm && nt > 0; ++b) {
-            if (ms[b].track.x.size() != nt) fail(path, "member " + std::to_string(ms[b].id), "track length does not match the time axis");
+            if (ms[b].track.x.size() != nt)
+                fail(path, "member " + std::to_string(ms[b].id), "track length does not match the time axis");
             debris::put_track(f, track_vars, b, ms[b].track);
         }
         f.put(vflowpath, r.flows);
@@ -230,8 +232,8 @@ SweepResult read_sweep_file(const std::string& path) {
     const auto strings = [&](const char* n) { return f.get_strings(f.var(n)); };
     const auto id = ints("member_id"), flow = ints("flow_index"), pert = ints("perturbation"), set = ints("param_set");
     const auto nc_ = ints("collision_steps"), nu = ints("unresolved_collisions"), ns = ints("axis_shift_steps");
-    const auto body = strings("body"), start = strings("start_name"), variant = strings("variant"), contact = strings("contact_model"),
-               coll = strings("collision_model");
+    const auto body = strings("body"), start = strings("start_name"), variant = strings("variant"),
+               contact = strings("contact_model"), coll = strings("collision_model");
     std::array<std::vector<double>, 5> par;
     for (std::size_t p = 0; p < 5; ++p) par[p] = doubles(parameter_names[p]);
     const auto len = doubles("length"), wid = doubles("width"), hei = doubles("height"), sg = doubles("specific_gravity");
@@ -330,9 +332,9 @@ void write_summary_csv(const std::string& path, const SweepResult& r) {
             }
         }
         const bool any = !t.x.empty();
-        s += std::to_string(m.id) + "," + std::to_string(m.flow) + "," + csv_field(r.flows[std::size_t(m.flow)]) + "," + csv_field(m.body_name) +
-             "," + csv_field(m.start_name) + "," + m.variant_name + "," + std::to_string(m.param_set) + "," +
-             csv_field(r.params[std::size_t(m.param_set)].label) + "," + std::to_string(m.perturbation);
+        s += std::to_string(m.id) + "," + std::to_string(m.flow) + "," + csv_field(r.flows[std::size_t(m.flow)]) + "," +
+             csv_field(m.body_name) + "," + csv_field(m.start_name) + "," + m.variant_name + "," + std::to_string(m.param_set) +
+             "," + csv_field(r.params[std::size_t(m.param_set)].label) + "," + std::to_string(m.perturbation);
         for (double p : m.params) {
             std::snprintf(buf, sizeof buf, ",%.10g", p);
             s += buf;

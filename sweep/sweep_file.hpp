@@ -21,12 +21,12 @@ namespace flotsam::sweep {
 struct MemberRecord {
     int id = 0, flow = 0, body = 0, perturbation = 0, variant = 0, param_set = 0;
     std::string body_name, start_name, variant_name, contact, collision;
-    ParamValues params{};                            // cd1, cd2, cm, mu, restitution [-]
-    double length = 0, width = 0, height = 0;        // [m]
-    double specific_gravity = 0;                     // [-]
-    double x0 = 0, y0 = 0, heading0_deg = 0;         // start [m, m, degree]
+    ParamValues params{};                      // cd1, cd2, cm, mu, restitution [-]
+    double length = 0, width = 0, height = 0;  // [m]
+    double specific_gravity = 0;               // [-]
+    double x0 = 0, y0 = 0, heading0_deg = 0;   // start [m, m, degree]
     int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
-    debris::Track track;                             // on SweepResult::time
+    debris::Track track;  // on SweepResult::time
 };
 
 struct SweepResult {
@@ -35,12 +35,12 @@ struct SweepResult {
     std::vector<std::string> flows, bodies, variants;
     std::vector<ParameterSet> params;
     PerturbationDef perturbation;
-    int member_count = 0;            // members in the whole sweep
-    double output_interval = 0.0;    // [s]
-    double dt_max = 0.0;             // [s]
-    std::vector<double> time;        // output times [s]
+    int member_count = 0;          // members in the whole sweep
+    double output_interval = 0.0;  // [s]
+    double dt_max = 0.0;           // [s]
+    std::vector<double> time;      // output times [s]
     // This part.
-    Shard shard;                     // {0, 1}: the whole sweep
+    Shard shard;                        // {0, 1}: the whole sweep
     std::vector<MemberRecord> members;  // by increasing id
 };
 

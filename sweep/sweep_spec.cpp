@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 #include <memory>
+#include <numbers>
 
 #include "common/error.hpp"
-#include "formats/scene.hpp"
 #include "common/sha256.hpp"
 #include "common/toml_lite.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam::sweep {
 
@@ -98,7 +98,8 @@ std::vector<ParameterSet> latin_hypercube(const std::array<std::array<double, 2>
     for (std::size_t p = 0; p < 5; ++p) {
         std::vector<int> strata(static_cast<std::size_t>(count));
         for (int k = 0; k < count; ++k) strata[std::size_t(k)] = k;
-        for (int k = count - 1; k > 0; --k) std::swap(strata[std::size_t(k)], strata[std::size_t(rng.next() % std::uint64_t(k + 1))]);  // Fisher–Yates
+        for (int k = count - 1; k > 0; --k)
+            std::swap(strata[std::size_t(k)], strata[std::size_t(rng.next() % std::uint64_t(k + 1))]);  // Fisher–Yates
         for (int k = 0; k < count; ++k) {
             const double u = (strata[std::size_t(k)] + rng.uniform()) / count;
             out[std::size_t(k)].values[p] = ranges[p][0] + (ranges[p][1] - ranges[p][0]) * u;
@@ -205,7 +206,8 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
         if (v.kind == TomlValue::Kind::Number) {
             control[p] = v.number;
         } else if (v.kind == TomlValue::Kind::NumberArray) {
-            if (d != "factorial" && !sampled) bad(doc, *t, key, "an array (levels or a range) needs a factorial, random or latin_hypercube design");
+            if (d != "factorial" && !sampled)
+                bad(doc, *t, key, "an array (levels or a range) needs a factorial, random or latin_hypercube design");
             if (v.numbers.empty()) bad(doc, *t, key, "empty array");
             if (sampled && (v.numbers.size() != 2 || !(v.numbers[0] <= v.numbers[1])))
                 bad(doc, *t, key, "a range is [low, high] with low <= high");
@@ -238,8 +240,10 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
         const int n = count_of(doc, *t, "samples", 1);
         std::array<std::array<double, 2>, 5> ranges;
         for (std::size_t p = 0; p < 5; ++p)
-            ranges[p] = arrays[p].empty() ? std::array<double, 2>{control[p], control[p]} : std::array<double, 2>{arrays[p][0], arrays[p][1]};
-        spec.params = d == "random" ? random_samples(ranges, n, seed_of(doc, *t, "seed")) : latin_hypercube(ranges, n, seed_of(doc, *t, "seed"));
+            ranges[p] = arrays[p].empty() ? std::array<double, 2>{control[p], control[p]}
+                                          : std::array<double, 2>{arrays[p][0], arrays[p][1]};
+        spec.params = d == "random" ? random_samples(ranges, n, seed_of(doc, *t, "seed"))
+                                    : latin_hypercube(ranges, n, seed_of(doc, *t, "seed"));
         if (include_control) spec.params.insert(spec.params.begin(), {"control", control, true});
     }
     // The body model rejects impossible values; check here to name the spec and key.
@@ -250,13 +254,16 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
             if (!ok)
                 bad(doc, *t, parameter_names[p],
                     "parameter set '" + s.label + "' gets " + parameter_names[p] + " = " + fmt(v) +
-                        (p == 4 ? " (restitution must lie in [0, 1])" : p == 3 ? " (must be >= 0)" : " (must be positive)"));
+                        (p == 4   ? " (restitution must lie in [0, 1])"
+                         : p == 3 ? " (must be >= 0)"
+                                  : " (must be positive)"));
         }
 }
 
 }  // namespace
 
-SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_override, const std::vector<std::string>& flow_override) {
+SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_override,
+                          const std::vector<std::string>& flow_override) {
     const TomlDoc doc = read_toml_lite(path);
     SweepSpec spec;
     spec.path = path;
@@ -287,7 +294,8 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
         spec.flows = has(*t, "paths") ? toml_strings(doc, *t, "paths") : glob_flows(doc, *t, toml_string(doc, *t, "pattern"));
         if (spec.flows.empty()) bad(doc, *t, "paths", "no flow files listed");
         for (const auto& f : spec.flows)
-            if (!std::filesystem::exists(f)) bad(doc, *t, has(*t, "paths") ? "paths" : "pattern", "flow file '" + f + "' does not exist");
+            if (!std::filesystem::exists(f))
+                bad(doc, *t, has(*t, "paths") ? "paths" : "pattern", "flow file '" + f + "' does not exist");
     }
 
     std::unique_ptr<Scene> scene;
@@ -295,7 +303,8 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
         if (t.name != "body") continue;
         toml_allow_only(doc, t, {"start", "at", "name", "length", "width", "height", "specific_gravity"});
         BodySpec b;
-        if (has(t, "start") == has(t, "at")) bad(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
+        if (has(t, "start") == has(t, "at"))
+            bad(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
         if (has(t, "start")) {
             b.start = toml_string(doc, t, "start");
             if (spec.scene.empty()) bad(doc, t, "start", "a named start needs a scene ([sweep] scene = \"...\" or --scene)");
@@ -317,14 +326,16 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
         if (has(t, "name")) b.name = toml_string(doc, t, "name");
         if (b.name.empty()) bad(doc, t, "name", "must not be empty");
         for (const auto& other : spec.bodies)
-            if (other.name == b.name) bad(doc, t, has(t, "name") ? "name" : "start", "body name '" + b.name + "' used twice (set name = \"...\")");
+            if (other.name == b.name)
+                bad(doc, t, has(t, "name") ? "name" : "start", "body name '" + b.name + "' used twice (set name = \"...\")");
         if (has(t, "length")) b.shape.length = positive(doc, t, "length");
         if (has(t, "width")) b.shape.width = positive(doc, t, "width");
         if (has(t, "height")) b.shape.height = positive(doc, t, "height");
         if (has(t, "specific_gravity")) b.shape.specific_gravity = positive(doc, t, "specific_gravity");
         spec.bodies.push_back(b);
     }
-    if (spec.bodies.empty()) fail(path, "[[body]]", "missing: give at least one [[body]] with start = \"FD\" or at = [x, y, heading_deg]");
+    if (spec.bodies.empty())
+        fail(path, "[[body]]", "missing: give at least one [[body]] with start = \"FD\" or at = [x, y, heading_deg]");
 
     if (const TomlTable* t = find_table(doc, "variants")) {
         toml_allow_only(doc, *t, {"names"});

@@ -20,8 +20,8 @@ inline constexpr std::array<const char*, 5> parameter_long_names = {
 using ParamValues = std::array<double, 5>;  // cd1, cd2, cm, mu [-], restitution [-]
 
 struct ParameterSet {
-    std::string label;      // "control", "cd1x1.5", "cm/1.5", "grid3", "lhs07", ...
-    ParamValues values{};   // [-]
+    std::string label;     // "control", "cd1x1.5", "cm/1.5", "grid3", "lhs07", ...
+    ParamValues values{};  // [-]
     bool is_control = false;
 };
 
@@ -44,8 +44,8 @@ struct Rng {
     std::uint64_t state;
     explicit Rng(std::uint64_t seed) : state(seed) {}
     std::uint64_t next();
-    double uniform();   // [0, 1)
-    double normal();    // standard normal (Box–Muller)
+    double uniform();  // [0, 1)
+    double normal();   // standard normal (Box–Muller)
 };
 
 // "CC+SC", "LC+MC" (also CC+MC, LC+SC): friction model + collision model.
@@ -57,10 +57,10 @@ struct Variant {
 Variant parse_variant(const std::string& name);  // throws naming the bad text
 
 struct BodySpec {
-    std::string name;        // label ("FD", or the [[body]] name)
-    std::string start;       // scene start point, or "" when at = [x, y, heading]
-    double x = 0.0, y = 0.0; // [m], from the scene point or `at`
-    double heading_deg = 0.0;// long axis from +x, counter-clockwise [degree]
+    std::string name;                                    // label ("FD", or the [[body]] name)
+    std::string start;                                   // scene start point, or "" when at = [x, y, heading]
+    double x = 0.0, y = 0.0;                             // [m], from the scene point or `at`
+    double heading_deg = 0.0;                            // long axis from +x, counter-clockwise [degree]
     debris::BodyDef shape = debris::default_body_def();  // length, width, height, specific gravity
 };
 
@@ -72,18 +72,18 @@ struct PerturbationDef {
 };
 
 struct SweepSpec {
-    std::string path;                 // the spec file (for messages)
-    std::string sha256;               // of the spec file's bytes
-    std::string scene;                // scene file: start points and building mask ("" : none)
-    std::vector<std::string> flows;   // flow files, in order
+    std::string path;                // the spec file (for messages)
+    std::string sha256;              // of the spec file's bytes
+    std::string scene;               // scene file: start points and building mask ("" : none)
+    std::vector<std::string> flows;  // flow files, in order
     std::vector<BodySpec> bodies;
     std::vector<Variant> variants;
     std::vector<ParameterSet> params;
-    std::string design;               // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
+    std::string design;  // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
     PerturbationDef perturbation;
-    double output_interval = 1.0;     // trajectory sample spacing [s]
-    double end_time = -1.0;           // [s]; < 0: the earliest last frame of the flows
-    double dt_max = -1.0;             // largest debris step [s]; < 0: the debris default
+    double output_interval = 1.0;  // trajectory sample spacing [s]
+    double end_time = -1.0;        // [s]; < 0: the earliest last frame of the flows
+    double dt_max = -1.0;          // largest debris step [s]; < 0: the debris default
 };
 
 // Reads and checks a spec. Bodies given by a scene start name are placed from the scene

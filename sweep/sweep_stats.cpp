@@ -75,8 +75,9 @@ void rasterise(const debris::Track& t, const Grid& g, int stamp, std::vector<int
 
 SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsDef& def) {
     if (sw.members.empty()) fail(sw.spec_file, "members", "the sweep holds no trajectories");
-    if (sw.shard.count != 1) fail("--sweep", "shard " + std::to_string(sw.shard.index) + "/" + std::to_string(sw.shard.count),
-                                  "a part of a sweep: merge the parts first (flotsam sweep merge)");
+    if (sw.shard.count != 1)
+        fail("--sweep", "shard " + std::to_string(sw.shard.index) + "/" + std::to_string(sw.shard.count),
+             "a part of a sweep: merge the parts first (flotsam sweep merge)");
     if (def.map_coarsen < 1) fail("--map-coarsen", std::to_string(def.map_coarsen), "must be >= 1");
     SweepStats s;
     s.params = sw.params;
@@ -85,7 +86,8 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     s.sections = scene.sections;
     for (const auto& r : scene.regions) s.regions.push_back(r.name);
     s.time = sw.time;
-    const std::size_t nm = sw.members.size(), ns = s.sections.size(), np = s.params.size(), nr = s.regions.size(), nt = s.time.size();
+    const std::size_t nm = sw.members.size(), ns = s.sections.size(), np = s.params.size(), nr = s.regions.size(),
+                      nt = s.time.size();
 
     // Groups: body × variant, in the sweep's table order.
     s.member_group.assign(nm, -1);
@@ -145,7 +147,8 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
 
     // Sections: summaries per group and per (group, parameter set), then one speed axis
     // for every density.
-    auto collect = [&](const std::vector<int>& members, int param, std::size_t c, std::vector<double>& ys, std::vector<double>& sp) {
+    auto collect = [&](const std::vector<int>& members, int param, std::size_t c, std::vector<double>& ys,
+                       std::vector<double>& sp) {
         ys.clear();
         sp.clear();
         for (int m : members) {
@@ -241,8 +244,12 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     // Maps on the scene grid (coarsened): probability of passing a cell, largest speed there.
     const Grid& sg = scene.grid;
     const int c = def.map_coarsen;
-    s.map = Grid{(sg.nx + c - 1) / c, (sg.ny + c - 1) / c, sg.x_min_edge() + 0.5 * c * sg.dx, sg.y_min_edge() + 0.5 * c * sg.dy,
-                 c * sg.dx, c * sg.dy};
+    s.map = Grid{(sg.nx + c - 1) / c,
+                 (sg.ny + c - 1) / c,
+                 sg.x_min_edge() + 0.5 * c * sg.dx,
+                 sg.y_min_edge() + 0.5 * c * sg.dy,
+                 c * sg.dx,
+                 c * sg.dy};
     const std::size_t ncell = s.map.size();
     std::vector<int> last(ncell, -1), count_all(ncell, 0);
     s.max_speed_all.assign(ncell, nan);
@@ -297,8 +304,8 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                   dreg = f.def_dim("region", nr), dsp = f.def_dim("speed", nk), dyaw = f.def_dim("yaw_bin", nb),
                   dbnd = f.def_dim("bnds", 2), dt = f.def_dim("time", nt), dm = f.def_dim("member", nm),
                   dx = f.def_dim("x", std::size_t(s.map.nx)), dy = f.def_dim("y", std::size_t(s.map.ny));
-        auto var = [&](const std::string& name, nc_type type, std::vector<int> dims, const char* units, const std::string& long_name,
-                       bool fill = false) {
+        auto var = [&](const std::string& name, nc_type type, std::vector<int> dims, const char* units,
+                       const std::string& long_name, bool fill = false) {
             const int v = f.def_var(name, type, dims);
             if (units[0]) f.put_att(v, "units", std::string(units));
             f.put_att(v, "long_name", long_name);
@@ -318,7 +325,9 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         const int vrn = var("region_name", NC_STRING, {dreg}, "", "region name");
 
         // Sections.
-        struct SecVars { int count, ym, ymed, ystd, sm, smed, sstd, bw, kde; };
+        struct SecVars {
+            int count, ym, ymed, ystd, sm, smed, sstd, bw, kde;
+        };
         auto sec_vars = [&](const std::string& suffix, std::vector<int> dims, const std::string& what) {
             SecVars v{};
             auto kdims = dims;
@@ -329,9 +338,12 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
             v.ystd = var("passage_y_std" + suffix, NC_DOUBLE, dims, "m", "standard deviation (n-1) of the passage y" + what, true);
             v.sm = var("passage_speed_mean" + suffix, NC_DOUBLE, dims, "m s-1", "mean body speed at passage" + what, true);
             v.smed = var("passage_speed_median" + suffix, NC_DOUBLE, dims, "m s-1", "median body speed at passage" + what, true);
-            v.sstd = var("passage_speed_std" + suffix, NC_DOUBLE, dims, "m s-1", "standard deviation (n-1) of the passage speed" + what, true);
-            v.bw = var("passage_speed_bandwidth" + suffix, NC_DOUBLE, dims, "m s-1", "Gaussian KDE bandwidth (Silverman's rule)" + what, true);
-            v.kde = var("passage_speed_kde" + suffix, NC_DOUBLE, kdims, "s m-1", "Gaussian kernel density of the passage speed" + what);
+            v.sstd = var("passage_speed_std" + suffix, NC_DOUBLE, dims, "m s-1",
+                         "standard deviation (n-1) of the passage speed" + what, true);
+            v.bw = var("passage_speed_bandwidth" + suffix, NC_DOUBLE, dims, "m s-1",
+                       "Gaussian KDE bandwidth (Silverman's rule)" + what, true);
+            v.kde =
+                var("passage_speed_kde" + suffix, NC_DOUBLE, kdims, "s m-1", "Gaussian kernel density of the passage speed" + what);
             return v;
         };
         const SecVars va = sec_vars("", {dg, dsec}, " (all members of the group)");
@@ -347,28 +359,35 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         const int vybb = var("yaw_bin_bounds", NC_DOUBLE, {dyaw, dbnd}, "degree", "bin edges");
         const int vhr = var("max_rotation_histogram", NC_INT, {dg, dyaw}, "",
                             "members per bin of the largest rotation from the heading at motion start, within yaw_window_s");
-        const int vhm = var("max_yaw_to_motion_histogram", NC_INT, {dg, dyaw}, "",
-                            "members per bin of the largest angle of the long axis against the direction of motion, within yaw_window_s");
+        const int vhm =
+            var("max_yaw_to_motion_histogram", NC_INT, {dg, dyaw}, "",
+                "members per bin of the largest angle of the long axis against the direction of motion, within yaw_window_s");
         const int vmid = var("member_id", NC_INT, {dm}, "", "member id in the sweep");
         const int vmg = var("member_group", NC_INT, {dm}, "", "group index");
         const int vmp = var("member_param_set", NC_INT, {dm}, "", "parameter set index");
         const int vmf = var("member_flow", NC_INT, {dm}, "", "flow index in the sweep");
-        const int vm0 = var("member_motion_start", NC_DOUBLE, {dm}, "s", "first output time at least motion_threshold_m from the start", true);
-        const int vmr = var("member_max_rotation", NC_DOUBLE, {dm}, "degree", "largest rotation within yaw_window_s of motion start, counter-clockwise positive", true);
-        const int vmy2 = var("member_max_yaw_to_motion", NC_DOUBLE, {dm}, "degree", "largest long-axis angle against the velocity within yaw_window_s", true);
-        const int vmd = var("member_motion_direction", NC_DOUBLE, {dm}, "degree",
-                            "direction from the start to the position yaw_window_s after motion start, from +x counter-clockwise", true);
+        const int vm0 =
+            var("member_motion_start", NC_DOUBLE, {dm}, "s", "first output time at least motion_threshold_m from the start", true);
+        const int vmr = var("member_max_rotation", NC_DOUBLE, {dm}, "degree",
+                            "largest rotation within yaw_window_s of motion start, counter-clockwise positive", true);
+        const int vmy2 = var("member_max_yaw_to_motion", NC_DOUBLE, {dm}, "degree",
+                             "largest long-axis angle against the velocity within yaw_window_s", true);
+        const int vmd =
+            var("member_motion_direction", NC_DOUBLE, {dm}, "degree",
+                "direction from the start to the position yaw_window_s after motion start, from +x counter-clockwise", true);
         const int vmreg = var("member_region", NC_INT, {dm}, "", "region index at arrival_time_s (-1: none)");
 
         // Regions.
         const int vrc = var("region_count", NC_INT, {dg, dreg}, "", "members inside the region at arrival_time_s");
-        const int vrcp = var("region_count_by_param", NC_INT, {dg, dp, dreg}, "", "members with this parameter set inside the region at arrival_time_s");
+        const int vrcp = var("region_count_by_param", NC_INT, {dg, dp, dreg}, "",
+                             "members with this parameter set inside the region at arrival_time_s");
 
         // Distance and R(t).
         const int vt = var("time", NC_DOUBLE, {dt}, flow_names::time_units, "time");
         f.put_att(vt, "standard_name", std::string("time"));
         f.put_att(vt, "calendar", std::string("standard"));
-        const int vdm = var("distance_mean", NC_DOUBLE, {dg, dp, dt}, "m", "mean distance of the centre from its start (over flows and perturbations)", true);
+        const int vdm = var("distance_mean", NC_DOUBLE, {dg, dp, dt}, "m",
+                            "mean distance of the centre from its start (over flows and perturbations)", true);
         const int vds = var("distance_std", NC_DOUBLE, {dg, dp, dt}, "m", "standard deviation (n-1) of that distance", true);
         const int vre = var("relative_error", NC_DOUBLE, {dg, dp, dt}, "1",
                             "R(t) = (distance_mean - distance_mean of the control set) / distance_mean of the control set", true);
@@ -380,10 +399,14 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         const int vy = var("y", NC_DOUBLE, {dy}, "m", "y of map cell centre (north)");
         f.put_att(vy, "standard_name", std::string("projection_y_coordinate"));
         f.put_att(vy, "axis", std::string("Y"));
-        const int vpp = var("pass_probability", NC_FLOAT, {dg, dy, dx}, "1", "fraction of the group's trajectories whose centre passes the cell");
-        const int vmx = var("max_debris_speed", NC_FLOAT, {dg, dy, dx}, "m s-1", "largest body speed in the cell over the group", true);
-        const int vppa = var("pass_probability_all", NC_FLOAT, {dy, dx}, "1", "fraction of all trajectories whose centre passes the cell");
-        const int vmxa = var("max_debris_speed_all", NC_FLOAT, {dy, dx}, "m s-1", "largest body speed in the cell over all trajectories", true);
+        const int vpp = var("pass_probability", NC_FLOAT, {dg, dy, dx}, "1",
+                            "fraction of the group's trajectories whose centre passes the cell");
+        const int vmx =
+            var("max_debris_speed", NC_FLOAT, {dg, dy, dx}, "m s-1", "largest body speed in the cell over the group", true);
+        const int vppa =
+            var("pass_probability_all", NC_FLOAT, {dy, dx}, "1", "fraction of all trajectories whose centre passes the cell");
+        const int vmxa =
+            var("max_debris_speed_all", NC_FLOAT, {dy, dx}, "m s-1", "largest body speed in the cell over all trajectories", true);
 
         f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
         f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep statistics"));
@@ -397,7 +420,8 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         f.put_att(NC_GLOBAL, "arrival_time_s", def.arrival_time);
         f.put_att(NC_GLOBAL, "r_min_distance_m", def.r_min_distance);
         f.put_att(NC_GLOBAL, "kde_bandwidth_rule",
-                  std::string("Silverman: h = 0.9 min(std, IQR/1.34) n^(-1/5); std alone when IQR = 0; max(0.1 |mean|, kde_floor) when no spread"));
+                  std::string("Silverman: h = 0.9 min(std, IQR/1.34) n^(-1/5); std alone when IQR = 0; max(0.1 |mean|, kde_floor) "
+                              "when no spread"));
         f.put_att(NC_GLOBAL, "kde_floor_m_s", def.kde_floor);
         f.put_att(NC_GLOBAL, "control_param_set", s.control);
         f.put_att(NC_GLOBAL, "map_coarsen", def.map_coarsen);
@@ -501,7 +525,8 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         std::vector<int> rc, rcp;
         for (std::size_t g = 0; g < ng; ++g) {
             rc.insert(rc.end(), s.region_count[g].begin(), s.region_count[g].end());
-            for (std::size_t p = 0; p < np; ++p) rcp.insert(rcp.end(), s.region_count_by_param[g][p].begin(), s.region_count_by_param[g][p].end());
+            for (std::size_t p = 0; p < np; ++p)
+                rcp.insert(rcp.end(), s.region_count_by_param[g][p].begin(), s.region_count_by_param[g][p].end());
         }
         f.put(vrc, rc);
         f.put(vrcp, rcp);
@@ -547,16 +572,18 @@ void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepRes
     std::filesystem::create_directories(dir);
     const std::size_t ng = s.groups.size(), np = s.params.size(), ns = s.sections.size();
     {
-        std::string t = "body,variant,param_label,section,x_m,count,y_mean_m,y_median_m,y_std_m,speed_mean_m_s,speed_median_m_s,speed_std_m_s,"
-                        "kde_bandwidth_m_s\n";
+        std::string t =
+            "body,variant,param_label,section,x_m,count,y_mean_m,y_median_m,y_std_m,speed_mean_m_s,speed_median_m_s,speed_std_m_s,"
+            "kde_bandwidth_m_s\n";
         std::string k = "body,variant,param_label,section,speed_m_s,density_s_m\n";
         auto row = [&](const SweepStats::Group& g, const std::string& label, std::size_t c, const SectionSummary& q) {
-            t += g.body + "," + g.variant + "," + label + "," + s.sections[c].name + "," + num(s.sections[c].x) + "," + std::to_string(q.count) +
-                 "," + num(q.y_mean) + "," + num(q.y_median) + "," + num(q.y_std) + "," + num(q.speed_mean) + "," + num(q.speed_median) + "," +
-                 num(q.speed_std) + "," + num(q.bandwidth) + "\n";
+            t += g.body + "," + g.variant + "," + label + "," + s.sections[c].name + "," + num(s.sections[c].x) + "," +
+                 std::to_string(q.count) + "," + num(q.y_mean) + "," + num(q.y_median) + "," + num(q.y_std) + "," +
+                 num(q.speed_mean) + "," + num(q.speed_median) + "," + num(q.speed_std) + "," + num(q.bandwidth) + "\n";
             if (q.count == 0) return;
             for (std::size_t i = 0; i < s.speed.size(); ++i)
-                k += g.body + "," + g.variant + "," + label + "," + s.sections[c].name + "," + num(s.speed[i]) + "," + num(q.kde[i]) + "\n";
+                k += g.body + "," + g.variant + "," + label + "," + s.sections[c].name + "," + num(s.speed[i]) + "," +
+                     num(q.kde[i]) + "\n";
         };
         for (std::size_t g = 0; g < ng; ++g) {
             for (std::size_t c = 0; c < ns; ++c) row(s.groups[g], "all", c, s.section[g][c]);
@@ -570,16 +597,16 @@ void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepRes
         std::string t = "body,variant,bin_min_deg,bin_max_deg,max_rotation_count,max_yaw_to_motion_count\n";
         for (std::size_t g = 0; g < ng; ++g)
             for (std::size_t b = 0; b + 1 < s.yaw_edges.size(); ++b)
-                t += s.groups[g].body + "," + s.groups[g].variant + "," + num(s.yaw_edges[b]) + "," + num(s.yaw_edges[b + 1]) + "," +
-                     std::to_string(s.rotation_hist[g][b]) + "," + std::to_string(s.yaw_motion_hist[g][b]) + "\n";
+                t += s.groups[g].body + "," + s.groups[g].variant + "," + num(s.yaw_edges[b]) + "," + num(s.yaw_edges[b + 1]) +
+                     "," + std::to_string(s.rotation_hist[g][b]) + "," + std::to_string(s.yaw_motion_hist[g][b]) + "\n";
         write_text_atomic(dir + "/yaw_histogram.csv", t);
     }
     {
         std::string t = "body,variant,param_label,region,count,members\n";
         for (std::size_t g = 0; g < ng; ++g) {
             for (std::size_t r = 0; r < s.regions.size(); ++r)
-                t += s.groups[g].body + "," + s.groups[g].variant + ",all," + s.regions[r] + "," + std::to_string(s.region_count[g][r]) + "," +
-                     std::to_string(s.groups[g].members.size()) + "\n";
+                t += s.groups[g].body + "," + s.groups[g].variant + ",all," + s.regions[r] + "," +
+                     std::to_string(s.region_count[g][r]) + "," + std::to_string(s.groups[g].members.size()) + "\n";
             for (std::size_t p = 0; p < np; ++p)
                 for (std::size_t r = 0; r < s.regions.size(); ++r)
                     t += s.groups[g].body + "," + s.groups[g].variant + "," + s.params[p].label + "," + s.regions[r] + "," +
@@ -594,21 +621,23 @@ void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepRes
                 if (s.param_members[g][p] == 0) continue;
                 for (std::size_t k = 0; k < s.time.size(); ++k)
                     t += s.groups[g].body + "," + s.groups[g].variant + "," + s.params[p].label + "," + num(s.time[k]) + "," +
-                         num(s.distance_mean[g][p][k]) + "," + num(s.distance_std[g][p][k]) + "," + num(s.relative_error[g][p][k]) + "\n";
+                         num(s.distance_mean[g][p][k]) + "," + num(s.distance_std[g][p][k]) + "," + num(s.relative_error[g][p][k]) +
+                         "\n";
             }
         write_text_atomic(dir + "/distance.csv", t);
     }
     {
-        std::string t = "member,body,variant,param_label,flow,perturbation,motion_start_s,max_rotation_deg,max_yaw_to_motion_deg,"
-                        "motion_direction_deg,region_at_arrival";
+        std::string t =
+            "member,body,variant,param_label,flow,perturbation,motion_start_s,max_rotation_deg,max_yaw_to_motion_deg,"
+            "motion_direction_deg,region_at_arrival";
         for (const auto& c : s.sections) t += "," + c.name + "_time_s," + c.name + "_y_m," + c.name + "_speed_m_s";
         t += "\n";
         for (std::size_t m = 0; m < s.member_group.size(); ++m) {
             const MemberRecord& r = sw.members[m];
-            t += std::to_string(r.id) + "," + r.body_name + "," + r.variant_name + "," + s.params[std::size_t(r.param_set)].label + "," +
-                 std::to_string(r.flow) + "," + std::to_string(r.perturbation) + "," + num(s.motion_start[m]) + "," + num(s.max_rotation[m]) +
-                 "," + num(s.max_yaw_to_motion[m]) + "," + num(s.motion_direction[m]) + "," +
-                 (s.region_at_arrival[m] >= 0 ? s.regions[std::size_t(s.region_at_arrival[m])] : std::string()) ;
+            t += std::to_string(r.id) + "," + r.body_name + "," + r.variant_name + "," + s.params[std::size_t(r.param_set)].label +
+                 "," + std::to_string(r.flow) + "," + std::to_string(r.perturbation) + "," + num(s.motion_start[m]) + "," +
+                 num(s.max_rotation[m]) + "," + num(s.max_yaw_to_motion[m]) + "," + num(s.motion_direction[m]) + "," +
+                 (s.region_at_arrival[m] >= 0 ? s.regions[std::size_t(s.region_at_arrival[m])] : std::string());
             for (std::size_t c = 0; c < ns; ++c)
                 for (double v : {s.passage_time[m][c], s.passage_y[m][c], s.passage_speed[m][c]}) {
                     t += ',';

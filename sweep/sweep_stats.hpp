@@ -13,14 +13,14 @@
 namespace flotsam::sweep {
 
 struct StatsDef {
-    double yaw_window = 30.0;       // yaw statistics over this long after motion starts [s]
-    double yaw_min_speed = 0.005;   // yaw against the motion only at samples at least this fast [m/s]
-    double yaw_bin_width = 10.0;    // histogram bins over [−180, 180] [degree]
-    double arrival_time = 300.0;    // region counts at this time [s]
-    double r_min_distance = 0.01;   // R(t) left undefined where the control's mean distance is below this [m]
-    int kde_points = 128;           // points of the speed axis of the density estimates [-]
-    double kde_floor = 1e-3;        // smallest bandwidth, used when passage speeds do not spread [m/s]
-    int map_coarsen = 1;            // map cell = this many scene cells along each side [-]
+    double yaw_window = 30.0;      // yaw statistics over this long after motion starts [s]
+    double yaw_min_speed = 0.005;  // yaw against the motion only at samples at least this fast [m/s]
+    double yaw_bin_width = 10.0;   // histogram bins over [−180, 180] [degree]
+    double arrival_time = 300.0;   // region counts at this time [s]
+    double r_min_distance = 0.01;  // R(t) left undefined where the control's mean distance is below this [m]
+    int kde_points = 128;          // points of the speed axis of the density estimates [-]
+    double kde_floor = 1e-3;       // smallest bandwidth, used when passage speeds do not spread [m/s]
+    int map_coarsen = 1;           // map cell = this many scene cells along each side [-]
 };
 StatsDef default_stats_def();
 
@@ -50,23 +50,23 @@ struct SweepStats {
     std::vector<std::vector<double>> passage_time, passage_y, passage_speed;              // [member][section]
     std::vector<int> region_at_arrival;                                                   // region index, −1: none
 
-    std::vector<double> speed;                                       // KDE axis [m/s]
-    std::vector<std::vector<SectionSummary>> section;                 // [group][section]
+    std::vector<double> speed;                                               // KDE axis [m/s]
+    std::vector<std::vector<SectionSummary>> section;                        // [group][section]
     std::vector<std::vector<std::vector<SectionSummary>>> section_by_param;  // [group][param][section]
 
-    std::vector<double> yaw_edges;                                   // bin edges [degree]
-    std::vector<std::vector<int>> rotation_hist, yaw_motion_hist;    // [group][bin]
+    std::vector<double> yaw_edges;                                 // bin edges [degree]
+    std::vector<std::vector<int>> rotation_hist, yaw_motion_hist;  // [group][bin]
 
-    std::vector<std::vector<int>> region_count;                      // [group][region]
-    std::vector<std::vector<std::vector<int>>> region_count_by_param;// [group][param][region]
+    std::vector<std::vector<int>> region_count;                        // [group][region]
+    std::vector<std::vector<std::vector<int>>> region_count_by_param;  // [group][param][region]
 
-    std::vector<double> time;                                        // [s]
+    std::vector<double> time;                                                                   // [s]
     std::vector<std::vector<std::vector<double>>> distance_mean, distance_std, relative_error;  // [group][param][time]
-    std::vector<std::vector<int>> param_members;                     // [group][param]: members averaged
+    std::vector<std::vector<int>> param_members;                                                // [group][param]: members averaged
 
-    Grid map;                                                        // the map grid
-    std::vector<std::vector<float>> pass_probability, max_speed;     // [group][cell]; max_speed NaN: never passed
-    std::vector<float> pass_probability_all, max_speed_all;          // all members
+    Grid map;                                                     // the map grid
+    std::vector<std::vector<float>> pass_probability, max_speed;  // [group][cell]; max_speed NaN: never passed
+    std::vector<float> pass_probability_all, max_speed_all;       // all members
 };
 
 SweepStats compute_stats(const SweepResult& sweep, const Scene& scene, const StatsDef& def = default_stats_def());

@@ -33,9 +33,9 @@ struct Passage {
     double y = 0.0;      // [m]
     double speed = 0.0;  // |(u, v)| interpolated [m/s]
 };
-inline std::optional<Passage> first_passage(const std::vector<double>& t, const std::vector<double>& x, const std::vector<double>& y,
-                                            const std::vector<double>& u, const std::vector<double>& v, double xs, double y_min,
-                                            double y_max) {
+inline std::optional<Passage> first_passage(const std::vector<double>& t, const std::vector<double>& x,
+                                            const std::vector<double>& y, const std::vector<double>& u,
+                                            const std::vector<double>& v, double xs, double y_min, double y_max) {
     for (std::size_t k = 1; k < x.size(); ++k) {
         const double a = x[k - 1] - xs, b = x[k] - xs;
         if (a == 0.0 && b == 0.0) continue;

@@ -15,11 +15,7 @@ using namespace flotsam;
 using test::error_of;
 using test::write_file;
 
-namespace {
-
-
-
-}  // namespace
+namespace {}  // namespace
 
 TEST(BoundaryRecords, ShapeSpreadAndSmoothness) {
     const auto dir = test::scratch_dir("bnd");
@@ -37,14 +33,21 @@ TEST(BoundaryRecords, ShapeSpreadAndSmoothness) {
         mean /= 10;
         for (const auto& r : recs) var += (r.value[k] - mean) * (r.value[k] - mean);
         const double sd = std::sqrt(var / 9);
-        if (mean > max_mean) { max_mean = mean; t_max = t; }
+        if (mean > max_mean) {
+            max_mean = mean;
+            t_max = t;
+        }
         if (t >= 30.0) {
             EXPECT_GE(sd, 0.0007) << t;
             EXPECT_LE(sd, 0.0013) << t;
         }
         for (const auto& r : recs) {
-            if (k == 0) { EXPECT_EQ(r.value[0], 0.0); }  // the flume starts at rest
-            if (k > 0) { EXPECT_LT(std::abs(r.value[k] - r.value[k - 1]), 0.0003) << t; }  // no jumps: < 0.3 mm per 0.1 s
+            if (k == 0) {
+                EXPECT_EQ(r.value[0], 0.0);
+            }  // the flume starts at rest
+            if (k > 0) {
+                EXPECT_LT(std::abs(r.value[k] - r.value[k - 1]), 0.0003) << t;
+            }  // no jumps: < 0.3 mm per 0.1 s
         }
     }
     EXPECT_NEAR(max_mean, 0.06, 0.005);
@@ -72,7 +75,8 @@ TEST(BoundaryRecords, ByteIdenticalForSameSeed) {
 
 TEST(BoundaryRecords, BadUserRecordsNameFileAndLine) {
     const auto dir = test::scratch_dir("bnd-bad");
-    std::string msg = error_of([&] { load_boundary_record(write_file(dir, "back.csv", "time,eta\n0,0\n0.1,0.001\n0.1,0.002\n"), 0.1); });
+    std::string msg =
+        error_of([&] { load_boundary_record(write_file(dir, "back.csv", "time,eta\n0,0\n0.1,0.001\n0.1,0.002\n"), 0.1); });
     EXPECT_NE(msg.find("back.csv: line 4"), std::string::npos) << msg;
     msg = error_of([&] { load_boundary_record(write_file(dir, "nan.csv", "time,eta\n0,0\n0.1,nan\n"), 0.1); });
     EXPECT_NE(msg.find("nan.csv: line 3"), std::string::npos) << msg;

@@ -3,9 +3,9 @@
 #include <fstream>
 
 #include "common/error.hpp"
-#include "formats/scene.hpp"
 #include "common/sha256.hpp"
 #include "common/timeseries.hpp"
+#include "formats/scene.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -18,8 +18,7 @@ TEST(Sha256, KnownVectors) {
     EXPECT_EQ(sha256_hex(std::string(1000, 'a')), "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
 }
 
-namespace {
-}  // namespace
+namespace {}  // namespace
 
 TEST(TimeSeries, ReadsAndInterpolates) {
     const auto dir = test::scratch_dir("ts");

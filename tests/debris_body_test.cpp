@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "debris/world.hpp"
 #include "cases/debris_flows.hpp"
+#include "debris/world.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -132,10 +132,13 @@ TEST(DebrisBody, PivotsAboutCornerHeldOnRidgeWithLocalContact) {
     auto ridge = [](double x, double y) { return x > 0.09 && y > 0.01; };
     const auto path = test::write_flow(
         dir + "/ridge.nc", fine, {0.0, 30.0}, [&](double x, double y) { return ridge(x, y) ? -0.022 : -0.03; },
-        [&](double x, double y, double) { return test::FlowState{float(level - (ridge(x, y) ? -0.022 : -0.03)), 0.0f, float(U)}; });
+        [&](double x, double y, double) {
+            return test::FlowState{float(level - (ridge(x, y) ? -0.022 : -0.03)), 0.0f, float(U)};
+        });
     // held: the body point over the contact centroid after the first step (a material
     // point, tracked in the body frame).
-    auto run = [&](ContactModel contact, bool axis_shift, double& held_move, double& centre_move, double& turn, double& radius_change) {
+    auto run = [&](ContactModel contact, bool axis_shift, double& held_move, double& centre_move, double& turn,
+                   double& radius_change) {
         World w(path, {});
         BodyDef b = body_at(0.0, 0.0, 0.0, contact);
         b.axis_shift = axis_shift;
@@ -156,12 +159,12 @@ TEST(DebrisBody, PivotsAboutCornerHeldOnRidgeWithLocalContact) {
     double held, centre, turn, radius;
     run(ContactModel::local, true, held, centre, turn, radius);
     EXPECT_GT(centre, 0.05);
-    EXPECT_LT(turn, -0.5);              // clockwise: the free end swings downstream (+y)
-    EXPECT_LT(held, 0.15 * centre);     // the held point stays
-    EXPECT_LT(radius, 0.05);            // the centre keeps its distance from it: an arc
+    EXPECT_LT(turn, -0.5);           // clockwise: the free end swings downstream (+y)
+    EXPECT_LT(held, 0.15 * centre);  // the held point stays
+    EXPECT_LT(radius, 0.05);         // the centre keeps its distance from it: an arc
 
     run(ContactModel::center, true, held, centre, turn, radius);
-    EXPECT_GT(held, 0.5 * centre);      // drifts off whole
+    EXPECT_GT(held, 0.5 * centre);  // drifts off whole
     EXPECT_GT(centre, 0.1);
 
     // Local friction without the axis shift holds the body still: the turn comes from the shift.

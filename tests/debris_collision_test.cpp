@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "debris/world.hpp"
 #include "cases/debris_flows.hpp"
+#include "debris/world.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -63,7 +63,10 @@ TEST(DebrisCollision, StraightWallNoPenetrationNoEnergyGain) {
         s.vy = 0.1;
         s.omega = 0.5;
         const BodyParams& p = w.params()[0];
-        auto energy = [&] { const BodyState& q = w.states()[0]; return 0.5 * p.mass * (q.vx * q.vx + q.vy * q.vy) + 0.5 * p.inertia * q.omega * q.omega; };
+        auto energy = [&] {
+            const BodyState& q = w.states()[0];
+            return 0.5 * p.mass * (q.vx * q.vx + q.vy * q.vy) + 0.5 * p.inertia * q.omega * q.omega;
+        };
         const double e0 = energy();
         double previous = e0, worst_overlap = 0.0, min_vx = 1.0;
         for (int k = 1; k <= 200; ++k) {

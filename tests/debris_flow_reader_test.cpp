@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "common/error.hpp"
-#include "formats/scene.hpp"
-#include "debris/flow_reader.hpp"
 #include "cases/debris_flows.hpp"
+#include "common/error.hpp"
+#include "debris/flow_reader.hpp"
+#include "formats/scene.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -24,15 +24,21 @@ TEST(FlowReader, LinearFieldsAreExact) {
     const auto dir = test::scratch_dir("fr_linear");
     auto h = [](double x, double y, double t) { return 0.2 + 0.05 * x - 0.03 * y + 0.01 * t; };
     auto u = [](double x, double y, double t) { return 0.3 + 0.2 * x + 0.1 * y - 0.02 * t; };
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 2.0, 4.0}, [](double, double) { return -0.5; },
-                                       [&](double x, double y, double t) { return test::FlowState{float(h(x, y, t)), float(u(x, y, t)), 0.0f}; });
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 2.0, 4.0}, [](double, double) { return -0.5; },
+        [&](double x, double y, double t) {
+            return test::FlowState{float(h(x, y, t)), float(u(x, y, t)), 0.0f};
+        });
     FlowReader r(path);
     r.prepare(2.5);
     const double x = -0.437, y = 2.213, t = 2.7;
     EXPECT_NEAR(r.depth(x, y, t), h(x, y, t), 2e-7);
     // A uniform-depth file for the velocity.
-    const auto path2 = test::write_flow(dir + "/g.nc", grid, {0.0, 2.0, 4.0}, [](double, double) { return -0.5; },
-                                        [&](double x2, double y2, double t2) { return test::FlowState{0.3f, float(u(x2, y2, t2)), 0.0f}; });
+    const auto path2 = test::write_flow(
+        dir + "/g.nc", grid, {0.0, 2.0, 4.0}, [](double, double) { return -0.5; },
+        [&](double x2, double y2, double t2) {
+            return test::FlowState{0.3f, float(u(x2, y2, t2)), 0.0f};
+        });
     FlowReader r2(path2);
     r2.prepare(2.5);
     const FlowPoint p = r2.sample(x, y, t);
@@ -44,10 +50,11 @@ TEST(FlowReader, LinearFieldsAreExact) {
 TEST(FlowReader, MaterialAccelerationOfAnalyticField) {
     const auto dir = test::scratch_dir("fr_accel");
     const double a = 0.2, b = 0.3, c = 0.05, e = -0.1, f = 0.4;
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0, 2.0}, [](double, double) { return -0.5; },
-                                       [&](double x, double y, double t) {
-                                           return test::FlowState{0.25f, float(a + b * x + c * t), float(e + f * y)};
-                                       });
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0, 2.0}, [](double, double) { return -0.5; },
+        [&](double x, double y, double t) {
+            return test::FlowState{0.25f, float(a + b * x + c * t), float(e + f * y)};
+        });
     FlowReader r(path);
     r.prepare(1.2);
     const double x = -0.33, y = 2.31, t = 1.4;
@@ -70,11 +77,12 @@ TEST(FlowReader, MaterialAccelerationOfAnalyticField) {
 TEST(FlowReader, ThinFastFilmBarelyMovesTheVelocity) {
     const auto dir = test::scratch_dir("fr_film");
     const Grid g{8, 4, 0.05, 0.05, 0.1, 0.1};  // nodes at x = 0.05, 0.15, ...
-    const auto path = test::write_flow(dir + "/f.nc", g, {0.0, 1.0}, [](double, double) { return 0.0; },
-                                       [&](double x, double y, double) {
-                                           if (y > 0.2) return x < 0.3 ? test::FlowState{0.02f, 1.5f, -0.7f} : test::FlowState{};
-                                           return x < 0.2 ? test::FlowState{0.1f, 0.5f, 0.0f} : test::FlowState{1e-4f, 5.0f, 0.0f};
-                                       });
+    const auto path = test::write_flow(
+        dir + "/f.nc", g, {0.0, 1.0}, [](double, double) { return 0.0; },
+        [&](double x, double y, double) {
+            if (y > 0.2) return x < 0.3 ? test::FlowState{0.02f, 1.5f, -0.7f} : test::FlowState{};
+            return x < 0.2 ? test::FlowState{0.1f, 0.5f, 0.0f} : test::FlowState{1e-4f, 5.0f, 0.0f};
+        });
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
         FlowReaderDef def;
         def.time_interpolation = interp;
@@ -90,11 +98,12 @@ TEST(FlowReader, ThinFastFilmBarelyMovesTheVelocity) {
 
 TEST(FlowReader, WettingFrontGivesBoundedSpeed) {
     const auto dir = test::scratch_dir("fr_front");
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0}, [](double, double) { return 0.0; },
-                                       [&](double x, double y, double t) {
-                                           const bool wet = x < -0.55 && (t > 0.5 || y < 2.2);
-                                           return wet ? test::FlowState{0.004f, 1.5f, -0.7f} : test::FlowState{};
-                                       });
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0}, [](double, double) { return 0.0; },
+        [&](double x, double y, double t) {
+            const bool wet = x < -0.55 && (t > 0.5 || y < 2.2);
+            return wet ? test::FlowState{0.004f, 1.5f, -0.7f} : test::FlowState{};
+        });
     FlowReader r(path);
     r.prepare(0.0);
     double max_speed = 0.0;
@@ -109,8 +118,11 @@ TEST(FlowReader, WettingFrontGivesBoundedSpeed) {
 
 TEST(FlowReader, HoldsLastFrameAndLoadsFramesOnce) {
     const auto dir = test::scratch_dir("fr_hold");
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, [](double, double) { return -0.5; },
-                                       [](double, double, double t) { return test::FlowState{0.2f, float(0.1 * t), 0.0f}; });
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, [](double, double) { return -0.5; },
+        [](double, double, double t) {
+            return test::FlowState{0.2f, float(0.1 * t), 0.0f};
+        });
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
         FlowReaderDef def;
         def.time_interpolation = interp;
@@ -119,8 +131,8 @@ TEST(FlowReader, HoldsLastFrameAndLoadsFramesOnce) {
         EXPECT_EQ(r.frames_loaded(), 6u) << to_string(interp);  // each frame read once while time advances
         r.prepare(7.0);
         const FlowPointAccel p = r.sample_accel(0.0, 2.2, 7.0);
-        EXPECT_NEAR(p.u, 0.5, 1e-6);   // held
-        EXPECT_EQ(p.du_dt, 0.0);       // steady past the end
+        EXPECT_NEAR(p.u, 0.5, 1e-6);  // held
+        EXPECT_EQ(p.du_dt, 0.0);      // steady past the end
         EXPECT_EQ(r.next_frame_time(7.0), 5.0);
     }
 }
@@ -130,8 +142,11 @@ TEST(FlowReader, HoldsLastFrameAndLoadsFramesOnce) {
 TEST(FlowReader, CubicIsExactForQuadraticInTime) {
     const auto dir = test::scratch_dir("fr_cubic");
     const double a = 0.2, c = 0.03;  // u = a + c t² at uniform depth
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0, 4.0}, [](double, double) { return -0.5; },
-                                       [&](double, double, double t) { return test::FlowState{0.25f, float(a + c * t * t), 0.0f}; });
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0, 2.0, 3.0, 4.0}, [](double, double) { return -0.5; },
+        [&](double, double, double t) {
+            return test::FlowState{0.25f, float(a + c * t * t), 0.0f};
+        });
     FlowReaderDef def;
     def.time_interpolation = TimeInterpolation::cubic;
     FlowReader cubic(path, def), linear(path);
@@ -157,19 +172,20 @@ TEST(FlowReader, CubicGuardKeepsDepthPositiveWhereTheCubicUndershoots) {
     def.time_interpolation = TimeInterpolation::cubic;
     struct Case {
         const char* name;
-        double h[4];      // the depth at frames 0..3 [m]
-        double linear;    // the linear value at t = 1.5 [m]
+        double h[4];    // the depth at frames 0..3 [m]
+        double linear;  // the linear value at t = 1.5 [m]
     };
     const Case cases[] = {{"trough", {0.1, 0.001, 0.001, 0.1}, 0.001},
                           {"wetting front", {0.0, 0.0, 0.0, 0.05}, 0.0},
                           {"peak", {0.01, 0.05, 0.05, 0.01}, 0.05}};
     const TimeWeights w = catmull_rom_time_weights(0.5, 1.0, 0.5, 0.5);  // t = 1.5, frames k−1 … k+2 = 0 … 3
     for (const Case& c : cases) {
-        const auto path = test::write_flow(dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
-                                           [&](double, double, double t) {
-                                               const float h = float(c.h[int(t)]);
-                                               return test::FlowState{h, h > 0 ? 0.4f : 0.0f, 0.0f};
-                                           });
+        const auto path = test::write_flow(
+            dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
+            [&](double, double, double t) {
+                const float h = float(c.h[int(t)]);
+                return test::FlowState{h, h > 0 ? 0.4f : 0.0f, 0.0f};
+            });
         FlowReader r(path, def);
         r.prepare(1.5);
         const double unguarded = apply_time_weights(w.w, c.h[0], c.h[1], c.h[2], c.h[3]);
@@ -189,10 +205,11 @@ TEST(FlowReader, CubicGuardKeepsDepthPositiveWhereTheCubicUndershoots) {
 
 TEST(FlowReader, SubWindowGivesTheSameValues) {
     const auto dir = test::scratch_dir("fr_window");
-    const auto path = test::write_flow(dir + "/f.nc", grid, {0.0, 1.0}, [](double, double) { return -0.5; },
-                                       [](double x, double y, double t) {
-                                           return test::FlowState{float(0.2 + 0.1 * std::sin(7 * x) * std::cos(5 * y)), float(x * y + t), float(x - y)};
-                                       });
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0}, [](double, double) { return -0.5; },
+        [](double x, double y, double t) {
+            return test::FlowState{float(0.2 + 0.1 * std::sin(7 * x) * std::cos(5 * y)), float(x * y + t), float(x - y)};
+        });
     FlowReader full(path), part(path);
     part.set_window(part.cells_for(-0.5, -0.2, 2.1, 2.3));
     full.prepare(0.3);

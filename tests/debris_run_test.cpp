@@ -4,11 +4,11 @@
 
 #include <cmath>
 
+#include "cases/debris_flows.hpp"
 #include "common/netcdf.hpp"
-#include "formats/scene.hpp"
 #include "common/sha256.hpp"
 #include "debris/world.hpp"
-#include "cases/debris_flows.hpp"
+#include "formats/scene.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -83,7 +83,8 @@ TEST(DebrisRun, CliWritesTheSameTrajectoryFileTwice) {
     scene.points.push_back({"FD", "start", -0.2, 0.0, 15.0});
     scene.points.push_back({"WG", "gauge", 0.0, 0.0, 0.0});
     write_scene(dir + "/scene.nc", scene, "test");
-    const std::string args = "debris --flow " + flow + " --scene " + dir + "/scene.nc --start FD --at 0.1,0.05,90 --output-interval 0.25 --quiet";
+    const std::string args =
+        "debris --flow " + flow + " --scene " + dir + "/scene.nc --start FD --at 0.1,0.05,90 --output-interval 0.25 --quiet";
     std::string out;
     ASSERT_EQ(test::run_cli(args + " --out " + dir + "/a.nc", &out), 0) << out;
     ASSERT_EQ(test::run_cli(args + " --out " + dir + "/b.nc", &out), 0) << out;

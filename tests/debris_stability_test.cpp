@@ -49,8 +49,10 @@ TEST(DebrisStability, StepLimitKeepsBodyOutOfOneCellWallWhereLongStepsTunnel) {
         const auto flow = test::wall_flow(dir, cell);
         for (double heading : {0.0, 20.0, 90.0}) {
             for (double f : {0.25, 1.0})
-                EXPECT_EQ(test::wall_tunnelling_count(flow, cell, heading, f, 8), 0) << cell << " m cells, heading " << heading << ", f " << f;
-            EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, 0.16 / cell, 8), 6) << cell << " m cells, heading " << heading;
+                EXPECT_EQ(test::wall_tunnelling_count(flow, cell, heading, f, 8), 0)
+                    << cell << " m cells, heading " << heading << ", f " << f;
+            EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, 0.16 / cell, 8), 6)
+                << cell << " m cells, heading " << heading;
         }
     }
 }

@@ -23,7 +23,9 @@ TEST(GeneratedSceneFlood, ShoreFloodsRoofsStayDry) {
     Scene s = full;
     s.grid.nx = full.grid.nx - i0;
     s.grid.x0 = full.grid.x(i0);
-    s.z.clear(); s.manning_n.clear(); s.building.clear();
+    s.z.clear();
+    s.manning_n.clear();
+    s.building.clear();
     for (int j = 0; j < full.grid.ny; ++j)
         for (int i = i0; i < full.grid.nx; ++i) {
             const std::size_t k = full.grid.index(i, j);

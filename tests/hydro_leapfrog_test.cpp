@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cases/hydro_cases.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/leapfrog_kernels.hpp"
-#include "cases/hydro_cases.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -39,9 +39,9 @@ TEST(LeapfrogKernels, WetDryRulesAndFriction) {
     EXPECT_TRUE(face_open(0.08, -0.02, 0.0, 0.05, dry));
     EXPECT_FALSE(face_open(0.0, 0.0, 0.0, -0.1, dry));  // both dry
     // The mass flux's depth: the upstream level above the higher ground.
-    EXPECT_NEAR(upstream_depth(0.5, 0.08, -0.02, 0.0, 0.05, dry), 0.01, 1e-15);   // onto the roof
-    EXPECT_EQ(upstream_depth(-0.5, 0.08, -0.02, 0.0, 0.05, dry), 0.0);            // from the dry roof: nothing
-    EXPECT_NEAR(upstream_depth(-0.5, 0.05, -0.1, 0.02, 0.0, dry), 0.02, 1e-15);   // spilling off a ledge
+    EXPECT_NEAR(upstream_depth(0.5, 0.08, -0.02, 0.0, 0.05, dry), 0.01, 1e-15);  // onto the roof
+    EXPECT_EQ(upstream_depth(-0.5, 0.08, -0.02, 0.0, 0.05, dry), 0.0);           // from the dry roof: nothing
+    EXPECT_NEAR(upstream_depth(-0.5, 0.05, -0.1, 0.02, 0.0, dry), 0.02, 1e-15);  // spilling off a ledge
     // Momentum only flows in: outflow through a side leaves the face's velocity as it is.
     EXPECT_EQ(momentum_inflow(-1.0, 5.0, 1.0, 7.0, 2.0), 0.0);
     EXPECT_DOUBLE_EQ(momentum_inflow(0.5, 1.0, -0.25, 4.0, 2.0), 0.5 * (1.0 - 2.0) + 0.25 * (4.0 - 2.0));

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
+#include "cases/hydro_cases.hpp"
 #include "hydro/nesting.hpp"
 #include "test_support.hpp"
-#include "cases/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;
@@ -74,11 +74,18 @@ TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
     for (double t = 0.05; t <= 6.0 + 1e-9; t += 0.05) {
         run_to(fine, t);
         run_to(nested, t);
-        if (fine.level(gi, gj) > peak_fine) { peak_fine = fine.level(gi, gj); peak_fine_time = t; }
-        if (nested.level(gi, gj) > peak_nested) { peak_nested = nested.level(gi, gj); peak_coarse_time = t; }
+        if (fine.level(gi, gj) > peak_fine) {
+            peak_fine = fine.level(gi, gj);
+            peak_fine_time = t;
+        }
+        if (nested.level(gi, gj) > peak_nested) {
+            peak_nested = nested.level(gi, gj);
+            peak_coarse_time = t;
+        }
     }
     ASSERT_GT(peak_fine, 0.02);
-    std::printf("peak fine %.5f at %.2f s, nested %.5f at %.2f s, work ratio %.3f\n", peak_fine, peak_fine_time, peak_nested, peak_coarse_time, nested.cell_updates() / (double(fine.stats().steps) * double(scene.grid.size())));
+    std::printf("peak fine %.5f at %.2f s, nested %.5f at %.2f s, work ratio %.3f\n", peak_fine, peak_fine_time, peak_nested,
+                peak_coarse_time, nested.cell_updates() / (double(fine.stats().steps) * double(scene.grid.size())));
     EXPECT_LT(std::abs(peak_nested - peak_fine) / peak_fine, 0.03);
     EXPECT_LE(std::abs(peak_coarse_time - peak_fine_time), 0.051);
     // Work: the deep half on 16x fewer cells at a 4x longer step.
@@ -88,6 +95,12 @@ TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
 
 TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
     const Scene scene = mini_flume(0.0);
-    EXPECT_NE(test::error_of([&] { NestedSolver(scene, test::closed_def(), NestDef{4.0, 3}); }).find("--nest-ratio"), std::string::npos);
-    EXPECT_NE(test::error_of([&] { NestedSolver(scene, test::closed_def(), NestDef{7.95, 4}); }).find("--nest-x"), std::string::npos);
+    EXPECT_NE(test::error_of([&] {
+                  NestedSolver(scene, test::closed_def(), NestDef{4.0, 3});
+              }).find("--nest-ratio"),
+              std::string::npos);
+    EXPECT_NE(test::error_of([&] {
+                  NestedSolver(scene, test::closed_def(), NestDef{7.95, 4});
+              }).find("--nest-x"),
+              std::string::npos);
 }

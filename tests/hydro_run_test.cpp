@@ -81,7 +81,6 @@ bool interrupted_and_restarted(RunDef r, const SolverDef& d) {
     return run_hydro(r, d).completed;
 }
 
-
 }  // namespace
 
 TEST(HydroRun, WritesAReadableCfFlowFile) {
@@ -112,7 +111,9 @@ TEST(HydroRun, WritesAReadableCfFlowFile) {
     for (std::size_t k = 0; k < h.size(); ++k) {
         ASSERT_TRUE(std::isfinite(h[k]) && std::isfinite(u[k]));
         ASSERT_GE(h[k], 0.0f);
-        if (h[k] == 0.0f) { ASSERT_EQ(u[k], 0.0f); }
+        if (h[k] == 0.0f) {
+            ASSERT_EQ(u[k], 0.0f);
+        }
     }
     // Frame 0 is still water: h = max(0, -z).
     for (std::size_t k = 0; k < z.size(); ++k) EXPECT_NEAR(h[k], std::max(0.0f, -z[k]), 1e-6f);
@@ -248,7 +249,8 @@ TEST(HydroRun, BadInputsNameFileAndProblem) {
     {
         nc::File f = nc::File::create(dir + "/nan.nc");
         const int dx = f.def_dim("x", 50), dy = f.def_dim("y", 20);
-        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy}), vz = f.def_var("z", NC_DOUBLE, {dy, dx});
+        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy}),
+                  vz = f.def_var("z", NC_DOUBLE, {dy, dx});
         f.enddef();
         f.put(vx, s.grid.xs());
         f.put(vy, s.grid.ys());
@@ -261,7 +263,8 @@ TEST(HydroRun, BadInputsNameFileAndProblem) {
     EXPECT_NE(out.find("--west: unknown boundary 'bogus'"), std::string::npos) << out;
     EXPECT_NE(test::run_cli("hydro --scene " + scene + " --out " + dir + "/z.nc --scheme upwind", &out), 0);
     EXPECT_NE(out.find("--scheme"), std::string::npos) << out;
-    EXPECT_NE(test::run_cli("hydro --scene " + scene + " --out " + dir + "/z.nc --west wall --scheme leapfrog --courant 1.5", &out), 0);
+    EXPECT_NE(test::run_cli("hydro --scene " + scene + " --out " + dir + "/z.nc --west wall --scheme leapfrog --courant 1.5", &out),
+              0);
     EXPECT_NE(out.find("--courant: must be at most 1"), std::string::npos) << out;
 }
 
@@ -269,7 +272,8 @@ TEST(HydroRun, XarrayDecodesTimeAndFindsStandardNames) {
     const auto dir = test::scratch_dir("hydro_xr");
     const auto scene = make_scene(dir);
     run_hydro(base_run(scene, dir + "/flow.nc"), level_def(make_series(dir)));
-    const std::string cmd = "/usr/bin/python3 " FLOTSAM_SOURCE_DIR "/pipelines/inspect_flow.py " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
+    const std::string cmd =
+        "/usr/bin/python3 " FLOTSAM_SOURCE_DIR "/pipelines/inspect_flow.py " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
     const int rc = std::system(cmd.c_str());
     std::ifstream f(dir + "/out.txt");
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());

@@ -1,15 +1,14 @@
 // Verification of the shallow-water solver: each test asserts a number.
 #include <gtest/gtest.h>
-
 #include <omp.h>
 
 #include <cmath>
 #include <cstring>
 #include <random>
 
+#include "cases/hydro_cases.hpp"
 #include "hydro/solver.hpp"
 #include "hydro/swe_kernels.hpp"
-#include "cases/hydro_cases.hpp"
 
 using namespace flotsam;
 using namespace flotsam::hydro;
@@ -138,7 +137,7 @@ TEST(Solver, WetDamBreakConvergesToStoker) {
                 e800, order, first_order);
     // The shock (jump ~0.2 m) smeared over about two cells of 1.25 cm dominates the error.
     EXPECT_LT(e800, 6e-3);
-    EXPECT_GT(order, 0.75);  // a shock limits any scheme to first order in L1
+    EXPECT_GT(order, 0.75);              // a shock limits any scheme to first order in L1
     EXPECT_LT(e800, 0.8 * first_order);  // second order beats first
 }
 

@@ -5,9 +5,9 @@
 
 #include <cstdio>
 
+#include "cases/hydro_cases.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/solver.hpp"
-#include "cases/hydro_cases.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -44,12 +44,12 @@ TEST(CourantLimit, LeapfrogHoldsUpToOneAndBlowsUpAbove) {
     const Scene s = test::basin_wave(40);
     const test::Watch at_limit = leapfrog_run(s, study_def(0.0), 1.0, 1.5);
     const test::Watch above = leapfrog_run(s, study_def(0.0), 1.05, 1.5);
-    std::printf("leap-frog wave: Courant 1.00 level rise %.2e m; 1.05: %.3f m after %ld steps\n", at_limit.level_rise, above.level_rise,
-                above.steps);
+    std::printf("leap-frog wave: Courant 1.00 level rise %.2e m; 1.05: %.3f m after %ld steps\n", at_limit.level_rise,
+                above.level_rise, above.steps);
     EXPECT_FALSE(at_limit.blew_up());
     EXPECT_EQ(at_limit.level_rise, 0.0);  // the hump only spreads
     EXPECT_TRUE(above.blew_up());
-    EXPECT_GT(above.level_rise, 0.01);    // grid-scale growth, not the wave
+    EXPECT_GT(above.level_rise, 0.01);  // grid-scale growth, not the wave
     // Outside the study the setting is refused, and a run whose flow outgrows the step stops.
     SolverDef guarded = study_def(0.0);
     guarded.study_past_stability_limit = false;
@@ -68,8 +68,8 @@ TEST(CourantLimit, FiniteVolumesHoldAtTheDefaultAndFailAbove) {
     d.cfl = 1.2;
     Solver over(s, d);
     const test::Watch failed = test::run_watched(over, s, 1.5, 1.0);  // watched until the level has risen 1 m
-    std::printf("finite volumes wave: cfl 0.45 level rise %.2e m; cfl 1.2: %.3f m, %ld depths clamped (worst %.2e m)\n", held.level_rise,
-                failed.level_rise, over.stats().negative_depth_fixes, over.stats().min_depth_seen);
+    std::printf("finite volumes wave: cfl 0.45 level rise %.2e m; cfl 1.2: %.3f m, %ld depths clamped (worst %.2e m)\n",
+                held.level_rise, failed.level_rise, over.stats().negative_depth_fixes, over.stats().min_depth_seen);
     EXPECT_FALSE(held.blew_up());
     EXPECT_EQ(held.level_rise, 0.0);
     EXPECT_TRUE(failed.blew_up());
@@ -91,10 +91,11 @@ TEST(Friction, ImplicitHoldsInThinFilmsWhereExplicitFails) {
     const test::Watch explicit_small = fv_run(s, d, 0.2, 20.0, Friction::explicit_);
     const test::Watch explicit_default = fv_run(s, d, 0.45, 20.0, Friction::explicit_);
     const test::Watch leapfrog = leapfrog_run(s, d, 0.1, 20.0);
-    std::printf("thin film: implicit max speed %.3f m/s, %ld reversals; explicit at 0.2: %ld reversals; at 0.45: speed %.3g m/s after %ld "
-                "steps; leap-frog: %ld reversals\n",
-                implicit.max_speed, implicit.reversals, explicit_small.reversals, explicit_default.max_speed, explicit_default.steps,
-                leapfrog.reversals);
+    std::printf(
+        "thin film: implicit max speed %.3f m/s, %ld reversals; explicit at 0.2: %ld reversals; at 0.45: speed %.3g m/s after %ld "
+        "steps; leap-frog: %ld reversals\n",
+        implicit.max_speed, implicit.reversals, explicit_small.reversals, explicit_default.max_speed, explicit_default.steps,
+        leapfrog.reversals);
     EXPECT_FALSE(implicit.blew_up());
     EXPECT_EQ(implicit.reversals, 0);
     EXPECT_LT(implicit.max_speed, 0.05);  // normal flow of a 0.1 mm film: ~0.03 m/s
@@ -117,10 +118,11 @@ TEST(WetDryFronts, BoreIntoBuildingsHoldsInBothSchemes) {
     const test::Watch f = test::run_watched(fv, s, 2.0);
     LeapfrogSolver lf(s, d, default_leapfrog_def());
     const test::Watch l = test::run_watched(lf, s, 2.0);
-    std::printf("bore into buildings: fv min depth %.1e, volume error %.1e, roof %.1e; leap-frog min depth %.1e, volume error %.1e, roof "
-                "%.1e, outflow limits %ld, max Courant %.2f\n",
-                f.min_depth, f.volume_error, f.roof_depth, l.min_depth, l.volume_error, l.roof_depth, lf.stats().outflow_limits,
-                lf.max_courant_seen());
+    std::printf(
+        "bore into buildings: fv min depth %.1e, volume error %.1e, roof %.1e; leap-frog min depth %.1e, volume error %.1e, roof "
+        "%.1e, outflow limits %ld, max Courant %.2f\n",
+        f.min_depth, f.volume_error, f.roof_depth, l.min_depth, l.volume_error, l.roof_depth, lf.stats().outflow_limits,
+        lf.max_courant_seen());
     for (const test::Watch* w : {&f, &l}) {
         EXPECT_FALSE(w->blew_up());
         EXPECT_GE(w->min_depth, 0.0);

@@ -21,9 +21,9 @@ using test::write_file;
 
 namespace {
 
-
-
-double at(const Scene& s, const std::vector<double>& f, double x, double y) { return f[s.grid.index(s.grid.cell_i(x), s.grid.cell_j(y))]; }
+double at(const Scene& s, const std::vector<double>& f, double x, double y) {
+    return f[s.grid.index(s.grid.cell_i(x), s.grid.cell_j(y))];
+}
 
 class GeneratedScene_ : public ::testing::TestWithParam<double> {};
 
@@ -38,12 +38,12 @@ TEST_P(GeneratedScene_, KeepsSceneNumbers) {
     EXPECT_NEAR(s.grid.y_min_edge(), -4.005, 1e-9);
     EXPECT_GE(s.grid.x_max_edge(), 8.005 - 1e-9);
     EXPECT_LT(s.grid.x_max_edge(), 8.005 + res);
-    EXPECT_DOUBLE_EQ(at(s, s.z, -10.0, -2.0), -0.877);                  // flat flume bed
+    EXPECT_DOUBLE_EQ(at(s, s.z, -10.0, -2.0), -0.877);                       // flat flume bed
     EXPECT_NEAR(at(s, s.z, -4.0, -1.0), -0.877 + 0.1 * (-4.0 + 8.4), 0.02);  // 1:10 slope
     const double fd = at(s, s.z, 1.37, -2.15), ld = at(s, s.z, 2.94, -1.26);
     EXPECT_LE(fd, -0.02);  // FD rests on the seabed 2-3 cm below still water
     EXPECT_GE(fd, -0.03);
-    EXPECT_GE(ld, 0.01);   // LD on land 1-2 cm above still water
+    EXPECT_GE(ld, 0.01);  // LD on land 1-2 cm above still water
     EXPECT_LE(ld, 0.02);
     std::size_t land = 0, roofs = 0;
     for (int j = 0; j < s.grid.ny; ++j)
@@ -51,7 +51,9 @@ TEST_P(GeneratedScene_, KeepsSceneNumbers) {
             const std::size_t k = s.grid.index(i, j);
             const double x = s.grid.x(i), y = s.grid.y(j);
             EXPECT_EQ(s.manning_n[k], x < -0.66 ? 0.025 : 0.013);
-            if (std::hypot(x - 2.94, y + 1.26) < 0.2) { EXPECT_EQ(s.building[k], 0) << x << "," << y; }
+            if (std::hypot(x - 2.94, y + 1.26) < 0.2) {
+                EXPECT_EQ(s.building[k], 0) << x << "," << y;
+            }
             if (x < -0.65 || g.ground[k] < 0.0) continue;
             ++land;
             if (!s.building[k]) continue;
@@ -118,8 +120,8 @@ TEST(ImportScene, RealLayoutKeepsMeanAndStarts) {
 TEST(ImportScene, AsciiGridRoundTripAndCoarsening) {
     const auto dir = test::scratch_dir("asc");
     // 4 columns x 2 rows, rows north to south; cell 0.5 m, lower-left corner (10, 20).
-    const std::string p = write_file(dir, "dem.asc",
-        "ncols 4\nnrows 2\nxllcorner 10\nyllcorner 20\ncellsize 0.5\nNODATA_value -9999\n1 2 3 4\n5 6 7 8\n");
+    const std::string p = write_file(
+        dir, "dem.asc", "ncols 4\nnrows 2\nxllcorner 10\nyllcorner 20\ncellsize 0.5\nNODATA_value -9999\n1 2 3 4\n5 6 7 8\n");
     const Dem d = read_dem(p);
     EXPECT_DOUBLE_EQ(d.grid.x0, 10.25);
     EXPECT_DOUBLE_EQ(d.grid.y0, 20.25);
@@ -127,7 +129,7 @@ TEST(ImportScene, AsciiGridRoundTripAndCoarsening) {
     EXPECT_EQ(d.z[d.grid.index(3, 1)], 4.0);
     const Scene same = import_scene({p, "", 0.5});
     EXPECT_EQ(same.z, d.z);
-    EXPECT_TRUE(same.points.empty());      // not the Kainan extent: no default features
+    EXPECT_TRUE(same.points.empty());  // not the Kainan extent: no default features
     EXPECT_TRUE(same.manning_n.empty());
     const Scene coarse = import_scene({p, "", 1.0});
     ASSERT_EQ(coarse.grid.nx, 2);
@@ -151,7 +153,11 @@ TEST(ImportScene, BadInputsNameFileAndVariable) {
         f.enddef();
         f.put(vx, x);
         f.put(vy, std::vector<double>{0.0, 1.0});
-        if (with_z) { std::vector<double> z(2 * x.size(), 0.0); z[1] = bad; f.put(vz, z); }
+        if (with_z) {
+            std::vector<double> z(2 * x.size(), 0.0);
+            z[1] = bad;
+            f.put(vz, z);
+        }
         f.close();
         return p;
     };
@@ -168,16 +174,22 @@ TEST(ImportScene, BadInputsNameFileAndVariable) {
     EXPECT_NE(msg.find("nocell.asc: header 'cellsize': missing"), std::string::npos) << msg;
     msg = error_of([&] { read_dem(write_file(dir, "badhead.asc", "ncols two\nnrows 1\n")); });
     EXPECT_NE(msg.find("badhead.asc: line 1"), std::string::npos) << msg;
-    msg = error_of([&] { read_dem(write_file(dir, "nodata.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nnodata_value -9999\n1 2\n3 -9999\n")); });
+    msg = error_of([&] {
+        read_dem(write_file(dir, "nodata.asc",
+                            "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nnodata_value -9999\n1 2\n3 -9999\n"));
+    });
     EXPECT_NE(msg.find("nodata.asc: line 8: NODATA"), std::string::npos) << msg;
-    msg = error_of([&] { read_dem(write_file(dir, "short.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3\n")); });
+    msg = error_of(
+        [&] { read_dem(write_file(dir, "short.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3\n")); });
     EXPECT_NE(msg.find("short.asc: data: expected"), std::string::npos) << msg;
 }
 
 TEST(ImportScene, FeaturesToml) {
     const auto dir = test::scratch_dir("features");
-    const std::string dem = write_file(dir, "dem.asc", "ncols 4\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n0 0.05 0 0\n-0.02 0 0.01 0\n");
-    const std::string toml = write_file(dir, "f.toml",
+    const std::string dem =
+        write_file(dir, "dem.asc", "ncols 4\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n0 0.05 0 0\n-0.02 0 0.01 0\n");
+    const std::string toml = write_file(
+        dir, "f.toml",
         "# test features\n[[point]]\nname = \"P\"\nkind = \"start\"\nx = 1.5\ny = 0.5\nheading = 90\n\n"
         "[[section]]\nname = \"S\"\nx = 2\ny_min = 0\ny_max = 2\n\n[[region]]\nname = \"R\"\nx = [0, 1, 1]\ny = [0, 0, 1]\n\n"
         "[[manning]]\nn = 0.03\nx_max = 2\n[[manning]]\nn = 0.01\n\n[buildings]\nmin_elevation = 0.03\n");
@@ -191,9 +203,14 @@ TEST(ImportScene, FeaturesToml) {
     EXPECT_EQ(s.manning_n[s.grid.index(2, 0)], 0.01);
     EXPECT_EQ(s.building[s.grid.index(1, 1)], 1);  // 0.05 > 0.03
     EXPECT_EQ(s.building[s.grid.index(2, 0)], 0);
-    std::string msg = error_of([&] { import_scene({dem, write_file(dir, "bad1.toml", "[[point]]\nname = \"P\"\nkind = \"start\"\nx = 1\ny = oops\n"), 1.0}); });
+    std::string msg = error_of([&] {
+        import_scene({dem, write_file(dir, "bad1.toml", "[[point]]\nname = \"P\"\nkind = \"start\"\nx = 1\ny = oops\n"), 1.0});
+    });
     EXPECT_NE(msg.find("bad1.toml: line 5: key 'y'"), std::string::npos) << msg;
-    msg = error_of([&] { import_scene({dem, write_file(dir, "bad2.toml", "[[section]]\nname = \"S\"\nx = 1\ny_min = 0\ny_max = 1\nwidth = 3\n"), 1.0}); });
+    msg = error_of([&] {
+        import_scene(
+            {dem, write_file(dir, "bad2.toml", "[[section]]\nname = \"S\"\nx = 1\ny_min = 0\ny_max = 1\nwidth = 3\n"), 1.0});
+    });
     EXPECT_NE(msg.find("bad2.toml: line 6: unknown key 'width'"), std::string::npos) << msg;
     msg = error_of([&] { import_scene({dem, write_file(dir, "bad3.toml", "[[point]]\nname = \"P\"\nx = 1\ny = 1\n"), 1.0}); });
     EXPECT_NE(msg.find("bad3.toml: [point] at line 1: missing key 'kind'"), std::string::npos) << msg;

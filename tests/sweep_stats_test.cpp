@@ -2,6 +2,8 @@
 // lines crossing a section at known y and speed, a known yaw history, bodies inside
 // known regions at 300 s, distances in a known ratio to the control, and paths over
 // known map cells.
+#include "sweep/sweep_stats.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 #include "common/netcdf.hpp"
 #include "common/sha256.hpp"
 #include "sweep/sweep_file.hpp"
-#include "sweep/sweep_stats.hpp"
 #include "sweep/trajectory_kernels.hpp"
 #include "tests/test_support.hpp"
 
@@ -35,7 +36,8 @@ struct SyntheticSweep {
         r.flows = {"f0.nc", "f1.nc"};
         r.bodies = {"FD", "LD"};
         r.variants = {"CC+SC", "LC+MC"};
-        for (int p = 0; p < param_sets; ++p) r.params.push_back({p == 0 ? "control" : "set" + std::to_string(p), paper_control(), p == 0});
+        for (int p = 0; p < param_sets; ++p)
+            r.params.push_back({p == 0 ? "control" : "set" + std::to_string(p), paper_control(), p == 0});
         r.output_interval = dt;
         r.dt_max = 0.01;
         for (int k = 0; dt * k <= t_end + 1e-9; ++k) r.time.push_back(dt * k);
@@ -140,12 +142,12 @@ TEST(SweepStats, LargestYawInTheFirstThirtySeconds) {
         return t <= 31 ? -10.0 : -60.0;
     };
     sw.add(0, 0, 0, 0, [&](double t) { return Sample{0.01 * t, 0.0, yaw(t), 0.01, 0.0}; });
-    sw.add(0, 0, 0, 0, line(0.0, 1.0, 0.05, 0.0, 20.0));    // axis 20° from the motion
-    sw.add(0, 0, 0, 0, line(0.0, 2.0, 0.05, 0.05, 0.0));    // moving at 45°, axis along x: −45°
-    sw.add(0, 0, 0, 0, line(0.0, 3.0, 0.05, 0.0, 170.0));   // 170° is the same line as −10°
-    sw.add(0, 0, 0, 0, line(0.0, 4.0, 0.0, 0.0, 0.0));      // never moves
+    sw.add(0, 0, 0, 0, line(0.0, 1.0, 0.05, 0.0, 20.0));   // axis 20° from the motion
+    sw.add(0, 0, 0, 0, line(0.0, 2.0, 0.05, 0.05, 0.0));   // moving at 45°, axis along x: −45°
+    sw.add(0, 0, 0, 0, line(0.0, 3.0, 0.05, 0.0, 170.0));  // 170° is the same line as −10°
+    sw.add(0, 0, 0, 0, line(0.0, 4.0, 0.0, 0.0, 0.0));     // never moves
     const SweepStats s = compute_stats(sw.r, scene_with(Grid{10, 10, 0.5, 0.5, 1, 1}));
-    EXPECT_DOUBLE_EQ(s.motion_start[0], 1.0);               // 0.01 m ≥ 5 mm first at t = 1 s
+    EXPECT_DOUBLE_EQ(s.motion_start[0], 1.0);  // 0.01 m ≥ 5 mm first at t = 1 s
     EXPECT_DOUBLE_EQ(s.max_rotation[0], 30.0);
     EXPECT_DOUBLE_EQ(s.max_yaw_to_motion[0], 30.0);
     EXPECT_NEAR(s.max_yaw_to_motion[1], 20.0, 1e-12);
@@ -163,7 +165,7 @@ TEST(SweepStats, LargestYawInTheFirstThirtySeconds) {
     EXPECT_EQ(h[18], 3);
     int total = 0;
     for (int c : h) total += c;
-    EXPECT_EQ(total, 4);  // the body that never moved has no rotation
+    EXPECT_EQ(total, 4);                     // the body that never moved has no rotation
     EXPECT_EQ(s.yaw_motion_hist[0][13], 1);  // −45
     EXPECT_EQ(s.yaw_motion_hist[0][17], 1);  // −10
 }
@@ -256,7 +258,10 @@ TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
     scene.regions = {{"r", {{{0, -1}}, {{3, -1}}, {{3, 1}}, {{0, 1}}}}};
     write_scene(dir + "/scene.nc", scene, "test");
     std::string out;
-    ASSERT_EQ(test::run_cli("stats --sweep " + dir + "/a.nc --scene " + dir + "/scene.nc --out " + dir + "/st.nc --csv " + dir + "/csv", &out), 0)
+    ASSERT_EQ(
+        test::run_cli("stats --sweep " + dir + "/a.nc --scene " + dir + "/scene.nc --out " + dir + "/st.nc --csv " + dir + "/csv",
+                      &out),
+        0)
         << out;
     const nc::File f = nc::File::open_read(dir + "/st.nc");
     EXPECT_EQ(f.get_int(f.var("passage_count"))[0], 3);

@@ -1,18 +1,19 @@
 // flotsam sweep: the parameter designs, the member list and its shards, one World per
 // flow (frames read once whatever the member count), merged shards byte-identical to the
 // unsharded run, and spec errors that name the file, line and key.
+#include "sweep/sweep.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 #include <set>
 
-#include "common/error.hpp"
-#include "formats/scene.hpp"
-#include "common/sha256.hpp"
-#include "sweep/sweep.hpp"
-#include "sweep/sweep_spec.hpp"
 #include "cases/debris_flows.hpp"
+#include "common/error.hpp"
+#include "common/sha256.hpp"
+#include "formats/scene.hpp"
+#include "sweep/sweep_spec.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -31,12 +32,14 @@ std::vector<std::string> two_flows(const std::string& dir) {
 std::string small_spec(const std::string& dir, const std::vector<std::string>& flows) {
     return test::write_file(dir, "spec.toml",
                             "[sweep]\noutput_interval = 0.5\n"
-                            "[flows]\npaths = [\"" + flows[0] + "\",\n  \"" + flows[1] + "\"]  # two flows\n"
-                            "[[body]]\nname = \"A\"\nat = [0.35, 0.30, 0]\n"
-                            "[[body]]\nname = \"B\"\nat = [0.40, 0.55, 90]\n"
-                            "[variants]\nnames = [\"CC+SC\", \"LC+MC\"]\n"
-                            "[parameters]\ndesign = \"one_at_a_time\"\nvary = [\"cd1\"]\n"
-                            "[perturbation]\ncount = 1\nposition_std = 0.01\nheading_std = 5\nseed = 3\n");
+                            "[flows]\npaths = [\"" +
+                                flows[0] + "\",\n  \"" + flows[1] +
+                                "\"]  # two flows\n"
+                                "[[body]]\nname = \"A\"\nat = [0.35, 0.30, 0]\n"
+                                "[[body]]\nname = \"B\"\nat = [0.40, 0.55, 90]\n"
+                                "[variants]\nnames = [\"CC+SC\", \"LC+MC\"]\n"
+                                "[parameters]\ndesign = \"one_at_a_time\"\nvary = [\"cd1\"]\n"
+                                "[perturbation]\ncount = 1\nposition_std = 0.01\nheading_std = 5\nseed = 3\n");
 }
 
 }  // namespace
@@ -178,9 +181,11 @@ TEST(SweepSpec, MembersPerturbationsAndVariantsFromTheFile) {
 TEST(SweepSpec, PatternListsFlowsSortedAndSampledDesignsAddTheControl) {
     const auto dir = test::scratch_dir("sweep_pattern");
     two_flows(dir);
-    const std::string path = test::write_file(dir, "p.toml",
-                                              "[flows]\npattern = \"" + dir + "/f*.nc\"\n[[body]]\nat = [0.3, 0.3, 0]\n"
-                                              "[parameters]\ndesign = \"latin_hypercube\"\nsamples = 4\nseed = 2\ncm = [1.5, 3.0]\nmu = 0.3\n");
+    const std::string path =
+        test::write_file(dir, "p.toml",
+                         "[flows]\npattern = \"" + dir +
+                             "/f*.nc\"\n[[body]]\nat = [0.3, 0.3, 0]\n"
+                             "[parameters]\ndesign = \"latin_hypercube\"\nsamples = 4\nseed = 2\ncm = [1.5, 3.0]\nmu = 0.3\n");
     const SweepSpec spec = read_sweep_spec(path);
     ASSERT_EQ(spec.flows.size(), 2u);
     EXPECT_EQ(spec.flows[0], dir + "/f0.nc");
@@ -207,7 +212,8 @@ TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
     scene.z.assign(grid.size(), -0.1);
     scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}, {"WG2", "gauge", 0.1, 0.1, 0.0}};
     write_scene(dir + "/scene.nc", scene, "test");
-    const SweepSpec spec = read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity.toml", dir + "/scene.nc", flows);
+    const SweepSpec spec =
+        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity.toml", dir + "/scene.nc", flows);
     ASSERT_EQ(spec.bodies.size(), 2u);
     EXPECT_EQ(spec.bodies[1].name, "LD");
     EXPECT_DOUBLE_EQ(spec.bodies[1].x, 0.6);
@@ -289,13 +295,15 @@ TEST(SweepRun, MergedShardsGiveTheBytesOfTheWholeRun) {
     std::string out;
     ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --out " + dir + "/whole.nc --quiet --threads 2", &out), 0) << out;
     for (int i = 0; i < 3; ++i)
-        ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --shard " + std::to_string(i) + "/3 --out " + dir + "/part" + std::to_string(i) +
-                                    ".nc --quiet --threads 1",
+        ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --shard " + std::to_string(i) + "/3 --out " + dir + "/part" +
+                                    std::to_string(i) + ".nc --quiet --threads 1",
                                 &out),
                   0)
             << out;
     // Parts in any order.
-    ASSERT_EQ(test::run_cli("sweep merge " + dir + "/part2.nc " + dir + "/part0.nc " + dir + "/part1.nc --out " + dir + "/merged.nc", &out), 0)
+    ASSERT_EQ(test::run_cli(
+                  "sweep merge " + dir + "/part2.nc " + dir + "/part0.nc " + dir + "/part1.nc --out " + dir + "/merged.nc", &out),
+              0)
         << out;
     EXPECT_EQ(sha256_file(dir + "/merged.nc"), sha256_file(dir + "/whole.nc"));
     EXPECT_EQ(sha256_file(dir + "/merged.csv"), sha256_file(dir + "/whole.csv"));

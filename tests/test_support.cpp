@@ -1,13 +1,14 @@
 #include "tests/test_support.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
 #include "common/error.hpp"
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace flotsam::test {
 
@@ -20,7 +21,8 @@ std::string scratch_dir(const std::string& name) {
 
 std::string shared_data(const std::string& file) {
     const char* env = std::getenv("FLOTSAM_SHARED");
-    const std::filesystem::path root = env ? std::filesystem::path(env) : std::filesystem::path(FLOTSAM_SOURCE_DIR) / ".." / "shared";
+    const std::filesystem::path root =
+        env ? std::filesystem::path(env) : std::filesystem::path(FLOTSAM_SOURCE_DIR) / ".." / "shared";
     const auto p = root / "data" / file;
     return std::filesystem::exists(p) ? p.string() : std::string();
 }
