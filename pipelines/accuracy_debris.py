@@ -37,9 +37,10 @@ import sys
 import numpy as np
 import xarray as xr
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from cached_run import run_once  # noqa: E402
+from pipelines.cached_run import run_once
+
+# The repository root: subsample_flow runs as a module of the pipelines package.
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 STARTS = ["FD", "LD"]
 OFFSETS = [(dx, dy) for dy in (-0.03, 0.0, 0.03) for dx in (-0.03, 0.0, 0.03)]  # [m]
@@ -151,7 +152,8 @@ def main():
     for k in FRAME_STEPS[1:]:
         flows[k] = flow_path(a.runs, k)
         if not os.path.exists(flows[k]):
-            subprocess.run([sys.executable, os.path.join(HERE, "subsample_flow.py"), a.flow, str(k), flows[k]], check=True)
+            subprocess.run([sys.executable, "-m", "pipelines.subsample_flow", a.flow, str(k), flows[k]], check=True,
+                           env={**os.environ, "PYTHONPATH": ROOT})
 
     # ---- every run, in parallel (each single-threaded) ----
     jobs = {}

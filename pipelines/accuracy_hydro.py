@@ -18,13 +18,11 @@ import csv
 import os
 import re
 import subprocess
-import sys
 
 import xarray as xr
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import flow_error  # noqa: E402
-from cached_run import run_once  # noqa: E402
+from pipelines import flow_error
+from pipelines.cached_run import run_once
 
 NEST_X = -1.2  # the interface: on the flume's slope, about 15 cm deep at rest
 

@@ -19,8 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from charts import save  # noqa: E402
+from pipelines.charts import save  # noqa: E402
 
 COLOURS = {"stable": "tab:green", "negative depth": "tab:orange", "reverses": "tab:purple", "blow-up": "tab:red"}
 

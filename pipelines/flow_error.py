@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Error of flows against a reference flow, at the points debris cares about.
 
-Usage: flow_error.py SCENE.nc REFERENCE.nc FLOW.nc [FLOW.nc ...]
+Usage: python3 -m pipelines.flow_error SCENE.nc REFERENCE.nc FLOW.nc [FLOW.nc ...]
 
 For each flow, against the reference (typically the finest run), over their common time:
   wg2_rms_m          RMS difference of the WG2 level (gauge series)

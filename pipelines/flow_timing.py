@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The paper's timing numbers from one or more flow files.
 
-Usage: flow_timing.py SCENE.nc FLOW.nc [FLOW.nc ...]
+Usage: python3 -m pipelines.flow_timing SCENE.nc FLOW.nc [FLOW.nc ...]
 
 For each flow: the largest level at WG2 and when, the first time the WG2 level exceeds
 1 cm, and the time the depth first exceeds the arrival depth (the 2.5 cm draft) at the
@@ -14,7 +14,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-from flow_error import arrival, print_csv, scene_point, seconds
+from pipelines.flow_error import arrival, print_csv, scene_point, seconds
 
 
 def timing(scene, path):

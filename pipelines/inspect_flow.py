@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Summarise a flotsam flow file through xarray (Debian's python3-xarray).
 
-Usage: inspect_flow.py FLOW.nc [--check]
+Usage: python3 -m pipelines.inspect_flow FLOW.nc [--check]
 
 Prints the decoded time axis, the variables found by CF standard_name, the gauges and
 the largest depth and speed. With --check, exits non-zero unless the time axis decodes

@@ -273,7 +273,7 @@ TEST(HydroRun, XarrayDecodesTimeAndFindsStandardNames) {
     const auto scene = make_scene(dir);
     run_hydro(base_run(scene, dir + "/flow.nc"), level_def(make_series(dir)));
     const std::string cmd =
-        "/usr/bin/python3 " FLOTSAM_SOURCE_DIR "/pipelines/inspect_flow.py " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
+        "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.inspect_flow " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
     const int rc = std::system(cmd.c_str());
     std::ifstream f(dir + "/out.txt");
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
