@@ -12,6 +12,7 @@
 #include "common/progress.hpp"
 #include "common/sha256.hpp"
 #include "common/version.hpp"
+#include "hydro/restart_key.hpp"
 
 namespace flotsam::hydro {
 
@@ -192,7 +193,7 @@ struct Checkpoint {
     double volume_start = 0.0;
     double pump_level = 0.0;
     bool pump_stopped = false;
-    std::string config_sha;
+    std::string key;  // restart_key() of the run that wrote it
 };
 
 // The conserved state of a solver, as arrays: h, hu, hv of each grid (padded layout).
@@ -223,7 +224,7 @@ void write_checkpoint(const std::string& path, S& s, const Summary& sum, const C
         f.put_att(NC_GLOBAL, "volume_start", c.volume_start);
         f.put_att(NC_GLOBAL, "pump_level", c.pump_level);
         f.put_att(NC_GLOBAL, "pump_stopped", c.pump_stopped ? 1 : 0);
-        f.put_att(NC_GLOBAL, "config_sha256", c.config_sha);
+        f.put_att(NC_GLOBAL, "restart_key", c.key);
         f.enddef();
         for (std::size_t k = 0; k < arrays.size(); ++k) f.put(vs[k], *arrays[k]);
         f.put(vmd, sum.max_depth);
@@ -232,6 +233,13 @@ void write_checkpoint(const std::string& path, S& s, const Summary& sum, const C
         f.close();
     }
     out.commit();
+}
+
+std::string read_checkpoint_key(const std::string& path) {
+    const nc::File f = nc::File::open_read(path);
+    const auto key = f.att_text(NC_GLOBAL, "restart_key");
+    if (!key) fail(path, "attribute 'restart_key'", "missing: written by an older flotsam, whose checkpoints cannot be continued");
+    return *key;
 }
 
 template <class S>
@@ -250,7 +258,7 @@ Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     c.volume_start = need("volume_start");
     c.pump_level = need("pump_level");
     c.pump_stopped = need("pump_stopped") != 0.0;
-    c.config_sha = f.att_text(NC_GLOBAL, "config_sha256").value_or("");
+    c.key = read_checkpoint_key(path);
     const auto arrays = state_arrays(s);
     for (std::size_t k = 0; k < arrays.size(); ++k) {
         const std::string name = "state_" + std::to_string(k);
@@ -323,19 +331,28 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     sum.max_speed.assign(win.grid.size(), 0.0f);
     sum.arrival.assign(win.grid.size(), float(kFill));
 
-    const std::string config_sha =
-        sha256_hex(run.config_text + "\n" + sha256_file(run.scene_file) + "\n" + boundary_checksums(solver_def));
-    AtomicOutput out(run.out_file);
+    const std::string key = restart_key(run, solver_def);
     const std::string ckpt = checkpoint_path(run.out_file);
+    if (!run.restart && std::filesystem::exists(ckpt))
+        fail(ckpt, "",
+             "holds an interrupted run of " + run.out_file + ": continue it with --restart, or remove " + ckpt + " and " +
+                 run.out_file + ".part to start afresh");
+    AtomicOutput out(run.out_file);
     std::optional<FlowWriter> writer;
     Checkpoint state;
     if (run.restart) {
+        out.keep_partial();  // the interrupted run's work: never removed, whatever happens next
         if (!std::filesystem::exists(ckpt)) fail(ckpt, "", "no checkpoint to restart from");
         if (!std::filesystem::exists(out.temp_path()))
             fail(out.temp_path(), "", "the partial output of the interrupted run is missing");
+        // The settings first (attributes only), so that a refusal touches no state.
+        const std::string written_with = read_checkpoint_key(ckpt);
+        if (written_with != key)
+            fail(ckpt, "",
+                 "was written with other settings, scene or boundary files (" + differing_settings(written_with, key) +
+                     "): restart with the checkpoint's settings, or remove " + ckpt + " and " + out.temp_path() +
+                     " to start afresh");
         state = read_checkpoint(ckpt, solver, sum);
-        if (state.config_sha != config_sha)
-            fail(ckpt, "", "was written with other settings, scene or boundary files; rerun without --restart");
         solver.set_time(state.time);
         if (state.pump_stopped) solver.set_pump_level_at_stop(state.pump_level);
         writer.emplace(FlowWriter::reopen(out.temp_path()));
@@ -401,8 +418,12 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
             write_frame(*writer, state.next_frame, solver, win);
             ++state.next_frame;
             gauges.flush(*writer);
+            writer->sync();
         }
-        if (t1 >= next_checkpoint - 1e-12 || (run.stop_after >= 0.0 && t1 >= run.stop_after)) {
+        // Checkpoints and stops fall on stored frames, and every frame ends with a sync:
+        // the file then has the same bytes (HDF5's layout included) whether the run was
+        // checkpointed, stopped and restarted, or never interrupted.
+        if (reaches && (t1 >= next_checkpoint - 1e-12 || (run.stop_after >= 0.0 && t1 >= run.stop_after))) {
             gauges.flush(*writer);
             writer->sync();
             state.time = t1;
@@ -410,9 +431,10 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
             state.next_gauge = gauges.next();
             state.pump_stopped = solver_def.west.kind == BoundaryKind::pump && t1 >= solver_def.west.pump_stop;
             state.pump_level = solver.pump_level_at_stop();
-            state.config_sha = config_sha;
+            state.key = key;
             write_checkpoint(ckpt, solver, sum, state);
-            next_checkpoint += run.checkpoint_interval;
+            if (run.checkpoint_interval > 0.0)
+                next_checkpoint = (std::floor(t1 / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval;
             if (run.stop_after >= 0.0 && t1 >= run.stop_after) {
                 stopped = true;
                 break;
