@@ -5,8 +5,9 @@
 
 Makefile.pipeline puts this in front of every flow and sweep shard when LAUNCH=sbatch
 (docs/cluster.md). Unlike srun, a batch job may be requeued (preemption, a failed node)
-instead of lost: the job is submitted with `sbatch --wait --requeue`, so make still waits
-for it, and this command's exit status is the job's. The job's log (--output, appended to
+instead of lost: the job is submitted with `sbatch --requeue`, this command waits until
+it has ended for good (through any requeues), so make waits for it too, and its exit
+status is the job's. The job's log (--output, appended to
 across requeues) is printed when it ends. Interrupting this command cancels the job.
 
 In the job this file is its own batch script: a `flotsam hydro` run whose output has a
@@ -19,6 +20,7 @@ import shlex
 import signal
 import subprocess
 import sys
+import time
 
 IN_JOB = "--in-job"
 
@@ -46,6 +48,45 @@ def resume_if_checkpointed(cmd):
     return cmd
 
 
+REQUEUED_OR_RUNNING = {"PENDING", "CONFIGURING", "RUNNING", "REQUEUED", "REQUEUE_HOLD", "REQUEUE_FED", "RESIZING",
+                       "SUSPENDED", "COMPLETING"}
+
+
+def job_state(job_id):
+    """The job's state and exit status from `scontrol show job`, or (None, None) once Slurm has forgotten it."""
+    if not job_id:
+        return None, None
+    p = subprocess.run(["scontrol", "-o", "show", "job", job_id], capture_output=True, text=True)
+    state = re.search(r"\bJobState=(\S+)", p.stdout)
+    code = re.search(r"\bExitCode=(\d+):(\d+)", p.stdout)
+    if p.returncode != 0 or not state:
+        return None, None
+    exit_code, signal_number = (int(code.group(1)), int(code.group(2))) if code else (1, 0)
+    status = exit_code or (128 + signal_number if signal_number else (0 if state.group(1) == "COMPLETED" else 1))
+    return state.group(1), status
+
+
+def wait_for(job_id):
+    """Waits until the job has ended for good and returns its exit status. Slurm is asked
+    after 1, 1.5, 2.25 … seconds, then every 10 s (sbatch --wait asks every 30 s at the
+    end, a long wait after a short job). A requeued job passes through COMPLETING back to
+    PENDING, so an ended state counts only when it is still there 2 s later."""
+    delay, ended_once = 1.0, False
+    while True:
+        time.sleep(delay)
+        state, status = job_state(job_id)
+        if state is None:
+            print(f"sbatch_run: Slurm no longer knows job {job_id}: its end was missed", file=sys.stderr)
+            return 1
+        if state in REQUEUED_OR_RUNNING:
+            ended_once = False
+            delay = min(1.5 * delay, 10.0)
+        elif ended_once:
+            return status
+        else:
+            ended_once, delay = True, 2.0
+
+
 def log_path(pattern, job_id, job_name):
     """--output with the two patterns make gives it expanded (%j job id, %x job name)."""
     return re.sub(r"%(%|j|x)", lambda m: {"%": "%", "j": job_id, "x": job_name}[m.group(1)], pattern)
@@ -59,8 +100,7 @@ def submit(options, cmd):
     if os.path.dirname(output):
         os.makedirs(os.path.dirname(output), exist_ok=True)
     script = [sys.executable, os.path.abspath(__file__), IN_JOB, "--"] + cmd
-    sbatch = ["stdbuf", "-oL", "sbatch", "--wait", "--requeue", "--parsable", "--open-mode=append"] + options + ["--wrap", "exec " + shlex.join(script)]
-    p = subprocess.Popen(sbatch, stdout=subprocess.PIPE, text=True)
+    sbatch = ["sbatch", "--requeue", "--parsable", "--open-mode=append"] + options + ["--wrap", "exec " + shlex.join(script)]
     job_id = ""
 
     def cancel(signum, _frame):
@@ -71,9 +111,11 @@ def submit(options, cmd):
 
     for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(s, cancel)
-    job_id = p.stdout.readline().strip().split(";")[0]
-    p.stdout.read()
-    status = p.wait()
+    p = subprocess.run(sbatch, stdout=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        return p.returncode
+    job_id = p.stdout.strip().split(";")[0]
+    status = wait_for(job_id)
     name = option_value(options, "--job-name", "-J") or "wrap"
     log = log_path(output, job_id, name)
     if os.path.exists(log):
