@@ -47,6 +47,17 @@ check() {
         return 1
     fi
 }
+# running_with_checkpoint JOB_NAME CHECKPOINT: prints the id of the running job of that
+# name once the checkpoint exists (nothing after a minute without).
+running_with_checkpoint() {
+    local id
+    for _ in $(seq 1 1200); do
+        id=$(squeue -h -n "$1" -t RUNNING -o %i 2>/dev/null)
+        [ -n "$id" ] && [ -e "$2" ] && echo "$id" && return 0
+        sleep 0.05
+    done
+    return 1
+}
 skip() {
     say "SKIPPED: $*"
     echo "slurm: 0 passed, 0 failed, 1 skipped"
@@ -113,13 +124,7 @@ for f in "${OUTPUTS[@]}"; do mv "$RUNS/$f" "$T/local/$(basename "$f")" 2>/dev/nu
 "${MK[@]}" LAUNCH=srun FLOW_CHECKPOINT=30 -j3 flows >"$T/slurm1.log" 2>&1 &
 make_pid=$!
 # Cancel r01's job once it has written a checkpoint, as a lost node would end it.
-job=""
-for _ in $(seq 1 1200); do
-    job=$(squeue -h -n flow-0.16-r01 -t RUNNING -o %i 2>/dev/null)
-    [ -n "$job" ] && [ -e "$FLOWS_DIR/flow_r01.nc.checkpoint.nc" ] && break
-    job=""
-    sleep 0.05
-done
+job=$(running_with_checkpoint flow-0.16-r01 "$FLOWS_DIR/flow_r01.nc.checkpoint.nc")
 [ -n "$job" ] && scancel "$job"
 wait $make_pid
 status=$?
@@ -161,13 +166,7 @@ grep -q "flow_r01.nc\] Error" "$T/bad.log" || tail -n 20 "$T/bad.log"
 mv "$FLOWS_DIR/flow_r02.nc" "$T/flow_r02.first.nc"
 "${MK[@]}" LAUNCH=sbatch FLOW_CHECKPOINT=20 "$FLOWS_DIR/flow_r02.nc" >"$T/requeue.log" 2>&1 &
 make_pid=$!
-job=""
-for _ in $(seq 1 1200); do
-    job=$(squeue -h -n flow-0.16-r02 -t RUNNING -o %i 2>/dev/null)
-    [ -n "$job" ] && [ -e "$FLOWS_DIR/flow_r02.nc.checkpoint.nc" ] && break
-    job=""
-    sleep 0.05
-done
+job=$(running_with_checkpoint flow-0.16-r02 "$FLOWS_DIR/flow_r02.nc.checkpoint.nc")
 requeued=no
 if [ -n "$job" ] && scontrol requeue "$job"; then
     requeued=yes
