@@ -128,11 +128,17 @@ slurm_down() {
     local dir=$1 f pid pids="" t
     [ -d "$dir" ] || return 0
     PATH=$PATH:/usr/sbin
-    [ -f "$dir/slurm.conf" ] && SLURM_CONF=$dir/slurm.conf scontrol shutdown >/dev/null 2>&1
-    for f in "$dir"/slurmctld.pid "$dir"/slurmd-*.pid "$dir"/munge/munged.pid; do
-        [ -f "$f" ] && pid=$(cat "$f") && [ -n "$pid" ] && pids="$pids $pid"
+    # The ids first: the daemons remove their pid files as they stop.
+    for f in "$dir"/slurmctld.pid "$dir"/slurmd-*.pid; do
+        pid=$(cat "$f" 2>/dev/null) && [ -n "$pid" ] && pids="$pids $pid"
     done
-    [ -f "$dir/munge/munged.pid" ] && kill "$(cat "$dir/munge/munged.pid")" 2>/dev/null
+    local munged
+    munged=$(cat "$dir/munge/munged.pid" 2>/dev/null)
+    [ -f "$dir/slurm.conf" ] && SLURM_CONF=$dir/slurm.conf scontrol shutdown >/dev/null 2>&1
+    if [ -n "$munged" ]; then
+        kill "$munged" 2>/dev/null
+        pids="$pids $munged"
+    fi
     for t in $(seq 1 100); do
         local alive=""
         for pid in $pids; do kill -0 "$pid" 2>/dev/null && alive="$alive $pid"; done
