@@ -1,6 +1,7 @@
 // Synthetic flows for the debris tests, written with the stage-one FlowWriter.
 #pragma once
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,9 @@ using BedFn = std::function<double(double x, double y)>;
 using FieldFn = std::function<FlowState(double x, double y, double t)>;
 
 inline std::string write_flow(const std::string& path, const Grid& g, const std::vector<double>& times, const BedFn& bed,
-                              const FieldFn& field) {
+                              const FieldFn& field, const std::map<std::string, std::string>& attributes = {}) {
     FlowFileDef def;
+    def.attributes = attributes;
     def.window = g;
     def.frame_times = times;
     def.z.resize(g.size());
