@@ -22,11 +22,9 @@ Integrator parse_integrator(const std::string& s) {
 
 namespace {
 
-// The body's bottom elevation [m]: at η − d while the centre is deeper than the draft,
-// else on the ground of the centre cell.
-double bottom_elevation(const ObstacleMap& obstacles, double x, double y, double depth, double draft) {
-    return obstacles.ground(x, y) + std::max(depth - draft, 0.0);
-}
+// A cell the body reaches into by less than this is not under it: the collision's
+// separation slop (1e-9 m) and round-off, never a real overlap [m].
+constexpr double footprint_overlap = 1e-6;
 
 // What a step starts from: the flow at the centre and what follows from it.
 struct StepStart {
@@ -129,8 +127,18 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
 }
 
 // Collisions with the obstacles at the committed pose (SC or MC, debris/collision.hpp).
-void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const Inertia& eff, double bottom,
+// Ground blocks only where it rises more than the step height above the bottom where the
+// body rested at the start of the step (MODEL.md, "Vertical position"): at η_c − d
+// afloat, on the highest ground under its footprint (`start`) where that is higher. So
+// the ground under the footprint is never a wall. Where no ground within reach is above
+// η_c − d + step, the resting height cannot change the outcome and is not computed.
+void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start,
              StepScratch& scratch) {
+    const double afloat = ctx.obstacles.ground(start.now.centre.x, start.now.centre.y) + start.centre.depth - b.draft;
+    double bottom = afloat;
+    if (ctx.obstacles.ground_above(Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width), afloat + b.step_height))
+        bottom = std::max(afloat, ctx.obstacles.highest_ground(start.box, footprint_overlap));
+    const Inertia& eff = start.eff;
     const CollisionOutcome hit = resolve_collisions(ctx.obstacles, b, b.def.collision, eff.mass, eff.inertia, bottom,
                                                     ctx.def.max_collision_passes, s, scratch.contacts);
     if (!hit.touched) return;
@@ -153,7 +161,6 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
         }
         s.flags |= flag_released;
     }
-    const double bottom = bottom_elevation(ctx.obstacles, s.x, s.y, centre.depth, b.draft);
     const StepStart st = step_start(ctx, b, s, centre);
     const Loads loads = integrate_loads(ctx, b, s, st, dt);
     contact_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
@@ -162,7 +169,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     const AxisShift shift = axis_shift(b, s, scratch.patches, loads.load, friction.after.omega, friction.capacity, st.eff, dt);
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;
     const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt);
-    collide(ctx, b, s, stats, st.eff, bottom, scratch);
+    collide(ctx, b, s, stats, st, scratch);
     s.time = t + dt;
     return travel;
 }
