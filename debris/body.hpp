@@ -42,8 +42,9 @@ struct BodyDef {
     ContactModel contact = ContactModel::local;
     CollisionModel collision = CollisionModel::multi;
     AddedMass added_mass = AddedMass::implicit;
-    bool axis_shift = true;    // LC only: rotate about the contact centroid (paper Eqs. 6-10)
-    int samples_per_face = 4;  // drag sample points along each side face [-]
+    bool added_yaw_inertia = false;  // yaw inertia I + ρ C_a V_s (L² + B²)/12 instead of Eq. 2's I (an extension) [-]
+    bool axis_shift = true;          // LC only: rotate about the contact centroid (paper Eqs. 6-10)
+    int samples_per_face = 4;        // drag sample points along each side face [-]
     double step_tolerance =
         0.2;  // a cell the body moves into blocks where its ground rises above the body's bottom by more than this × draft (docs/debris.md, "Ground and obstacles") [-]
 };

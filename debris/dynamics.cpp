@@ -63,7 +63,7 @@ Loads integrate_loads(const StepContext& ctx, const BodyParams& b, const BodySta
     double explicit_torque = 0.0;
     if (b.def.added_mass == AddedMass::explicit_) {
         explicit_force = (-eff.added_mass) * Vec2{s.ax_prev, s.ay_prev};
-        explicit_torque = -eff.added_mass * b.radius_sq * s.alpha_prev;
+        if (b.def.added_yaw_inertia) explicit_torque = -eff.added_mass * b.radius_sq * s.alpha_prev;
         out.load.force += explicit_force;
         out.load.torque += explicit_torque;
     }

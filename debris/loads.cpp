@@ -9,7 +9,8 @@ namespace flotsam::debris {
 Inertia effective_inertia(const BodyParams& b, double submerged_volume, double rho) {
     const double added = rho * (b.def.cm - 1.0) * submerged_volume;
     if (b.def.added_mass == AddedMass::explicit_) return {b.mass, b.inertia, added};
-    return {b.mass + added, b.inertia + added * b.radius_sq, added};
+    const double added_yaw = b.def.added_yaw_inertia ? added * b.radius_sq : 0.0;
+    return {b.mass + added, b.inertia + added_yaw, added};
 }
 
 FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,

@@ -38,7 +38,9 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& body, const Motio
                      double submerged, double t, double rho);
 
 // Effective mass and yaw inertia: the body plus, when implicit, the added mass ρ C_a V_s
-// and an added yaw inertia in the same ratio (ρ C_a V_s (L² + B²)/12) [kg], [kg m²].
+// [kg]. The yaw inertia is the paper's (Eq. 2, I = m (L² + B²)/12) unless the body asks
+// for the added yaw inertia, ρ C_a V_s (L² + B²)/12 in the same ratio as the added mass
+// [kg m²].
 struct Inertia {
     double mass, inertia, added_mass;
 };

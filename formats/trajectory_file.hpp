@@ -10,7 +10,8 @@
 //   status (trajectory, time)  byte flags: released moving grounded colliding pivoting
 //   per trajectory: start_name, contact_model, collision_model (strings), cd1, cd2, cm, mu,
 //                   restitution, length, width, height, specific_gravity (double),
-//                   collision_steps, unresolved_collisions, axis_shift_steps (int)
+//                   added_yaw_inertia, collision_steps, unresolved_collisions,
+//                   axis_shift_steps (int)
 // No time stamps anywhere: the same inputs give the same bytes.
 #pragma once
 #include <cstdint>

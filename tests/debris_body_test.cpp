@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cases/debris_flows.hpp"
+#include "debris/loads.hpp"
 #include "debris/world.hpp"
 #include "tests/test_support.hpp"
 
@@ -29,7 +30,58 @@ BodyState& released(World& w, std::size_t b) {
     return w.states()[b];
 }
 
+// The paper's body and water: L 0.25 m, B 0.10 m, s.g. 0.25, so d = 2.5 cm, m = 0.625 kg.
+constexpr double rho = 1000.0;
+
+// The flow's load on a body at rest at the origin with `heading`, from a flow file, at t.
+FluidLoad load_at_rest(const std::string& path, const BodyDef& def, double heading, double t = 0.5) {
+    FlowReader flow(path);
+    flow.prepare(t);
+    const BodyParams p = make_body_params(def, rho);
+    const FlowPointAccel centre = flow.sample_accel(0.0, 0.0, t);
+    const Motion at_rest{{0.0, 0.0}, heading, {0.0, 0.0}, 0.0, 0.0, {0.0, 0.0}};
+    return fluid_load(flow, p, at_rest, centre, p.plan_area * std::min(p.draft, centre.depth), t, rho);
+}
+
 }  // namespace
+
+// The paper's body and its derived numbers.
+TEST(DebrisBody, PaperBodyMassDraftAndYawInertia) {
+    const BodyParams p = make_body_params(default_body_def(), rho);
+    EXPECT_NEAR(p.mass, 0.625, 1e-12);
+    EXPECT_NEAR(p.draft, 0.025, 1e-12);
+    EXPECT_NEAR(p.inertia, 3.776e-3, 3.776e-3 * 1e-4);  // m (L² + B²)/12 = 3.7760e-3 kg m²
+}
+
+// A steady shear u = G y (G = 2 s⁻¹, 10 cm deep) across a body at rest, heading 0: the
+// end faces' drag turns it, with no net force. At the sample points y = ±B/8, ±3B/8 of
+// each end face (segment B/4 × d), T = −ρ (B d/4) G² (Cd1 + Cd2) (1³ + 3³)(B/8)³ =
+// −1.6406e-4 N m, so the first 10 ms step turns it at ω = Δt T/I: −4.345e-4 rad/s with
+// the paper's I (Eq. 2), half that with the added yaw inertia (afloat at Cm = 2 it equals
+// I).
+TEST(DebrisBody, YawFollowsEquationTwoInertiaUnlessAddedYawInertiaIsAsked) {
+    const auto dir = test::scratch_dir("body_yaw");
+    const double G = 2.0;
+    const auto path = test::write_flow(
+        dir + "/shear.nc", fine, {0.0, 2.0}, [](double, double) { return -0.1; },
+        [&](double, double y, double) {
+            return test::FlowState{0.1f, float(G * y), 0.0f};
+        });
+    const double T = -rho * (0.1 * 0.025 / 4) * G * G * 1.2 * 28 * std::pow(0.1 / 8, 3);
+    const FluidLoad load = load_at_rest(path, default_body_def(), 0.0);
+    EXPECT_NEAR(load.torque, T, 0.01 * std::fabs(T));
+    EXPECT_NEAR(load.force.x, 0.0, 1e-6 * std::fabs(T) / 0.1);
+    for (bool added : {false, true}) {
+        World w(path, {});
+        BodyDef b = body_at(0.0, 0.0, 0.0, ContactModel::local);
+        b.added_yaw_inertia = added;
+        w.add_body(b);
+        const double inertia = 3.776e-3 * (added ? 2.0 : 1.0);
+        EXPECT_NEAR(effective_inertia(w.params()[0], 0.1 * 0.25 * 0.025, rho).inertia, inertia, inertia * 1e-4);
+        w.advance_to(0.01);
+        EXPECT_NEAR(w.states()[0].omega, 0.01 * T / inertia, 0.01 * std::fabs(0.01 * T / inertia)) << "added " << added;
+    }
+}
 
 // A free body in a uniform steady current: only the end faces feel drag, so
 //   M dw/dt = −½ ρ (Cd1 + Cd2) B d w²,  w = U − V,  M = m + ρ C_a L B d,
