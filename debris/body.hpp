@@ -66,14 +66,18 @@ BodyParams make_body_params(const BodyDef& def, double water_density);  // throw
 struct BodyState {
     double x = 0.0, y = 0.0;                                // centre [m]
     double theta = 0.0;                                     // heading [rad]
-    double vx = 0.0, vy = 0.0;                              // centre velocity [m/s]
+    double vx = 0.0, vy = 0.0;                              // translational velocity V of Eq. 1 [m/s]
     double omega = 0.0;                                     // yaw rate about the centre [rad/s]
     double pivot_rate = 0.0;                                // yaw rate about the contact centroid while the axis is shifted [rad/s]
     double pivot_ax = 0.0, pivot_ay = 0.0;                  // that centroid relative to the centre [m]
     double torque_prev = 0.0;                               // T' of the last step: flow torque without friction [N m]
     double ax_prev = 0.0, ay_prev = 0.0, alpha_prev = 0.0;  // last accelerations, explicit added mass only [m/s², rad/s²]
-    double time = 0.0;                                      // [s]
-    std::uint8_t flags = 0;                                 // BodyFlag bits
+    double
+        centre_vx = 0.0,
+        centre_vy =
+            0.0;  // the centre's velocity over the last step, (x^(n+1) − x^n)/Δt: V, the pivot's Δx_sub and collision moves [m/s]
+    double time = 0.0;       // [s]
+    std::uint8_t flags = 0;  // BodyFlag bits
 };
 BodyState initial_state(const BodyDef& def, double time);
 

@@ -151,7 +151,7 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
 }  // namespace
 
 double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch) {
-    const double t = s.time;
+    const double t = s.time, x0 = s.x, y0 = s.y;
     const FlowPointAccel centre = ctx.flow.sample_accel(s.x, s.y, t);
     ++stats.steps;
     if (!(s.flags & flag_released)) {
@@ -170,6 +170,8 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;
     const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt);
     collide(ctx, b, s, stats, st, scratch);
+    s.centre_vx = (s.x - x0) / dt;
+    s.centre_vy = (s.y - y0) / dt;
     s.time = t + dt;
     return travel;
 }

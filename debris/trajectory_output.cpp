@@ -19,8 +19,8 @@ void record(World& world, TrajectorySeries& series) {
         t.x.push_back(s.x);
         t.y.push_back(s.y);
         t.yaw_deg.push_back(s.theta * 180.0 / std::numbers::pi);
-        t.u.push_back(s.vx);
-        t.v.push_back(s.vy);
+        t.u.push_back(s.centre_vx);  // the centre's, pivot and collision moves included
+        t.v.push_back(s.centre_vy);
         t.omega.push_back(s.omega + s.pivot_rate);
         t.status.push_back(std::int8_t(s.flags));
     }

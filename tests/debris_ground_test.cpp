@@ -135,6 +135,18 @@ TEST(DebrisGround, PivotsClockwiseAboutCornerHeldOnRidgeAboveStepTolerance) {
         EXPECT_GT(held0.x, 0.09);
         EXPECT_GT(held0.y, 0.01);
         const Vec2 held_body = rotate(held0 - Vec2{s0.x, s0.y}, -s0.theta);  // a material point
+        w.advance_to(2.0);
+        {
+            // The stored velocity is the centre's: while the corner is held, the force
+            // balance's V is zero and the centre moves on its arc at ω_p ẑ × (x_g − x_sub).
+            const BodyState& s = w.states()[0];
+            ASSERT_TRUE(s.flags & flag_pivoting);
+            const Vec2 arc = spin(s.pivot_rate, Vec2{-s.pivot_ax, -s.pivot_ay});
+            EXPECT_EQ(std::hypot(s.vx, s.vy), 0.0);
+            EXPECT_GT(norm(arc), 1e-3);
+            EXPECT_NEAR(s.centre_vx, arc.x, 0.01 * norm(arc));
+            EXPECT_NEAR(s.centre_vy, arc.y, 0.01 * norm(arc));
+        }
         w.advance_to(20.0);
         const BodyState& s = w.states()[0];
         const Vec2 centre{s.x, s.y};
