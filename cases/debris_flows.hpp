@@ -1,4 +1,5 @@
-// Synthetic flows for the debris tests, written with the stage-one FlowWriter.
+// Synthetic flows for the debris tests, written with the stage-one FlowWriter, and the
+// paper's body put down at a place.
 #pragma once
 #include <functional>
 #include <map>
@@ -7,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/grid.hpp"
+#include "debris/body.hpp"
 #include "formats/flow_file.hpp"
 
 namespace flotsam::test {
@@ -44,6 +46,16 @@ inline std::string write_flow(const std::string& path, const Grid& g, const std:
         w.close();
     }
     return path;
+}
+
+// The paper's body (debris::default_body_def) centred at (x, y) [m] with `heading` [rad].
+inline debris::BodyDef body_at(double x, double y, double heading, debris::ContactModel contact = debris::ContactModel::local) {
+    debris::BodyDef b = debris::default_body_def();
+    b.x = x;
+    b.y = y;
+    b.heading = heading;
+    b.contact = contact;
+    return b;
 }
 
 // A steady flow of uniform depth and velocity over a flat bed, frames every second.

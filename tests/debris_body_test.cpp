@@ -16,14 +16,7 @@ namespace {
 
 const Grid fine{160, 80, -0.795, -0.395, 0.01, 0.01};  // 1.6 m x 0.8 m around the origin, 1 cm cells
 
-BodyDef body_at(double x, double y, double heading, ContactModel contact) {
-    BodyDef b = default_body_def();
-    b.x = x;
-    b.y = y;
-    b.heading = heading;
-    b.contact = contact;
-    return b;
-}
+using test::body_at;
 
 // Puts a body down already released (as if the water had once been deeper than the draft).
 BodyState& released(World& w, std::size_t b) {

@@ -28,14 +28,7 @@ std::string still_water(const std::string& path, const Grid& g, const test::BedF
     });
 }
 
-BodyDef body_at(double x, double y, double heading, ContactModel contact = ContactModel::local) {
-    BodyDef b = default_body_def();
-    b.x = x;
-    b.y = y;
-    b.heading = heading;
-    b.contact = contact;
-    return b;
-}
+using test::body_at;
 
 // Largest displacement [m] and turn [rad] of any body after `t` s, all released at 0;
 // each body's is printed after `label`.
