@@ -156,12 +156,15 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--added-mass", opts->added_mass, "implicit (stable) or explicit (for the stability study only)")
         ->capture_default_str();
     sub->add_flag("--no-axis-shift", opts->no_axis_shift, "local contact without the rotation about the contact centroid");
+    sub->add_flag("--added-yaw-inertia", opts->body.added_yaw_inertia,
+                  "yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12 (default: the paper's m (L^2 + B^2)/12)");
     sub->add_option("--length", opts->body.length, "body length [m]")->capture_default_str();
     sub->add_option("--width", opts->body.width, "body width [m]")->capture_default_str();
     sub->add_option("--height", opts->body.height, "body height [m]")->capture_default_str();
     sub->add_option("--specific-gravity", opts->body.specific_gravity, "body specific gravity")->capture_default_str();
     sub->add_option("--samples-per-face", opts->body.samples_per_face, "drag sample points per side face")->capture_default_str();
-    sub->add_option("--step-tolerance", opts->body.step_tolerance, "ground above the bottom by more than this x draft blocks")
+    sub->add_option("--step-tolerance", opts->body.step_tolerance,
+                    "a cell the body moves into blocks where its ground rises above the body's bottom by more than this x draft")
         ->capture_default_str();
     sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")->capture_default_str();
     sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");

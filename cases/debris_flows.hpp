@@ -1,11 +1,14 @@
-// Synthetic flows for the debris tests, written with the stage-one FlowWriter.
+// Synthetic flows for the debris tests, written with the stage-one FlowWriter, and the
+// paper's body put down at a place.
 #pragma once
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "common/atomic_file.hpp"
 #include "common/grid.hpp"
+#include "debris/body.hpp"
 #include "formats/flow_file.hpp"
 
 namespace flotsam::test {
@@ -17,8 +20,9 @@ using BedFn = std::function<double(double x, double y)>;
 using FieldFn = std::function<FlowState(double x, double y, double t)>;
 
 inline std::string write_flow(const std::string& path, const Grid& g, const std::vector<double>& times, const BedFn& bed,
-                              const FieldFn& field) {
+                              const FieldFn& field, const std::map<std::string, std::string>& attributes = {}) {
     FlowFileDef def;
+    def.attributes = attributes;
     def.window = g;
     def.frame_times = times;
     def.z.resize(g.size());
@@ -42,6 +46,16 @@ inline std::string write_flow(const std::string& path, const Grid& g, const std:
         w.close();
     }
     return path;
+}
+
+// The paper's body (debris::default_body_def) centred at (x, y) [m] with `heading` [rad].
+inline debris::BodyDef body_at(double x, double y, double heading, debris::ContactModel contact = debris::ContactModel::local) {
+    debris::BodyDef b = debris::default_body_def();
+    b.x = x;
+    b.y = y;
+    b.heading = heading;
+    b.contact = contact;
+    return b;
 }
 
 // A steady flow of uniform depth and velocity over a flat bed, frames every second.

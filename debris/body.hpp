@@ -42,9 +42,11 @@ struct BodyDef {
     ContactModel contact = ContactModel::local;
     CollisionModel collision = CollisionModel::multi;
     AddedMass added_mass = AddedMass::implicit;
-    bool axis_shift = true;       // LC only: rotate about the contact centroid (paper Eqs. 6-10)
-    int samples_per_face = 4;     // drag sample points along each side face [-]
-    double step_tolerance = 0.2;  // ground higher than the bottom by more than this × draft blocks [-]
+    bool added_yaw_inertia = false;  // yaw inertia I + ρ C_a V_s (L² + B²)/12 instead of Eq. 2's I (an extension) [-]
+    bool axis_shift = true;          // LC only: rotate about the contact centroid (paper Eqs. 6-10)
+    int samples_per_face = 4;        // drag sample points along each side face [-]
+    double step_tolerance =
+        0.2;  // a cell the body moves into blocks where its ground rises above the body's bottom by more than this × draft (docs/debris.md, "Ground and obstacles") [-]
 };
 BodyDef default_body_def();  // the paper's control case, LC + MC
 
@@ -64,14 +66,18 @@ BodyParams make_body_params(const BodyDef& def, double water_density);  // throw
 struct BodyState {
     double x = 0.0, y = 0.0;                                // centre [m]
     double theta = 0.0;                                     // heading [rad]
-    double vx = 0.0, vy = 0.0;                              // centre velocity [m/s]
+    double vx = 0.0, vy = 0.0;                              // translational velocity V of Eq. 1 [m/s]
     double omega = 0.0;                                     // yaw rate about the centre [rad/s]
     double pivot_rate = 0.0;                                // yaw rate about the contact centroid while the axis is shifted [rad/s]
     double pivot_ax = 0.0, pivot_ay = 0.0;                  // that centroid relative to the centre [m]
     double torque_prev = 0.0;                               // T' of the last step: flow torque without friction [N m]
     double ax_prev = 0.0, ay_prev = 0.0, alpha_prev = 0.0;  // last accelerations, explicit added mass only [m/s², rad/s²]
-    double time = 0.0;                                      // [s]
-    std::uint8_t flags = 0;                                 // BodyFlag bits
+    double
+        centre_vx = 0.0,
+        centre_vy =
+            0.0;  // the centre's velocity over the last step, (x^(n+1) − x^n)/Δt: V, the pivot's Δx_sub and collision moves [m/s]
+    double time = 0.0;       // [s]
+    std::uint8_t flags = 0;  // BodyFlag bits
 };
 BodyState initial_state(const BodyDef& def, double time);
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "debris/body.hpp"
+#include "debris/contact.hpp"
 #include "debris/flow_reader.hpp"
 #include "debris/footprint.hpp"
 #include "debris/obstacles.hpp"
@@ -32,13 +33,8 @@ StepDef default_step_def();
 
 // Working memory of one thread (reused, so steps do not allocate).
 struct StepScratch {
-    struct Patch {
-        Vec2 r;                 // overlap centroid relative to the centre [m]
-        double area = 0.0;      // S_ij [m²]
-        double capacity = 0.0;  // μ (S_ij / LB)(m − ρ L B h_ij) g [N]
-    };
     std::vector<FootprintPatch> footprint;
-    std::vector<Patch> patches;
+    std::vector<ContactPatch> patches;
     std::vector<ObstacleContact> contacts;
 };
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
+#include <optional>
 
 #include "common/error.hpp"
 #include "formats/flow_file.hpp"
@@ -43,6 +45,25 @@ int find_field(const nc::File& f, const char* standard_name, const char* short_n
              " of a stage-one flow)");
 }
 
+// The run's dry tolerance from the file's global attribute (text, as flotsam's hydro
+// writes it, or a number); the fallback where the file has none.
+double read_dry_depth(const nc::File& f) {
+    const char* name = flow_names::dry_depth_attribute;
+    std::optional<double> value = f.att_double(NC_GLOBAL, name);
+    if (!value) {
+        const auto text = f.att_text(NC_GLOBAL, name);
+        if (!text) return flow_names::fallback_dry_depth;
+        char* end = nullptr;
+        const double v = std::strtod(text->c_str(), &end);
+        if (end != text->c_str() && *end == '\0') value = v;
+        if (!value) fail(f.path(), std::string("attribute '") + name + "'", "'" + *text + "' is not a number");
+    }
+    if (!(*value > 0.0) || !std::isfinite(*value))
+        fail(f.path(), std::string("attribute '") + name + "'",
+             "the dry tolerance must be a positive depth [m], got " + std::to_string(*value));
+    return *value;
+}
+
 }  // namespace
 
 FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file_(nc::File::open_read(path)), def_(def) {
@@ -62,6 +83,7 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
     if (file_.shape(vz) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)})
         fail(path, "variable 'z'", "shape is not (y, x)");
     z_ = file_.get_float(vz);
+    dry_depth_ = read_dry_depth(file_);
     window_ = CellWindow{0, grid_.nx, 0, grid_.ny};
 }
 
@@ -190,8 +212,7 @@ FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
             s.cubic_weights = catmull_rom_time_weights(s.a, s.inv_dt, (t1 - t0) / (t1 - tp), (t1 - t0) / (tn - t0));
             for (int c = 0; c < 4; ++c) {
                 const double h[4] = {h_.role[0][s.n[c]], h_.role[1][s.n[c]], h_.role[2][s.n[c]], h_.role[3][s.n[c]]};
-                s.cubic[c] =
-                    cubic_depth_admissible(apply_time_weights(s.cubic_weights.w, h[0], h[1], h[2], h[3]), h, def_.dry_depth);
+                s.cubic[c] = cubic_depth_admissible(apply_time_weights(s.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth_);
             }
         }
     }
@@ -239,7 +260,7 @@ FlowPoint FlowReader::sample(double x, double y, double t) const {
     };
     FlowPoint p;
     p.depth = at(h_);
-    if (p.depth >= def_.dry_depth) {
+    if (p.depth >= dry_depth_) {
         p.u = at(qx_) / p.depth;
         p.v = at(qy_) / p.depth;
     }
@@ -262,7 +283,7 @@ FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     const Interp h = interp(h_);
     FlowPointAccel p;
     p.depth = h.val;
-    if (h.val < def_.dry_depth) return p;
+    if (h.val < dry_depth_) return p;
     const Interp qx = interp(qx_), qy = interp(qy_);
     p.u = qx.val / h.val;
     p.v = qy.val / h.val;

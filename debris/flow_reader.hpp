@@ -9,8 +9,9 @@
 // front (one wet corner, three dry) gives that corner's speed, never more. The cubic one
 // is used node by node only where its depth passes the guard of time_kernels.hpp (never
 // below the shallower frame around t, all four frames wet); elsewhere the node is linear,
-// so fronts keep that property and the depth is never negative. Below `dry_depth` the
-// velocity is zero.
+// so fronts keep that property and the depth is never negative. Below the flow's dry
+// tolerance (dry_depth(): the file's dry_depth_m, formats/flow_file.hpp) the velocity is
+// zero, as in the run that wrote it.
 //
 // Before the first frame and past the last one the flow is held (steady, ∂/∂t = 0).
 // Outside the grid the edge values are held. Sampling is const and thread-safe; loading
@@ -33,8 +34,11 @@ const char* to_string(TimeInterpolation m);
 TimeInterpolation parse_time_interpolation(const std::string& s);  // "linear" | "cubic"
 
 struct FlowReaderDef {
-    double dry_depth = 1e-5;    // below this interpolated depth the velocity is zero [m]
-    double accel_depth = 1e-3;  // below this depth Du/Dt is zero (q/h gradients blow up at a front) [m]
+    // Below this depth Du/Dt is zero [m]. Not a dry tolerance (that one comes from the
+    // file): a guard on the gradients of q/h, which blow up in thin water beside deep
+    // water at a front; the inertia force there acts on a submerged volume of at most
+    // L B × 1 mm (docs/debris.md, "Flow at the body").
+    double accel_depth = 1e-3;
     TimeInterpolation time_interpolation = TimeInterpolation::linear;
 };
 FlowReaderDef default_flow_reader_def();
@@ -73,6 +77,8 @@ public:
     const std::string& path() const { return file_.path(); }
 
     const FlowReaderDef& def() const { return def_; }
+    // The flow's dry tolerance [m]: the file's dry_depth_m, else flow_names::fallback_dry_depth.
+    double dry_depth() const { return dry_depth_; }
 
     // The first frame time after t (end_time() when none).
     double next_frame_time(double t) const;
@@ -119,6 +125,7 @@ private:
 
     nc::File file_;
     FlowReaderDef def_;
+    double dry_depth_ = 0.0;
     Grid grid_;
     std::vector<double> times_;
     std::vector<float> z_;

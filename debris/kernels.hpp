@@ -1,6 +1,6 @@
 // Small, pure, point-wise kernels of the debris model: no loops over cells or bodies,
-// no state. The loops that call them live in forces.cpp, footprint.cpp, obstacles.cpp
-// and collision.cpp. Every quantity is SI (m, s, kg, N, rad).
+// no state. The loops that call them live in loads.cpp (drag), contact.cpp (friction),
+// obstacles.cpp and collision.cpp. Every quantity is SI (m, s, kg, N, rad).
 #pragma once
 #include <cmath>
 

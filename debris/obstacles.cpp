@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace flotsam::debris {
 
@@ -15,56 +16,102 @@ bool ObstacleMap::blocked(int i, int j, double bottom, double step_height) const
     return double(bed_[c]) > bottom + step_height;
 }
 
+namespace {
+
+// The separating-axis test of a body against the square cell of half sizes hx, hy at c.
+// For each direction n, "pen" is how far the body must move along +n to clear the cell:
+// x and y of the cell (px along +x, mx along −x, ...), then the body's long and wide
+// axes (p along +axis, m along −axis). They overlap where every pen is positive.
+struct Penetration {
+    double px, mx, py, my;
+    double p[2], m[2];
+    bool overlap() const { return depth() > 0.0; }
+    double depth() const { return std::min({px, mx, py, my, p[0], m[0], p[1], m[1]}); }
+};
+
+Penetration penetration(const Box& box, Vec2 c, double hx, double hy) {
+    const double ex = box.extent_x(), ey = box.extent_y();
+    Penetration pen;
+    pen.px = (c.x + hx) - (box.centre.x - ex);
+    pen.mx = (box.centre.x + ex) - (c.x - hx);
+    pen.py = (c.y + hy) - (box.centre.y - ey);
+    pen.my = (box.centre.y + ey) - (c.y - hy);
+    const Vec2 axes[2] = {box.axis_long, box.axis_wide};
+    const double halves[2] = {box.half_length, box.half_width};
+    for (int k = 0; k < 2; ++k) {
+        const double rc = hx * std::fabs(axes[k].x) + hy * std::fabs(axes[k].y);
+        const double cb = dot(box.centre, axes[k]), cc = dot(c, axes[k]);
+        pen.p[k] = (cc + rc) - (cb - halves[k]);
+        pen.m[k] = (cb + halves[k]) - (cc - rc);
+    }
+    return pen;
+}
+
+}  // namespace
+
+ObstacleMap::CellRange ObstacleMap::cells_touching(const Box& box, int pad) const {
+    const double ex = box.extent_x(), ey = box.extent_y();
+    return CellRange{int(std::floor((box.centre.x - ex - grid_.x0) / grid_.dx + 0.5)) - pad,
+                     int(std::floor((box.centre.x + ex - grid_.x0) / grid_.dx + 0.5)) + pad,
+                     int(std::floor((box.centre.y - ey - grid_.y0) / grid_.dy + 0.5)) - pad,
+                     int(std::floor((box.centre.y + ey - grid_.y0) / grid_.dy + 0.5)) + pad};
+}
+
+double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
+    const CellRange r = cells_touching(box, 0);
+    double top = -std::numeric_limits<double>::infinity();
+    for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j)
+        for (int i = std::max(r.i0, 0); i <= std::min(r.i1, grid_.nx - 1); ++i) {
+            const std::size_t c = grid_.index(i, j);
+            if ((!building_.empty() && building_[c]) || double(bed_[c]) <= top) continue;
+            const Vec2 centre{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
+            if (penetration(box, centre, 0.5 * grid_.dx, 0.5 * grid_.dy).depth() > min_overlap) top = double(bed_[c]);
+        }
+    return top;
+}
+
+bool ObstacleMap::ground_above(const Box& box, double level) const {
+    const CellRange r = cells_touching(box, 1);
+    for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j)
+        for (int i = std::max(r.i0, 0); i <= std::min(r.i1, grid_.nx - 1); ++i) {
+            const std::size_t c = grid_.index(i, j);
+            if (double(bed_[c]) > level && (building_.empty() || !building_[c])) return true;
+        }
+    return false;
+}
+
 void ObstacleMap::find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
                                 double min_depth) const {
     const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
-    const double ex = box.extent_x(), ey = box.extent_y();
-    const int i0 = int(std::floor((box.centre.x - ex - grid_.x0) / grid_.dx + 0.5));
-    const int i1 = int(std::floor((box.centre.x + ex - grid_.x0) / grid_.dx + 0.5));
-    const int j0 = int(std::floor((box.centre.y - ey - grid_.y0) / grid_.dy + 0.5));
-    const int j1 = int(std::floor((box.centre.y + ey - grid_.y0) / grid_.dy + 0.5));
+    const CellRange r = cells_touching(box, 0);
     const auto corners = box.corners();
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
-    const double halves[2] = {box.half_length, box.half_width};
-    for (int j = j0; j <= j1; ++j) {
-        for (int i = i0; i <= i1; ++i) {
+    for (int j = r.j0; j <= r.j1; ++j) {
+        for (int i = r.i0; i <= r.i1; ++i) {
             if (!blocked(i, j, bottom, step_height)) continue;
             const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
-            // Separating axes: x and y of the cell, long and wide of the body. For each
-            // direction n, "pen" is how far the body must move along +n to clear the cell.
-            const double pen_px = (c.x + hx) - (box.centre.x - ex), pen_mx = (box.centre.x + ex) - (c.x - hx);
-            const double pen_py = (c.y + hy) - (box.centre.y - ey), pen_my = (box.centre.y + ey) - (c.y - hy);
-            if (pen_px <= 0 || pen_mx <= 0 || pen_py <= 0 || pen_my <= 0) continue;
-            double pen_p[2], pen_m[2];
-            bool separated = false;
-            for (int k = 0; k < 2; ++k) {
-                const double rc = hx * std::fabs(axes[k].x) + hy * std::fabs(axes[k].y);
-                const double cb = dot(box.centre, axes[k]), cc = dot(c, axes[k]);
-                pen_p[k] = (cc + rc) - (cb - halves[k]);
-                pen_m[k] = (cb + halves[k]) - (cc - rc);
-                if (pen_p[k] <= 0 || pen_m[k] <= 0) separated = true;
-            }
-            if (separated) continue;
+            const Penetration pen = penetration(box, c, hx, hy);
+            if (!pen.overlap()) continue;
             // Candidate normals. A cell face shared with another blocked cell is inside a
             // wall and is never a push-out direction (no snagging on internal edges); a body
             // axis is used only in the direction pointing from the cell toward the body.
             ObstacleContact best;
             best.depth = 1e300;
-            auto consider = [&](Vec2 n, double pen) {
-                if (pen < best.depth) {
-                    best.depth = pen;
+            auto consider = [&](Vec2 n, double depth) {
+                if (depth < best.depth) {
+                    best.depth = depth;
                     best.normal = n;
                 }
             };
-            if (!blocked(i + 1, j, bottom, step_height)) consider({1, 0}, pen_px);
-            if (!blocked(i - 1, j, bottom, step_height)) consider({-1, 0}, pen_mx);
-            if (!blocked(i, j + 1, bottom, step_height)) consider({0, 1}, pen_py);
-            if (!blocked(i, j - 1, bottom, step_height)) consider({0, -1}, pen_my);
+            if (!blocked(i + 1, j, bottom, step_height)) consider({1, 0}, pen.px);
+            if (!blocked(i - 1, j, bottom, step_height)) consider({-1, 0}, pen.mx);
+            if (!blocked(i, j + 1, bottom, step_height)) consider({0, 1}, pen.py);
+            if (!blocked(i, j - 1, bottom, step_height)) consider({0, -1}, pen.my);
             const Vec2 rel = box.centre - c;
             for (int k = 0; k < 2; ++k) {
                 const double side = dot(rel, axes[k]);
-                if (side >= 0) consider(axes[k], pen_p[k]);
-                if (side <= 0) consider(-1.0 * axes[k], pen_m[k]);
+                if (side >= 0) consider(axes[k], pen.p[k]);
+                if (side <= 0) consider(-1.0 * axes[k], pen.m[k]);
             }
             if (best.depth <= min_depth) continue;
             // The contact point: the mean of the body corners inside the cell and the cell

@@ -1,10 +1,14 @@
 // Obstacles: grid cells the body cannot enter, treated as axis-aligned squares.
 //
-// A cell blocks where its ground is higher than the body's bottom by more than the step
-// height, or where the scene marks a building. Cells outside the grid block (the flume
-// walls). Overlap of the body with a blocked cell is found by the separating-axis test
-// (oriented box against an axis-aligned square), which also gives the push-out normal
-// and penetration depth.
+// The ground under the body is contact (friction, the axis shift), never an obstacle
+// (MODEL.md, "Obstacles"; docs/debris.md). A cell blocks where the scene marks a
+// building, outside the grid (the flume walls), and where its ground rises above the
+// body's bottom by more than the step height: a step on the body's way that it cannot
+// ride onto. The bottom is where the body rests (MODEL.md, "Vertical position"): at
+// η − d afloat, on the highest ground under its footprint where that is higher, so no
+// cell under the footprint is ever above it. Overlap of the body with a blocked cell is
+// found by the separating-axis test (oriented box against an axis-aligned square), which
+// also gives the push-out normal and penetration depth.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -31,11 +35,26 @@ public:
     double ground(double x, double y) const { return double(bed_[grid_.index(grid_.cell_i(x), grid_.cell_j(y))]); }
     bool blocked(int i, int j, double bottom, double step_height) const;
 
+    // Highest ground [m] of the cells under `box`, buildings left out (no body rests on a
+    // roof; buildings are walls): the cells it reaches into by more than `min_overlap` [m]
+    // along every separating axis. −inf where it covers none.
+    double highest_ground(const Box& box, double min_overlap) const;
+    // Whether a cell that `box` could reach within a step (its bounding box widened by one
+    // cell), buildings left out, has ground above `level` [m].
+    bool ground_above(const Box& box, double level) const;
+
     // Appends every overlap of `box` with a blocked cell deeper than `min_depth`.
     void find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
                        double min_depth = 1e-10) const;
 
 private:
+    // Cell index range [i0, i1] x [j0, j1] of the cells that the bounding box of `box`,
+    // widened by `pad` cells, touches (not clamped to the grid).
+    struct CellRange {
+        int i0, i1, j0, j1;
+    };
+    CellRange cells_touching(const Box& box, int pad) const;
+
     Grid grid_;
     std::vector<float> bed_;
     std::vector<std::uint8_t> building_;

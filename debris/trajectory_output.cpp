@@ -19,8 +19,8 @@ void record(World& world, TrajectorySeries& series) {
         t.x.push_back(s.x);
         t.y.push_back(s.y);
         t.yaw_deg.push_back(s.theta * 180.0 / std::numbers::pi);
-        t.u.push_back(s.vx);
-        t.v.push_back(s.vy);
+        t.u.push_back(s.centre_vx);  // the centre's, pivot and collision moves included
+        t.v.push_back(s.centre_vy);
         t.omega.push_back(s.omega + s.pivot_rate);
         t.status.push_back(std::int8_t(s.flags));
     }
@@ -61,6 +61,9 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vw = per_double("width", "m", "body width");
         const int vh = per_double("height", "m", "body height");
         const int vsg = per_double("specific_gravity", "1", "body specific gravity");
+        const int vyaw_inertia =
+            per_int("added_yaw_inertia",
+                    "1: yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12; 0: m (L^2 + B^2)/12 (Eq. 2)");
         const int vnc = per_int("collision_steps", "steps with an obstacle contact");
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
@@ -80,7 +83,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(track_vars.time, series.time);
         std::vector<std::string> ids, starts, contacts, collisions;
         std::vector<double> cd1, cd2, cm, mu, e, len, wid, hei, sg;
-        std::vector<int> nc_, nu, ns;
+        std::vector<int> yaw_inertia, nc_, nu, ns;
         for (std::size_t b = 0; b < nb; ++b) {
             const BodyDef& d = world.params()[b].def;
             ids.push_back(d.name);
@@ -96,6 +99,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
             wid.push_back(d.width);
             hei.push_back(d.height);
             sg.push_back(d.specific_gravity);
+            yaw_inertia.push_back(d.added_yaw_inertia ? 1 : 0);
             nc_.push_back(int(world.stats()[b].collisions));
             nu.push_back(int(world.stats()[b].unresolved));
             ns.push_back(int(world.stats()[b].axis_shifts));
@@ -113,6 +117,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(vw, wid);
         f.put(vh, hei);
         f.put(vsg, sg);
+        f.put(vyaw_inertia, yaw_inertia);
         f.put(vnc, nc_);
         f.put(vnu, nu);
         f.put(vns, ns);

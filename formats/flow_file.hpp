@@ -12,6 +12,7 @@
 //   max_depth(y, x), max_speed(y, x)        over the whole run, sampled every step
 //   arrival_time(y, x)    [s] first time h > arrival_depth (attribute); fill where never
 //   gauge_* (gauge_time, gauge)             level, depth and velocity at named points
+//   :dry_depth_m          global attribute, the run's dry tolerance [m] (text or number)
 //
 // h, u, v are chunked one frame deep in tiles (1, 64, 64) with shuffle + deflate, so a
 // reader that wants a small window of one or two frames decompresses little.
@@ -77,6 +78,12 @@ namespace flow_names {
 inline constexpr const char* depth = "sea_floor_depth_below_sea_surface";
 inline constexpr const char* x_velocity = "sea_water_x_velocity";
 inline constexpr const char* y_velocity = "sea_water_y_velocity";
+// Global attribute: the hydro run's dry tolerance [m] (below it a cell has no velocity),
+// which the replay uses as its own. Files without it (written by another program, or
+// by a FlowWriter whose caller set no attributes) get fallback_dry_depth, the value
+// flotsam's hydro has always used by default.
+inline constexpr const char* dry_depth_attribute = "dry_depth_m";
+inline constexpr double fallback_dry_depth = 1e-5;  // [m]
 }  // namespace flow_names
 
 }  // namespace flotsam

@@ -20,8 +20,8 @@ TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime) {
     vars.x = coordinate("x", "projection_x_coordinate", "x of the body centre (east)", "X");
     vars.y = coordinate("y", "projection_y_coordinate", "y of the body centre (north)", "Y");
     vars.yaw = field("yaw", "degree", "heading of the long axis from +x, counter-clockwise, unwrapped");
-    vars.u = field("u", "m s-1", "x velocity of the body centre");
-    vars.v = field("v", "m s-1", "y velocity of the body centre");
+    vars.u = field("u", "m s-1", "x velocity of the body centre over the last step (pivoting and collision moves included)");
+    vars.v = field("v", "m s-1", "y velocity of the body centre over the last step (pivoting and collision moves included)");
     vars.omega = field("omega", "rad s-1", "yaw rate, counter-clockwise (about the contact centroid while pivoting)");
     vars.status = cf::def_var(f, {.name = "status", .type = NC_BYTE, .dims = {dtraj, dtime}, .long_name = "body state flags"});
     f.put_att(vars.status, "flag_masks",

@@ -5,12 +5,14 @@
 //   trajectory_id(trajectory)  string, cf_role = trajectory_id ("FD", "LD", "body3", ...)
 //   x, y (trajectory, time)    double [m] centre
 //   yaw (trajectory, time)     double [degree] long axis from +x, counter-clockwise (unwrapped)
-//   u, v (trajectory, time)    double [m s-1] centre velocity
+//   u, v (trajectory, time)    double [m s-1] centre velocity over the last step (pivoting
+//                              and collision moves included)
 //   omega (trajectory, time)   double [rad s-1] yaw rate (about the contact centroid while pivoting)
 //   status (trajectory, time)  byte flags: released moving grounded colliding pivoting
 //   per trajectory: start_name, contact_model, collision_model (strings), cd1, cd2, cm, mu,
 //                   restitution, length, width, height, specific_gravity (double),
-//                   collision_steps, unresolved_collisions, axis_shift_steps (int)
+//                   added_yaw_inertia, collision_steps, unresolved_collisions,
+//                   axis_shift_steps (int)
 // No time stamps anywhere: the same inputs give the same bytes.
 #pragma once
 #include <cstdint>

@@ -231,3 +231,33 @@ TEST(FlowReader, RejectsAFileThatIsNotAFlow) {
     EXPECT_NE(msg.find("not a flow file"), std::string::npos) << msg;
     EXPECT_NE(msg.find("sea_floor_depth_below_sea_surface"), std::string::npos) << msg;
 }
+
+// The dry tolerance is the run's: the file's dry_depth_m (as hydro writes it, text), or
+// 1e-5 m where the file has none. Below it the velocity is zero.
+TEST(FlowReader, DryToleranceComesFromTheFlowFile) {
+    const auto dir = test::scratch_dir("fr_dry");
+    auto write = [&](const std::string& name, const std::map<std::string, std::string>& attributes) {
+        return test::write_flow(
+            dir + "/" + name, grid, {0.0, 1.0}, [](double, double) { return 0.0; },
+            [](double, double, double) {
+                return test::FlowState{5e-4f, 0.2f, 0.0f};
+            },
+            attributes);
+    };
+    FlowReader with(write("with.nc", {{"dry_depth_m", "0.001000"}}));
+    with.prepare(0.5);
+    EXPECT_EQ(with.dry_depth(), 1e-3);
+    EXPECT_EQ(with.sample(0.0, 2.3, 0.5).u, 0.0);  // 0.5 mm is dry for this run
+
+    FlowReader without(write("without.nc", {}));
+    without.prepare(0.5);
+    EXPECT_EQ(without.dry_depth(), 1e-5);
+    EXPECT_NEAR(without.sample(0.0, 2.3, 0.5).u, 0.2, 1e-6);
+
+    for (const char* bad : {"wet", "0.000000", "-1"}) {
+        const std::string path = write("bad.nc", {{"dry_depth_m", bad}});
+        const std::string msg = error_of([&] { FlowReader r(path); });
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        EXPECT_NE(msg.find("dry_depth_m"), std::string::npos) << msg;
+    }
+}

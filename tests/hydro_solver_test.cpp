@@ -151,23 +151,33 @@ TEST(Solver, DryDamBreakConvergesToRitter) {
     EXPECT_GT(order, 0.6);
 }
 
-TEST(Solver, ThinFilmWithFrictionOnSlopeStaysFinite) {
+TEST(Solver, ThinFilmWithFrictionOnSlopeStaysFiniteAtItsNormalFlowSpeed) {
     // A 0.1 mm film on a 1:10 slope with n = 0.025 at 1 cm cells: explicit friction
-    // would blow up (dt g n^2 |u| / h^(4/3) >> 1); the implicit one must stay bounded.
+    // would blow up (dt g n^2 |u| / h^(4/3) >> 1); the implicit one must stay bounded,
+    // and away from the closed ends the film runs at the normal-flow (Manning) speed
+    // u_n = h^(2/3) S^(1/2) / n = (1e-4)^(2/3) (0.1)^(1/2) / 0.025 = 0.027252 m/s, where
+    // friction balances the bed slope.
     const Scene s = test::film_on_slope();
     SolverDef d = closed_def();
     d.default_manning_n = 0.025;
     Solver solver(s, d);
+    const double u_normal = std::pow(1e-4, 2.0 / 3.0) * std::sqrt(0.1) / 0.025;
+    EXPECT_NEAR(u_normal, 0.027252, 1e-6);
     double vmax = 0.0;
+    bool checked = false;
     for (int n = 0; n < 3000; ++n) {
         solver.step(solver.stable_dt());
         for (int i = 0; i < 100; ++i) {
             ASSERT_TRUE(std::isfinite(solver.depth(i, 1)));
             vmax = std::max(vmax, std::abs(solver.x_velocity(i, 1)));
         }
+        if (!checked && solver.time() >= 1.0) {  // the drained top and the pool at the bottom are still near the ends
+            checked = true;
+            for (int i = 20; i <= 80; i += 10) EXPECT_NEAR(solver.x_velocity(i, 1), u_normal, 0.01 * u_normal) << "cell " << i;
+        }
     }
-    // Normal-flow speed of a 0.1 mm film is about h^(2/3) S^(1/2) / n = 0.03 m/s; the
-    // draining film must stay of that order, nowhere near a blow-up.
-    EXPECT_LT(vmax, 0.5);
-    EXPECT_GT(solver.time(), 1.0);
+    EXPECT_TRUE(checked);
+    // Nowhere faster than the normal-flow speed, but for the water pooling against the
+    // closed lower end, a little deeper than the film (0.7 % faster measured).
+    EXPECT_LT(vmax, 1.02 * u_normal);
 }

@@ -1,0 +1,99 @@
+#include "debris/contact.hpp"
+
+#include <cmath>
+
+namespace flotsam::debris {
+
+namespace {
+
+// A velocity below this has no direction (a point that does not slide) [m/s].
+constexpr double sliding_epsilon = 1e-12;
+
+}  // namespace
+
+void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams& b, const Box& box, double centre_depth, double t,
+                     double rho, double g, std::vector<FootprintPatch>& footprint, std::vector<ContactPatch>& out) {
+    const BodyDef& def = b.def;
+    const Vec2 xg = box.centre;
+    out.clear();
+    if (def.contact == ContactModel::center) {
+        if (centre_depth < b.draft)
+            out.push_back({Vec2{}, b.plan_area, friction_capacity(def.mu, 1.0, b.mass, rho, b.plan_area, centre_depth, g)});
+        return;
+    }
+    const CellWindow cells =
+        flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
+    if (!(flow.min_depth(cells) < b.draft)) return;  // no point under the body can be shallower than the draft
+    footprint.clear();
+    footprint_patches(box, grid, footprint);
+    for (const auto& fp : footprint) {
+        const double h = flow.depth(fp.centroid.x, fp.centroid.y, t);
+        if (h < b.draft)
+            out.push_back(
+                {fp.centroid - xg, fp.area, friction_capacity(def.mu, fp.area / b.plan_area, b.mass, rho, b.plan_area, h, g)});
+    }
+}
+
+Friction apply_friction(const std::vector<ContactPatch>& patches, const Velocities& trial, const Inertia& eff, double dt) {
+    Friction f;
+    f.after = trial;
+    if (patches.empty()) return f;
+    // Each patch resists the sliding of its own point. Translation first, with the sliding
+    // at the trial velocities; then the torque, with the sliding at the new translation,
+    // so that a body friction has stopped is not turned by it (a static corner does not
+    // drive a rotation; a dragging one does). Neither reverses the motion within the
+    // step: a component that would change sign stops instead, which is also the static
+    // case (at rest with the driving force below the capacity, the trial velocity is
+    // reversed, so the body stays).
+    Vec2 Ff;
+    for (const auto& p : patches) {
+        f.capacity += p.capacity;
+        Ff += (-p.capacity) * unit_or_zero(trial.V + spin(trial.omega, p.r), sliding_epsilon);
+    }
+    f.after.V = trial.V + (dt / eff.mass) * Ff;
+    if (dot(f.after.V, trial.V) <= 0.0) f.after.V = Vec2{};
+    double Tf = 0.0;
+    for (const auto& p : patches)
+        Tf += cross(p.r, (-p.capacity) * unit_or_zero(f.after.V + spin(trial.omega, p.r), sliding_epsilon));
+    f.after.omega = trial.omega + dt / eff.inertia * Tf;
+    if (f.after.omega * trial.omega <= 0.0) f.after.omega = 0.0;
+    return f;
+}
+
+// T' in the condition T'^n T'^(n+1) ≥ 0 is taken about the axis in use: the centre, or
+// the contact centroid while the axis is shifted (choice: about the centre, T' of a body
+// held at one corner in a uniform current is near zero and flips sign with round-off,
+// which would end every pivot after a few steps).
+AxisShift axis_shift(const BodyParams& b, const BodyState& s, const std::vector<ContactPatch>& patches, const FluidLoad& load,
+                     double omega_after, double capacity, const Inertia& eff, double dt) {
+    AxisShift a;
+    a.torque_ref = load.torque;
+    if (b.def.contact != ContactModel::local || !b.def.axis_shift || patches.empty()) return a;
+    Vec2 r_sub;  // contact-area centroid relative to the centre
+    double area = 0.0;
+    for (const auto& p : patches) {
+        r_sub += p.area * p.r;
+        area += p.area;
+    }
+    r_sub = (1.0 / area) * r_sub;
+    const Vec2 arm = -1.0 * r_sub;                                   // centre relative to the axis
+    const double torque_sub = load.torque + cross(arm, load.force);  // flow force moved to the axis
+    const double torque_now = (s.flags & flag_pivoting) ? torque_sub : load.torque;
+    if (!(norm(arm) > 1e-9 && s.omega * omega_after <= 0.0 && s.torque_prev * torque_now >= 0.0 && norm(load.force) <= capacity))
+        return a;
+    a.shifted = true;
+    a.torque_ref = torque_sub;
+    const double inertia_sub = eff.inertia + eff.mass * dot(arm, arm);  // parallel axis
+    double friction_torque = 0.0;
+    for (const auto& p : patches) friction_torque += p.capacity * norm(p.r - r_sub);
+    double w = s.pivot_rate + dt / inertia_sub * torque_sub;
+    const double brake = dt / inertia_sub * friction_torque;  // never reverses the pivot
+    w = std::fabs(w) <= brake ? 0.0 : w - std::copysign(brake, w);
+    a.pivot_rate = w;
+    a.turn = w * dt;
+    a.shift = r_sub + rotate(arm, a.turn);  // x_g* − x_g^n = (x_sub − x_g^n) + R (x_g^n − x_sub)
+    a.pivot_arm = rotate(r_sub, a.turn);    // the axis stays put; seen from the moved centre
+    return a;
+}
+
+}  // namespace flotsam::debris

@@ -1,0 +1,49 @@
+#include "debris/loads.hpp"
+
+#include <algorithm>
+
+#include "debris/box.hpp"
+
+namespace flotsam::debris {
+
+Inertia effective_inertia(const BodyParams& b, double submerged_volume, double rho) {
+    const double added = rho * (b.def.cm - 1.0) * submerged_volume;
+    if (b.def.added_mass == AddedMass::explicit_) return {b.mass, b.inertia, added};
+    const double added_yaw = b.def.added_yaw_inertia ? added * b.radius_sq : 0.0;
+    return {b.mass + added, b.inertia + added_yaw, added};
+}
+
+FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
+                     double t, double rho) {
+    const BodyDef& def = b.def;
+    const Box box = Box::make(m.centre, m.theta, def.length, def.width);
+    // Velocity of the body point at r from the centre: translation, rotation about the
+    // centre, and rotation about the pivot while the axis is shifted.
+    auto point_velocity = [&](Vec2 r) { return m.velocity + spin(m.omega, r) + spin(m.pivot_rate, r - m.pivot_arm); };
+    FluidLoad load;
+    load.force =
+        (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
+    const int ns = def.samples_per_face;
+    for (int face = 0; face < 4; ++face) {
+        const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
+        const double sign = (face % 2 == 0) ? 1.0 : -1.0;
+        const Vec2 n = sign * (long_normal ? box.axis_long : box.axis_wide);
+        const Vec2 tangent = long_normal ? box.axis_wide : box.axis_long;
+        const double offset = long_normal ? box.half_length : box.half_width;
+        const double face_length = long_normal ? def.width : def.length;
+        const double segment = face_length / ns;
+        for (int q = 0; q < ns; ++q) {
+            const Vec2 r = offset * n + ((q + 0.5) / ns - 0.5) * face_length * tangent;
+            const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, t);
+            const double wetted = std::min(b.draft, fp.depth);
+            if (wetted <= 0.0) continue;
+            const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);
+            const Vec2 dF = face_drag(u_rel, n, segment * wetted, def.cd1, def.cd2, rho);
+            load.force += dF;
+            load.torque += cross(r, dF);
+        }
+    }
+    return load;
+}
+
+}  // namespace flotsam::debris

@@ -1,0 +1,49 @@
+// The flow's load on one body and the inertia it acts on (MODEL.md, "Hydrodynamic
+// force"; docs/debris.md, "Forces"):
+//
+//   drag on each side face k, sampled at points p:  F = ½ ρ C_d A |u_n| u_n n_k,
+//       u_n = (u(p) − v_body(p)) · n_k,  C_d = Cd1 where u_n < 0, Cd2 where u_n ≥ 0,
+//       A = segment length × min(d, h(p));
+//   inertia at the centre:                          F_I = ρ V_s Cm Du/Dt,
+//   added mass on the left-hand side:               (m + ρ C_a V_s) dV/dt = F.
+//
+// The torque T' is Σ (p − x_g) × F over the face samples (no friction).
+#pragma once
+#include "debris/body.hpp"
+#include "debris/flow_reader.hpp"
+#include "debris/kernels.hpp"
+
+namespace flotsam::debris {
+
+// The body's pose and velocities as the fluid force sees them.
+struct Motion {
+    Vec2 centre;        // x_g [m]
+    double theta;       // heading [rad]
+    Vec2 velocity;      // V [m/s]
+    double omega;       // ω about the centre [rad/s]
+    double pivot_rate;  // ω_p about the contact centroid [rad/s]
+    Vec2 pivot_arm;     // that centroid relative to the centre [m]
+};
+
+// The flow's force on the body without friction [N] and its torque T' about the centre
+// [N m].
+struct FluidLoad {
+    Vec2 force;
+    double torque = 0.0;
+};
+
+// The load at time t (in the reader's prepared interval). centre: the flow sampled at
+// the centre (for Du/Dt); submerged: V_s = L B min(d, h_c) [m³]; rho: ρw [kg/m³].
+FluidLoad fluid_load(const FlowReader& flow, const BodyParams& body, const Motion& motion, const FlowPointAccel& centre,
+                     double submerged, double t, double rho);
+
+// Effective mass and yaw inertia: the body plus, when implicit, the added mass ρ C_a V_s
+// [kg]. The yaw inertia is the paper's (Eq. 2, I = m (L² + B²)/12) unless the body asks
+// for the added yaw inertia, ρ C_a V_s (L² + B²)/12 in the same ratio as the added mass
+// [kg m²].
+struct Inertia {
+    double mass, inertia, added_mass;
+};
+Inertia effective_inertia(const BodyParams& body, double submerged_volume, double rho);
+
+}  // namespace flotsam::debris
