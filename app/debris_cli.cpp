@@ -28,8 +28,8 @@ struct DebrisOptions {
     double end_time = -1.0;        // [s]; < 0: the flow's last frame
     double dt_max = debris::default_step_def().dt_max;
     double vertex_step_fraction = debris::default_step_def().vertex_step_fraction;
-    std::string integrator = debris::to_string(debris::default_step_def().integrator);
-    std::string time_interpolation = debris::to_string(debris::default_flow_reader_def().time_interpolation);
+    std::string integrator = enum_name(debris::default_step_def().integrator);
+    std::string time_interpolation = enum_name(debris::default_flow_reader_def().time_interpolation);
     int threads = 0;
     bool quiet = false;
 };
@@ -59,9 +59,9 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
 
 void run_debris(const DebrisOptions& o, const std::string& command_line) {
     debris::BodyDef base = o.body;
-    base.contact = debris::parse_contact_model(o.contact);
-    base.collision = debris::parse_collision_model(o.collision);
-    base.added_mass = debris::parse_added_mass(o.added_mass);
+    base.contact = parse_enum<debris::ContactModel>(o.contact, "--contact");
+    base.collision = parse_enum<debris::CollisionModel>(o.collision, "--collision");
+    base.added_mass = parse_enum<debris::AddedMass>(o.added_mass, "--added-mass");
     base.axis_shift = !o.no_axis_shift;
     if (!(o.output_interval > 0)) fail("--output-interval", std::to_string(o.output_interval), "must be positive");
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
@@ -92,8 +92,8 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     if (!(o.vertex_step_fraction > 0)) fail("--vertex-step-fraction", std::to_string(o.vertex_step_fraction), "must be positive");
     wdef.step.dt_max = o.dt_max;
     wdef.step.vertex_step_fraction = o.vertex_step_fraction;
-    wdef.step.integrator = debris::parse_integrator(o.integrator);
-    wdef.flow.time_interpolation = debris::parse_time_interpolation(o.time_interpolation);
+    wdef.step.integrator = parse_enum<debris::Integrator>(o.integrator, "--integrator");
+    wdef.flow.time_interpolation = parse_enum<debris::TimeInterpolation>(o.time_interpolation, "--time-interpolation");
     wdef.threads = o.threads;
     std::vector<std::uint8_t> building;
     {

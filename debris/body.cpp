@@ -6,26 +6,6 @@
 
 namespace flotsam::debris {
 
-const char* to_string(ContactModel m) { return m == ContactModel::center ? "center" : "local"; }
-const char* to_string(CollisionModel m) { return m == CollisionModel::single ? "single" : "multi"; }
-const char* to_string(AddedMass m) { return m == AddedMass::implicit ? "implicit" : "explicit"; }
-
-ContactModel parse_contact_model(const std::string& s) {
-    if (s == "center" || s == "centre" || s == "CC") return ContactModel::center;
-    if (s == "local" || s == "LC") return ContactModel::local;
-    fail("--contact", s, "expected 'center' or 'local'");
-}
-CollisionModel parse_collision_model(const std::string& s) {
-    if (s == "single" || s == "SC") return CollisionModel::single;
-    if (s == "multi" || s == "MC") return CollisionModel::multi;
-    fail("--collision", s, "expected 'single' or 'multi'");
-}
-AddedMass parse_added_mass(const std::string& s) {
-    if (s == "implicit") return AddedMass::implicit;
-    if (s == "explicit") return AddedMass::explicit_;
-    fail("--added-mass", s, "expected 'implicit' or 'explicit'");
-}
-
 BodyDef default_body_def() { return BodyDef{}; }
 
 BodyParams make_body_params(const BodyDef& def, double water_density) {

@@ -12,13 +12,6 @@ namespace flotsam::debris {
 
 StepDef default_step_def() { return StepDef{}; }
 
-const char* to_string(Integrator m) { return m == Integrator::euler ? "euler" : "heun"; }
-Integrator parse_integrator(const std::string& s) {
-    if (s == "euler") return Integrator::euler;
-    if (s == "heun") return Integrator::heun;
-    fail("--integrator", s, "expected 'euler' or 'heun'");
-}
-
 namespace {
 
 // A velocity below this has no direction (a point that does not slide) [m/s].

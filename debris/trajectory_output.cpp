@@ -73,8 +73,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put_att(NC_GLOBAL, "dt_max_s", world.def().step.dt_max);
         f.put_att(NC_GLOBAL, "vertex_step_fraction", world.def().step.vertex_step_fraction);
         f.put_att(NC_GLOBAL, "max_collision_passes", world.def().step.max_collision_passes);
-        f.put_att(NC_GLOBAL, "integrator", std::string(to_string(world.def().step.integrator)));
-        f.put_att(NC_GLOBAL, "time_interpolation", std::string(to_string(world.def().flow.time_interpolation)));
+        f.put_att(NC_GLOBAL, "integrator", std::string(enum_name(world.def().step.integrator)));
+        f.put_att(NC_GLOBAL, "time_interpolation", std::string(enum_name(world.def().flow.time_interpolation)));
         f.enddef();
 
         f.put(track_vars.time, series.time);
@@ -85,8 +85,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
             const BodyDef& d = world.params()[b].def;
             ids.push_back(d.name);
             starts.push_back(b < def.start_names.size() ? def.start_names[b] : std::string());
-            contacts.push_back(to_string(d.contact));
-            collisions.push_back(to_string(d.collision));
+            contacts.push_back(enum_name(d.contact));
+            collisions.push_back(enum_name(d.collision));
             cd1.push_back(d.cd1);
             cd2.push_back(d.cd2);
             cm.push_back(d.cm);

@@ -105,8 +105,8 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
             rec.body_name = m.def.name;
             rec.start_name = spec.bodies[std::size_t(m.body)].start;
             rec.variant_name = spec.variants[std::size_t(m.variant)].name;
-            rec.contact = debris::to_string(m.def.contact);
-            rec.collision = debris::to_string(m.def.collision);
+            rec.contact = enum_name(m.def.contact);
+            rec.collision = enum_name(m.def.collision);
             rec.params = {m.def.cd1, m.def.cd2, m.def.cm, m.def.mu, m.def.restitution};
             rec.length = m.def.length;
             rec.width = m.def.width;
