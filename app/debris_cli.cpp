@@ -95,16 +95,7 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     wdef.step.integrator = parse_enum<debris::Integrator>(o.integrator, "--integrator");
     wdef.flow.time_interpolation = parse_enum<debris::TimeInterpolation>(o.time_interpolation, "--time-interpolation");
     wdef.threads = o.threads;
-    std::vector<std::uint8_t> building;
-    {
-        const debris::FlowReader probe(o.flow, wdef.flow);  // only for its grid
-        if (scene) building = debris::buildings_on_grid(*scene, probe.grid());
-    }
-    debris::World world(o.flow, std::move(building), wdef);
-    for (const auto& b : bodies) {
-        if (!world.flow().grid().contains(b.x, b.y)) fail("body '" + b.name + "'", "position", "outside the flow grid");
-        world.add_body(b);
-    }
+    debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef, "");
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");

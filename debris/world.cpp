@@ -31,6 +31,22 @@ World::World(const std::string& flow_path, std::vector<std::uint8_t> building, c
     time_ = flow_.start_time();
 }
 
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const std::string& source) {
+    std::vector<std::uint8_t> building;
+    if (scene) {
+        const FlowReader probe(flow_path, def.flow);  // only for its grid
+        building = buildings_on_grid(*scene, probe.grid());
+    }
+    World world(flow_path, std::move(building), def);
+    for (const BodyDef& b : bodies) {
+        if (!world.flow().grid().contains(b.x, b.y))
+            fail(source, "body '" + b.name + "'", "starts outside the grid of flow " + flow_path);
+        world.add_body(b);
+    }
+    return world;
+}
+
 std::size_t World::add_body(const BodyDef& def) {
     params_.push_back(make_body_params(def, def_.step.water_density));
     states_.push_back(initial_state(def, time_));

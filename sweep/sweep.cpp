@@ -68,17 +68,9 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
             if (all[std::size_t(id)].flow == f) on_flow.push_back(&all[std::size_t(id)]);
         if (on_flow.empty()) continue;
         const std::string& path = spec.flows[std::size_t(f)];
-        std::vector<std::uint8_t> building;
-        if (scene) {
-            const debris::FlowReader probe(path, wdef.flow);  // only for its grid
-            building = debris::buildings_on_grid(*scene, probe.grid());
-        }
-        debris::World world(path, std::move(building), wdef);
-        for (const Member* m : on_flow) {
-            if (!world.flow().grid().contains(m->def.x, m->def.y))
-                fail(spec.path, "body '" + m->def.name + "'", "start outside the grid of flow " + path);
-            world.add_body(m->def);
-        }
+        std::vector<debris::BodyDef> bodies;
+        for (const Member* m : on_flow) bodies.push_back(m->def);
+        debris::World world = debris::make_world(path, scene.get(), bodies, wdef, spec.path);
         debris::TrajectorySeries series;
         debris::record(world, series);
         Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +
