@@ -7,6 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/cf.hpp"
+#include "common/columns.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "sweep/trajectory_kernels.hpp"
@@ -19,14 +20,6 @@ std::string trajectory_label(const SweepResult& r, const MemberRecord& m) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "/f%02d/p%02d", m.flow, m.perturbation);
     return m.body_name + "/" + m.variant_name + "/" + r.params[std::size_t(m.param_set)].label + buf;
-}
-
-template <class T, class F>
-std::vector<T> column(const std::vector<MemberRecord>& ms, F f) {
-    std::vector<T> out;
-    out.reserve(ms.size());
-    for (const auto& m : ms) out.push_back(T(f(m)));
-    return out;
 }
 
 // A CSV field: quoted when it holds a comma, a quote or a line break.
