@@ -121,17 +121,61 @@ void yaw_per_member(SweepStats& s, const SweepResult& sw, const StatsDef& def) {
     }
 }
 
+// The bin of angle a among nb equal bins over [−180, 180] [degree]; beyond: the end bins.
+std::size_t yaw_bin(double a, int nb) { return std::size_t(std::clamp(int(std::floor((a + 180.0) / 360.0 * nb)), 0, nb - 1)); }
+
 // Histograms of the per-member yaw: bins over [−180, 180], values beyond in the end bins.
 void yaw_histograms(SweepStats& s, const StatsDef& def) {
     const int nb = std::max(1, int(std::lround(360.0 / def.yaw_bin_width)));
     for (int b = 0; b <= nb; ++b) s.yaw_edges.push_back(-180.0 + 360.0 * b / nb);
-    auto bin_of = [&](double a) { return std::size_t(std::clamp(int(std::floor((a + 180.0) / 360.0 * nb)), 0, nb - 1)); };
     s.rotation_hist.assign(s.groups.size(), std::vector<int>(std::size_t(nb), 0));
     s.yaw_motion_hist = s.rotation_hist;
     for (std::size_t m = 0; m < s.member_group.size(); ++m) {
         const std::size_t g = std::size_t(s.member_group[m]);
-        if (!std::isnan(s.max_rotation[m])) ++s.rotation_hist[g][bin_of(s.max_rotation[m])];
-        if (!std::isnan(s.max_yaw_to_motion[m])) ++s.yaw_motion_hist[g][bin_of(s.max_yaw_to_motion[m])];
+        if (!std::isnan(s.max_rotation[m])) ++s.rotation_hist[g][yaw_bin(s.max_rotation[m], nb)];
+        if (!std::isnan(s.max_yaw_to_motion[m])) ++s.yaw_motion_hist[g][yaw_bin(s.max_yaw_to_motion[m], nb)];
+    }
+}
+
+// Per member, the paper's Fig. 16 quantities over [t0, t0 + yaw_window] with t0 the
+// run's start: the largest rotation from the initial heading, and the direction of
+// movement from the initial location.
+void rotation_from_start_per_member(SweepStats& s, const SweepResult& sw, const StatsDef& def) {
+    const std::size_t nm = sw.members.size();
+    s.max_rotation_from_start.assign(nm, nan);
+    s.movement_direction.assign(nm, nan);
+    for (std::size_t m = 0; m < nm; ++m) {
+        const debris::Track& t = sw.members[m].track;
+        if (t.x.empty()) continue;
+        s.max_rotation_from_start[m] = max_rotation(s.time, t.yaw_deg, 0, def.yaw_window);
+        s.movement_direction[m] = movement_direction(s.time, t.x, t.y, s.time.front() + def.yaw_window);
+    }
+}
+
+// Per group: the histogram of the largest rotation from the start (bins of
+// yaw_histograms), its median, mean and range, and its correlation with the movement
+// direction (Fig. 16c).
+void rotation_from_start_summaries(SweepStats& s) {
+    const int nb = int(s.yaw_edges.size()) - 1;
+    s.rotation_from_start_hist.assign(s.groups.size(), std::vector<int>(std::size_t(nb), 0));
+    s.rotation_from_start.assign(s.groups.size(), {});
+    for (std::size_t g = 0; g < s.groups.size(); ++g) {
+        std::vector<double> rotation, direction;
+        for (int m : s.groups[g].members) {
+            const double r = s.max_rotation_from_start[std::size_t(m)];
+            if (std::isnan(r)) continue;
+            ++s.rotation_from_start_hist[g][yaw_bin(r, nb)];
+            rotation.push_back(r);
+            direction.push_back(s.movement_direction[std::size_t(m)]);
+        }
+        SweepStats::RotationSummary& q = s.rotation_from_start[g];
+        q.count = int(rotation.size());
+        q.direction_correlation = pearson_correlation(rotation, direction);
+        q.mean = mean_of(rotation);
+        std::sort(rotation.begin(), rotation.end());
+        q.median = quantile_sorted(rotation, 0.5);
+        q.min = rotation.empty() ? nan : rotation.front();
+        q.max = rotation.empty() ? nan : rotation.back();
     }
 }
 
@@ -317,6 +361,8 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     group_members(s, sw);
     yaw_per_member(s, sw, def);
     yaw_histograms(s, def);
+    rotation_from_start_per_member(s, sw, def);
+    rotation_from_start_summaries(s);
     passages_per_member(s, sw);
     section_summaries(s, sw, def);
     speed_densities(s, sw, def);
@@ -492,6 +538,48 @@ PutValues define_member_yaw(nc::File& f, const StatsDims& d, const SweepStats& s
     };
 }
 
+// The paper's Fig. 16 (from the run's start): per member, the histogram and the group
+// summaries with the correlation.
+PutValues define_rotation_from_start(nc::File& f, const StatsDims& d, const SweepStats& s) {
+    const int vmr = def_stats_var(f, "member_max_rotation_from_start", NC_DOUBLE, {d.member}, "degree",
+                                  "largest rotation from the initial heading within yaw_window_s of the run's start (paper Fig. "
+                                  "16a), counter-clockwise positive",
+                                  true);
+    const int vmd =
+        def_stats_var(f, "member_movement_direction", NC_DOUBLE, {d.member}, "degree",
+                      "direction from the initial location to the position yaw_window_s after the run's start, from "
+                      "east counter-clockwise: north-east positive (paper Fig. 16c); undefined below motion_threshold_m",
+                      true);
+    const int vh = def_stats_var(f, "max_rotation_from_start_histogram", NC_INT, {d.group, d.yaw_bin}, "",
+                                 "members per bin of the largest rotation from the initial heading within yaw_window_s of the "
+                                 "run's start");
+    const int vn =
+        def_stats_var(f, "max_rotation_from_start_count", NC_INT, {d.group}, "", "members with a largest rotation from the start");
+    auto summary = [&](const char* name, const char* what) {
+        return def_stats_var(f, std::string("max_rotation_from_start_") + name, NC_DOUBLE, {d.group}, "degree",
+                             std::string(what) + " of the largest rotation from the initial heading over the group", true);
+    };
+    const int vmed = summary("median", "median"), vmean = summary("mean", "mean"), vmin = summary("min", "smallest"),
+              vmax = summary("max", "largest");
+    const int vr = def_stats_var(f, "rotation_direction_correlation", NC_DOUBLE, {d.group}, "1",
+                                 "Pearson correlation of member_max_rotation_from_start and member_movement_direction over the "
+                                 "group (paper Fig. 16c)",
+                                 true);
+    return [=, &f, &s] {
+        using Summary = SweepStats::RotationSummary;
+        auto field = [&](double Summary::*m) { return cf::filled(column<double>(s.rotation_from_start, m)); };
+        f.put(vmr, cf::filled(s.max_rotation_from_start));
+        f.put(vmd, cf::filled(s.movement_direction));
+        f.put(vh, flatten(s.rotation_from_start_hist));
+        f.put(vn, column<int>(s.rotation_from_start, &Summary::count));
+        f.put(vmed, field(&Summary::median));
+        f.put(vmean, field(&Summary::mean));
+        f.put(vmin, field(&Summary::min));
+        f.put(vmax, field(&Summary::max));
+        f.put(vr, field(&Summary::direction_correlation));
+    };
+}
+
 // Each member's region at the arrival time, and the counts per region.
 PutValues define_regions(nc::File& f, const StatsDims& d, const SweepStats& s) {
     const int vmreg = def_stats_var(f, "member_region", NC_INT, {d.member}, "", "region index at arrival_time_s (-1: none)");
@@ -587,8 +675,9 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                           f.def_dim("x", std::size_t(s.map.nx)),
                           f.def_dim("y", std::size_t(s.map.ny))};
         const std::vector<PutValues> puts = {
-            define_tables(f, d, s),     define_passages(f, d, s), define_yaw_histograms(f, d, s), define_member_table(f, d, s),
-            define_member_yaw(f, d, s), define_regions(f, d, s),  define_distance(f, d, s),       define_maps(f, d, s)};
+            define_tables(f, d, s),       define_passages(f, d, s),   define_yaw_histograms(f, d, s),
+            define_member_table(f, d, s), define_member_yaw(f, d, s), define_rotation_from_start(f, d, s),
+            define_regions(f, d, s),      define_distance(f, d, s),   define_maps(f, d, s)};
         put_settings(f, s, def, sweep_file, scene_file, history);
         f.enddef();
         for (const PutValues& put : puts) put();
@@ -636,12 +725,27 @@ void write_sections_csv(const std::string& dir, const SweepStats& s) {
 }
 
 void write_yaw_csv(const std::string& dir, const SweepStats& s) {
-    std::string t = "body,variant,bin_min_deg,bin_max_deg,max_rotation_count,max_yaw_to_motion_count\n";
+    std::string t =
+        "body,variant,bin_min_deg,bin_max_deg,max_rotation_count,max_yaw_to_motion_count,max_rotation_from_start_count\n";
     for (std::size_t g = 0; g < s.groups.size(); ++g)
         for (std::size_t b = 0; b + 1 < s.yaw_edges.size(); ++b)
             t += group_key(s.groups[g]) + "," + num(s.yaw_edges[b]) + "," + num(s.yaw_edges[b + 1]) + "," +
-                 std::to_string(s.rotation_hist[g][b]) + "," + std::to_string(s.yaw_motion_hist[g][b]) + "\n";
+                 std::to_string(s.rotation_hist[g][b]) + "," + std::to_string(s.yaw_motion_hist[g][b]) + "," +
+                 std::to_string(s.rotation_from_start_hist[g][b]) + "\n";
     write_text_atomic(dir + "/yaw_histogram.csv", t);
+}
+
+// rotation_from_start.csv: the paper's Fig. 16 per group.
+void write_rotation_csv(const std::string& dir, const SweepStats& s) {
+    std::string t =
+        "body,variant,count,max_rotation_median_deg,max_rotation_mean_deg,max_rotation_min_deg,max_rotation_max_deg,"
+        "direction_correlation\n";
+    for (std::size_t g = 0; g < s.groups.size(); ++g) {
+        const SweepStats::RotationSummary& q = s.rotation_from_start[g];
+        t += group_key(s.groups[g]) + "," + std::to_string(q.count) + "," + num(q.median) + "," + num(q.mean) + "," + num(q.min) +
+             "," + num(q.max) + "," + num(q.direction_correlation) + "\n";
+    }
+    write_text_atomic(dir + "/rotation_from_start.csv", t);
 }
 
 void write_regions_csv(const std::string& dir, const SweepStats& s) {
@@ -676,16 +780,22 @@ void write_members_csv(const std::string& dir, const SweepStats& s, const SweepR
         "member,body,variant,param_label,flow,perturbation,motion_start_s,max_rotation_deg,max_yaw_to_motion_deg,"
         "motion_direction_deg,region_at_arrival";
     for (const auto& c : s.sections) t += "," + c.name + "_time_s," + c.name + "_y_m," + c.name + "_speed_m_s";
-    t += "\n";
+    t += ",max_rotation_from_start_deg,movement_direction_deg\n";
     for (std::size_t m = 0; m < s.member_group.size(); ++m) {
         const MemberRecord& r = sw.members[m];
         t += std::to_string(r.id) + "," + r.body_name + "," + r.variant_name + "," + s.params[std::size_t(r.param_set)].label +
              "," + std::to_string(r.flow) + "," + std::to_string(r.perturbation) + "," + num(s.motion_start[m]) + "," +
              num(s.max_rotation[m]) + "," + num(s.max_yaw_to_motion[m]) + "," + num(s.motion_direction[m]) + "," +
              (s.region_at_arrival[m] >= 0 ? s.regions[std::size_t(s.region_at_arrival[m])] : std::string());
+        std::vector<double> values;
         for (std::size_t c = 0; c < s.sections.size(); ++c)
-            for (double v : {s.passage_time[m][c], s.passage_y[m][c], s.passage_speed[m][c]}) t += "," + num(v);
-        t += "\n";
+            values.insert(values.end(), {s.passage_time[m][c], s.passage_y[m][c], s.passage_speed[m][c]});
+        values.insert(values.end(), {s.max_rotation_from_start[m], s.movement_direction[m]});
+        for (double v : values) {
+            t += ',';
+            t += num(v);
+        }
+        t += '\n';
     }
     write_text_atomic(dir + "/members.csv", t);
 }
@@ -696,6 +806,7 @@ void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepRes
     std::filesystem::create_directories(dir);
     write_sections_csv(dir, s);
     write_yaw_csv(dir, s);
+    write_rotation_csv(dir, s);
     write_regions_csv(dir, s);
     write_distance_csv(dir, s);
     write_members_csv(dir, s, sw);
