@@ -25,8 +25,8 @@ std::string join_command_line(int argc, char** argv, const std::vector<DroppedOp
 // restarted, or run on another thread count, writes the same bytes.
 const std::vector<DroppedOption>& hydro_run_control_options();
 
-// Adds --config FILE (TOML, keys are the long option names, unknown keys rejected) to a
-// subcommand.
+// Adds --config FILE (TOML, read by common/toml_lite: keys are the long option names,
+// kebab-case; unknown keys rejected) to a subcommand.
 void add_config_option(CLI::App* sub);
 
 // The arguments (without argv[0]) with a subcommand's --config FILE replaced by the
