@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,18 @@ const std::vector<DroppedOption>& hydro_run_control_options() {
         {"out", true},        {"restart", false},           {"threads", true}, {"quiet", false}, {"label", true},
         {"stop-after", true}, {"checkpoint-interval", true}};
     return options;
+}
+
+CLI::Validator in_range(const Range& r) {
+    return CLI::Validator(
+        [r](std::string& text) -> std::string {
+            const char* b = text.c_str();
+            char* e = nullptr;
+            const double v = std::strtod(b, &e);
+            if (e == b || *e != '\0') return "'" + text + "' is not a number";
+            return range_problem(v, r);
+        },
+        describe(r), "range");
 }
 
 void add_config_option(CLI::App* sub) {

@@ -6,7 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "common/checks.hpp"
+
 namespace flotsam {
+
+// A CLI11 check that an option's value is a finite number in `r` (common/checks.hpp):
+// "--cfl: nan is not a finite number (allowed: (0, 1])".
+CLI::Validator in_range(const Range& r);
 
 // An option left out of a recorded command line: its name without "--", and whether it
 // takes a value.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/enum_names.hpp"
+#include "common/settings.hpp"
 #include "formats/trajectory_file.hpp"
 
 namespace flotsam::debris {
@@ -59,6 +60,16 @@ struct BodyDef {
     double step_tolerance = 0.2;  // ground higher than the bottom by more than this × draft blocks [-]
 };
 BodyDef default_body_def();  // the paper's control case, LC + MC
+
+// The body's settings, one table per family (common/settings.hpp): key, member, unit,
+// help and valid range; the defaults are BodyDef's initialisers above. Every table is
+// an option of `flotsam debris`; in a sweep spec the shape and model go in [[body]] (the
+// model also in [sweep], for every body), the coefficients are what [parameters]
+// designs vary, and the variant is [variants].
+const Settings<BodyDef>& body_shape_settings();        // length, width, height, specific-gravity
+const Settings<BodyDef>& body_coefficient_settings();  // cd1, cd2, cm, mu, restitution
+const Settings<BodyDef>& body_model_settings();        // added-mass, axis-shift, samples-per-face, step-tolerance
+const Settings<BodyDef>& body_variant_settings();      // contact, collision
 
 // Derived once from a BodyDef.
 struct BodyParams {

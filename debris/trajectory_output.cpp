@@ -5,8 +5,10 @@
 
 #include "common/atomic_file.hpp"
 #include "common/cf.hpp"
+#include "common/columns.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
+#include "common/settings_nc.hpp"
 
 namespace flotsam::debris {
 
@@ -40,9 +42,6 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         f.put_att(vid, "long_name", std::string("body name"));
 
-        auto per_double = [&](const char* name, const char* units, const char* long_name) {
-            return cf::def_var(f, {.name = name, .dims = {dtraj}, .units = units, .long_name = long_name});
-        };
         auto per_string = [&](const char* name, const char* long_name) {
             return cf::def_var(f, {.name = name, .type = NC_STRING, .dims = {dtraj}, .long_name = long_name});
         };
@@ -52,15 +51,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vstart = per_string("start_name", "scene start point of the body (empty: given by coordinates)");
         const int vcontact = per_string("contact_model", "friction model: center (CC) or local (LC, with axis shift)");
         const int vcoll = per_string("collision_model", "collision model: single (SC) or multi (MC)");
-        const int vcd1 = per_double("cd1", "1", "drag coefficient, flow toward a face");
-        const int vcd2 = per_double("cd2", "1", "drag coefficient, flow leaving a face");
-        const int vcm = per_double("cm", "1", "inertia coefficient");
-        const int vmu = per_double("mu", "1", "friction coefficient");
-        const int ve = per_double("restitution", "1", "coefficient of restitution against obstacles");
-        const int vl = per_double("length", "m", "body length");
-        const int vw = per_double("width", "m", "body width");
-        const int vh = per_double("height", "m", "body height");
-        const int vsg = per_double("specific_gravity", "1", "body specific gravity");
+        const std::vector<int> vcoef = def_setting_vars(f, body_coefficient_settings(), {dtraj});
+        const std::vector<int> vshape = def_setting_vars(f, body_shape_settings(), {dtraj});
         const int vnc = per_int("collision_steps", "steps with an obstacle contact");
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
@@ -78,44 +70,20 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.enddef();
 
         f.put(track_vars.time, series.time);
-        std::vector<std::string> ids, starts, contacts, collisions;
-        std::vector<double> cd1, cd2, cm, mu, e, len, wid, hei, sg;
-        std::vector<int> nc_, nu, ns;
-        for (std::size_t b = 0; b < nb; ++b) {
-            const BodyDef& d = world.params()[b].def;
-            ids.push_back(d.name);
-            starts.push_back(b < def.start_names.size() ? def.start_names[b] : std::string());
-            contacts.push_back(enum_name(d.contact));
-            collisions.push_back(enum_name(d.collision));
-            cd1.push_back(d.cd1);
-            cd2.push_back(d.cd2);
-            cm.push_back(d.cm);
-            mu.push_back(d.mu);
-            e.push_back(d.restitution);
-            len.push_back(d.length);
-            wid.push_back(d.width);
-            hei.push_back(d.height);
-            sg.push_back(d.specific_gravity);
-            nc_.push_back(int(world.stats()[b].collisions));
-            nu.push_back(int(world.stats()[b].unresolved));
-            ns.push_back(int(world.stats()[b].axis_shifts));
-        }
-        f.put(vid, ids);
+        const std::vector<BodyParams>& bodies = world.params();
+        const auto def_of = [](const BodyParams& p) -> const BodyDef& { return p.def; };
+        const std::vector<BodyStats>& stats = world.stats();
+        std::vector<std::string> starts = def.start_names;
+        starts.resize(nb);
+        f.put(vid, column<std::string>(bodies, [](const BodyParams& p) { return p.def.name; }));
         f.put(vstart, starts);
-        f.put(vcontact, contacts);
-        f.put(vcoll, collisions);
-        f.put(vcd1, cd1);
-        f.put(vcd2, cd2);
-        f.put(vcm, cm);
-        f.put(vmu, mu);
-        f.put(ve, e);
-        f.put(vl, len);
-        f.put(vw, wid);
-        f.put(vh, hei);
-        f.put(vsg, sg);
-        f.put(vnc, nc_);
-        f.put(vnu, nu);
-        f.put(vns, ns);
+        f.put(vcontact, column<std::string>(bodies, [](const BodyParams& p) { return enum_name(p.def.contact); }));
+        f.put(vcoll, column<std::string>(bodies, [](const BodyParams& p) { return enum_name(p.def.collision); }));
+        put_setting_vars(f, vcoef, body_coefficient_settings(), bodies, def_of);
+        put_setting_vars(f, vshape, body_shape_settings(), bodies, def_of);
+        f.put(vnc, column<int>(stats, &BodyStats::collisions));
+        f.put(vnu, column<int>(stats, &BodyStats::unresolved));
+        f.put(vns, column<int>(stats, &BodyStats::axis_shifts));
         for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, series.tracks[b]);
         f.close();
     }

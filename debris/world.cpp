@@ -11,6 +11,31 @@ namespace flotsam::debris {
 
 WorldDef default_world_def() { return WorldDef{}; }
 
+const Settings<StepDef>& step_settings() {
+    static const Settings<StepDef> table = {
+        {"dt-max", "s", "largest time step", Range::positive("s").up_to(60.0), &StepDef::dt_max},
+        {"vertex-step-fraction", "1", "largest corner displacement per step, in grid cells (no tunnelling at the default)",
+         Range::positive().up_to(10.0), &StepDef::vertex_step_fraction},
+        {"integrator",
+         "",
+         "fluid-force stage: semi-implicit Euler or Heun's predictor-corrector",
+         {},
+         choice_of<&StepDef::integrator>()},
+    };
+    return table;
+}
+
+const Settings<FlowReaderDef>& flow_replay_settings() {
+    static const Settings<FlowReaderDef> table = {
+        {"time-interpolation",
+         "",
+         "interpolation between stored frames (cubic: Catmull-Rom through four frames, guarded)",
+         {},
+         choice_of<&FlowReaderDef::time_interpolation>()},
+    };
+    return table;
+}
+
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {
     if (scene.building.empty()) return {};
     std::vector<std::uint8_t> out(grid.size(), 0);

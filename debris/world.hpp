@@ -23,6 +23,11 @@ struct WorldDef {
 };
 WorldDef default_world_def();
 
+// The settings of the step and of the flow replay (common/settings.hpp; defaults: the
+// structs' initialisers): options of `flotsam debris`, keys of a sweep's [sweep] table.
+const Settings<StepDef>& step_settings();               // dt-max, vertex-step-fraction, integrator
+const Settings<FlowReaderDef>& flow_replay_settings();  // time-interpolation
+
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);
 

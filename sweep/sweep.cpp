@@ -52,8 +52,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     r.perturbation = spec.perturbation;
     r.member_count = int(all.size());
     r.output_interval = spec.output_interval;
-    debris::WorldDef wdef = debris::default_world_def();
-    if (spec.dt_max > 0) wdef.step.dt_max = spec.dt_max;
+    debris::WorldDef wdef = spec.world;
     wdef.threads = def.threads;
     r.dt_max = wdef.step.dt_max;
     r.time = sweep_output_times(spec);
@@ -97,15 +96,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
             rec.body_name = m.def.name;
             rec.start_name = spec.bodies[std::size_t(m.body)].start;
             rec.variant_name = spec.variants[std::size_t(m.variant)].name;
-            rec.contact = enum_name(m.def.contact);
-            rec.collision = enum_name(m.def.collision);
-            rec.params = {m.def.cd1, m.def.cd2, m.def.cm, m.def.mu, m.def.restitution};
-            rec.length = m.def.length;
-            rec.width = m.def.width;
-            rec.height = m.def.height;
-            rec.specific_gravity = m.def.specific_gravity;
-            rec.x0 = m.def.x;
-            rec.y0 = m.def.y;
+            rec.def = m.def;
             rec.heading0_deg = m.def.heading * 180.0 / std::numbers::pi;
             const debris::BodyStats& bs = world.stats()[b];
             rec.collision_steps = int(bs.collisions);

@@ -51,9 +51,8 @@ struct SyntheticSweep {
         rec.flow = flow;
         rec.body_name = r.bodies[std::size_t(body)];
         rec.variant_name = r.variants[std::size_t(variant)];
-        rec.contact = variant ? "local" : "center";
-        rec.collision = variant ? "multi" : "single";
-        rec.params = paper_control();
+        rec.def.contact = variant ? debris::ContactModel::local : debris::ContactModel::center;
+        rec.def.collision = variant ? debris::CollisionModel::multi : debris::CollisionModel::single;
         for (double t : r.time) {
             const Sample s = m(t);
             rec.track.x.push_back(s.x);
@@ -64,8 +63,8 @@ struct SyntheticSweep {
             rec.track.omega.push_back(0.0);
             rec.track.status.push_back(3);
         }
-        rec.x0 = rec.track.x[0];
-        rec.y0 = rec.track.y[0];
+        rec.def.x = rec.track.x[0];
+        rec.def.y = rec.track.y[0];
         rec.heading0_deg = rec.track.yaw_deg[0];
         r.members.push_back(rec);
         r.member_count = int(r.members.size());

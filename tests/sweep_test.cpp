@@ -31,7 +31,7 @@ std::vector<std::string> two_flows(const std::string& dir) {
 
 std::string small_spec(const std::string& dir, const std::vector<std::string>& flows) {
     return test::write_file(dir, "spec.toml",
-                            "[sweep]\noutput_interval = 0.5\n"
+                            "[sweep]\noutput-interval = 0.5\n"
                             "[flows]\npaths = [\"" +
                                 flows[0] + "\",\n  \"" + flows[1] +
                                 "\"]  # two flows\n"
@@ -39,7 +39,7 @@ std::string small_spec(const std::string& dir, const std::vector<std::string>& f
                                 "[[body]]\nname = \"B\"\nat = [0.40, 0.55, 90]\n"
                                 "[variants]\nnames = [\"CC+SC\", \"LC+MC\"]\n"
                                 "[parameters]\ndesign = \"one_at_a_time\"\nvary = [\"cd1\"]\n"
-                                "[perturbation]\ncount = 1\nposition_std = 0.01\nheading_std = 5\nseed = 3\n");
+                                "[perturbation]\ncount = 1\nposition-std = 0.01\nheading-std = 5\nseed = 3\n");
 }
 
 }  // namespace
@@ -69,7 +69,7 @@ TEST(SweepDesign, OneAtATimeIsThePapersNineSets) {
 }
 
 TEST(SweepDesign, FactorialLastParameterFastestAndFindsTheControl) {
-    std::array<std::vector<double>, 5> levels;
+    std::vector<std::vector<double>> levels(5);
     levels[0] = {0.6, 0.8};
     levels[2] = {1.5, 2.0, 3.0};
     const auto sets = factorial(paper_control(), levels);
@@ -87,7 +87,7 @@ TEST(SweepDesign, FactorialLastParameterFastestAndFindsTheControl) {
 }
 
 TEST(SweepDesign, LatinHypercubeUsesEveryStratumOnceAndIsSeeded) {
-    std::array<std::array<double, 2>, 5> ranges{{{0.5, 1.2}, {0.2, 0.6}, {1.5, 3.0}, {0.2, 0.6}, {0.5, 0.5}}};
+    const ParamRanges ranges{{0.5, 1.2}, {0.2, 0.6}, {1.5, 3.0}, {0.2, 0.6}, {0.5, 0.5}};
     const int n = 20;
     const auto a = latin_hypercube(ranges, n, 7), b = latin_hypercube(ranges, n, 7), c = latin_hypercube(ranges, n, 8);
     ASSERT_EQ(a.size(), std::size_t(n));
