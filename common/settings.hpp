@@ -51,6 +51,7 @@ struct Setting {
     bool is_switch() const { return std::holds_alternative<bool Def::*>(member); }
     bool is_choice() const { return std::holds_alternative<Choice<Def>>(member); }
     bool is_factor() const { return std::holds_alternative<Factor<Def>>(member); }
+    bool is_whole() const { return std::holds_alternative<int Def::*>(member); }
 
     // The NetCDF variable and CSV column name: the key with '_' for '-'.
     std::string variable() const {

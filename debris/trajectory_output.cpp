@@ -29,6 +29,27 @@ void record(World& world, TrajectorySeries& series) {
     world.clear_event_flags();
 }
 
+void put_world_attributes(nc::File& f, const WorldDef& def) {
+    f.put_att(NC_GLOBAL, "dt_max_s", def.step.dt_max);
+    f.put_att(NC_GLOBAL, "vertex_step_fraction", def.step.vertex_step_fraction);
+    f.put_att(NC_GLOBAL, "max_collision_passes", def.step.max_collision_passes);
+    f.put_att(NC_GLOBAL, "integrator", std::string(enum_name(def.step.integrator)));
+    f.put_att(NC_GLOBAL, "time_interpolation", std::string(enum_name(def.flow.time_interpolation)));
+}
+
+WorldDef get_world_attributes(const nc::File& f) {
+    WorldDef def = default_world_def();
+    if (const auto v = f.att_double(NC_GLOBAL, "dt_max_s")) def.step.dt_max = *v;
+    if (const auto v = f.att_double(NC_GLOBAL, "vertex_step_fraction")) def.step.vertex_step_fraction = *v;
+    if (const auto v = f.att_double(NC_GLOBAL, "max_collision_passes")) def.step.max_collision_passes = int(*v);
+    const std::string where = f.path() + ": attribute ";
+    if (const auto v = f.att_text(NC_GLOBAL, "integrator"))
+        def.step.integrator = parse_enum<Integrator>(*v, where + "'integrator'");
+    if (const auto v = f.att_text(NC_GLOBAL, "time_interpolation"))
+        def.flow.time_interpolation = parse_enum<TimeInterpolation>(*v, where + "'time_interpolation'");
+    return def;
+}
+
 void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series,
                            const TrajectoryFileDef& def) {
     ensure_parent_dir(path);
@@ -53,6 +74,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vcoll = per_string("collision_model", "collision model: single (SC) or multi (MC)");
         const std::vector<int> vcoef = def_setting_vars(f, body_coefficient_settings(), {dtraj});
         const std::vector<int> vshape = def_setting_vars(f, body_shape_settings(), {dtraj});
+        const std::vector<int> vmodel = def_setting_vars(f, body_model_settings(), {dtraj});
         const int vnc = per_int("collision_steps", "steps with an obstacle contact");
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
@@ -62,11 +84,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put_att(NC_GLOBAL, "source", std::string("flotsam debris: rigid box replayed through a stored shallow-water flow"));
         f.put_att(NC_GLOBAL, "flow_file", def.flow_file);
         f.put_att(NC_GLOBAL, "history", def.history);
-        f.put_att(NC_GLOBAL, "dt_max_s", world.def().step.dt_max);
-        f.put_att(NC_GLOBAL, "vertex_step_fraction", world.def().step.vertex_step_fraction);
-        f.put_att(NC_GLOBAL, "max_collision_passes", world.def().step.max_collision_passes);
-        f.put_att(NC_GLOBAL, "integrator", std::string(enum_name(world.def().step.integrator)));
-        f.put_att(NC_GLOBAL, "time_interpolation", std::string(enum_name(world.def().flow.time_interpolation)));
+        put_world_attributes(f, world.def());
         f.enddef();
 
         f.put(track_vars.time, series.time);
@@ -81,6 +99,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(vcoll, column<std::string>(bodies, [](const BodyParams& p) { return enum_name(p.def.collision); }));
         put_setting_vars(f, vcoef, body_coefficient_settings(), bodies, def_of);
         put_setting_vars(f, vshape, body_shape_settings(), bodies, def_of);
+        put_setting_vars(f, vmodel, body_model_settings(), bodies, def_of);
         f.put(vnc, column<int>(stats, &BodyStats::collisions));
         f.put(vnu, column<int>(stats, &BodyStats::unresolved));
         f.put(vns, column<int>(stats, &BodyStats::axis_shifts));

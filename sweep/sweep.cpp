@@ -54,7 +54,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     r.output_interval = spec.output_interval;
     debris::WorldDef wdef = spec.world;
     wdef.threads = def.threads;
-    r.dt_max = wdef.step.dt_max;
+    r.world = spec.world;
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
 

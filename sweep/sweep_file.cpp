@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/settings_nc.hpp"
+#include "debris/trajectory_output.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
@@ -88,6 +89,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vlabel = var("param_label", NC_STRING, {dtraj}, "", "label of the parameter set");
         const std::vector<int> vcoef = def_setting_vars(f, debris::body_coefficient_settings(), {dtraj});
         const std::vector<int> vshape = def_setting_vars(f, debris::body_shape_settings(), {dtraj});
+        const std::vector<int> vmodel = def_setting_vars(f, debris::body_model_settings(), {dtraj});
         const int vx0 = var("x0", NC_DOUBLE, {dtraj}, "m", "start x of the centre (perturbation included)");
         const int vy0 = var("y0", NC_DOUBLE, {dtraj}, "m", "start y of the centre (perturbation included)");
         const int vh0 = var("heading0", NC_DOUBLE, {dtraj}, "degree", "start heading of the long axis from +x, counter-clockwise");
@@ -110,7 +112,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put_att(NC_GLOBAL, "member_count", r.member_count);
         f.put_att(NC_GLOBAL, "shard", std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count));
         f.put_att(NC_GLOBAL, "output_interval_s", r.output_interval);
-        f.put_att(NC_GLOBAL, "dt_max_s", r.dt_max);
+        debris::put_world_attributes(f, r.world);
         f.put_att(NC_GLOBAL, "perturbation_count", r.perturbation.count);
         f.put_att(NC_GLOBAL, "perturbation_position_std_m", r.perturbation.position_std);
         f.put_att(NC_GLOBAL, "perturbation_heading_std_deg", r.perturbation.heading_std);
@@ -136,6 +138,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const auto def_of = [](const MemberRecord& m) -> const debris::BodyDef& { return m.def; };
         put_setting_vars(f, vcoef, debris::body_coefficient_settings(), ms, def_of);
         put_setting_vars(f, vshape, debris::body_shape_settings(), ms, def_of);
+        put_setting_vars(f, vmodel, debris::body_model_settings(), ms, def_of);
         f.put(vx0, column<double>(ms, [](const MemberRecord& m) { return m.def.x; }));
         f.put(vy0, column<double>(ms, [](const MemberRecord& m) { return m.def.y; }));
         f.put(vh0, column<double>(ms, &MemberRecord::heading0_deg));
@@ -178,7 +181,7 @@ SweepResult read_sweep_file(const std::string& path) {
     r.member_count = int(number("member_count"));
     r.shard = parse_shard(text("shard"));
     r.output_interval = number("output_interval_s");
-    r.dt_max = number("dt_max_s");
+    r.world = debris::get_world_attributes(f);
     r.perturbation.count = int(number("perturbation_count"));
     r.perturbation.position_std = number("perturbation_position_std_m");
     r.perturbation.heading_std = number("perturbation_heading_std_deg");
@@ -209,6 +212,7 @@ SweepResult read_sweep_file(const std::string& path) {
     std::vector<debris::BodyDef> defs(nm);
     get_setting_vars(f, debris::body_coefficient_settings(), defs);
     get_setting_vars(f, debris::body_shape_settings(), defs);
+    get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
     const int vx = f.var("x"), vy = f.var("y"), vyaw = f.var("yaw"), vu = f.var("u"), vv = f.var("v"), vom = f.var("omega"),
               vst = f.var("status");
     std::vector<double> statusd(nt);

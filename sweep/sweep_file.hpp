@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/netcdf.hpp"
+#include "debris/world.hpp"
 #include "formats/trajectory_file.hpp"
 #include "sweep/sweep_spec.hpp"
 
@@ -35,7 +36,7 @@ struct SweepResult {
     PerturbationDef perturbation;
     int member_count = 0;          // members in the whole sweep
     double output_interval = 0.0;  // [s]
-    double dt_max = 0.0;           // [s]
+    debris::WorldDef world;        // step and flow replay settings (threads: not recorded)
     std::vector<double> time;      // output times [s]
     // This part.
     Shard shard;                        // {0, 1}: the whole sweep

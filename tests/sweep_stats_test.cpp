@@ -39,7 +39,6 @@ struct SyntheticSweep {
         for (int p = 0; p < param_sets; ++p)
             r.params.push_back({p == 0 ? "control" : "set" + std::to_string(p), paper_control(), p == 0});
         r.output_interval = dt;
-        r.dt_max = 0.01;
         for (int k = 0; dt * k <= t_end + 1e-9; ++k) r.time.push_back(dt * k);
     }
     int add(int body, int variant, int param_set, int flow, const Motion& m) {
