@@ -193,7 +193,12 @@ SweepResult read_sweep_file(const std::string& path) {
     const auto labels = f.get_strings(f.var("param_set_label"));
     const auto ctrl = f.get_int(f.var("param_set_is_control"));
     std::vector<std::vector<double>> set_values;
-    for (const auto& p : design_parameters()) set_values.push_back(f.get_double(f.var("param_set_" + p.variable())));
+    for (const auto& p : design_parameters()) {
+        const std::string name = "param_set_" + p.variable();
+        // A parameter added since the file was written (the drag factor): its control value.
+        set_values.push_back(f.has_var(name) ? f.get_double(f.var(name))
+                                             : std::vector<double>(labels.size(), p.number(debris::default_body_def())));
+    }
     for (std::size_t s = 0; s < labels.size(); ++s) {
         ParameterSet ps{labels[s], {}, ctrl[s] != 0};
         for (const auto& v : set_values) ps.values.push_back(v[s]);

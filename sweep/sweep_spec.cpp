@@ -14,7 +14,15 @@
 
 namespace flotsam::sweep {
 
-const Settings<debris::BodyDef>& design_parameters() { return debris::body_coefficient_settings(); }
+const Settings<debris::BodyDef>& design_parameters() {
+    static const Settings<debris::BodyDef> table = [] {
+        Settings<debris::BodyDef> t = debris::body_coefficient_settings();
+        t.push_back({"cd", "1", "drag factor Cd: multiplies cd1 and cd2 together (the paper's sensitivity parameter Cd)",
+                     Range::positive().up_to(100.0), Factor<debris::BodyDef>{{&debris::BodyDef::cd1, &debris::BodyDef::cd2}}});
+        return t;
+    }();
+    return table;
+}
 
 ParamValues paper_control() {
     ParamValues out;
@@ -79,7 +87,7 @@ std::vector<ParameterSet> factorial(const ParamValues& control, const std::vecto
     std::vector<std::vector<double>> lv(np);
     std::size_t total = 1;
     for (std::size_t p = 0; p < np; ++p) {
-        lv[p] = levels[p].empty() ? std::vector<double>{control[p]} : levels[p];
+        lv[p] = p >= levels.size() || levels[p].empty() ? std::vector<double>{control[p]} : levels[p];
         total *= lv[p].size();
     }
     std::vector<ParameterSet> out;

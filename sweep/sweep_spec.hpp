@@ -15,7 +15,10 @@
 namespace flotsam::sweep {
 
 // The parameters a design varies, in this order everywhere (files, CSV, grids): the
-// body's coefficients (debris::body_coefficient_settings(): key, unit, help, range).
+// body's coefficients (debris::body_coefficient_settings(): key, unit, help, range), then
+// the drag factor `cd`, which multiplies cd1 and cd2 together (control 1): the paper's
+// sensitivity parameter "Cd". A member's body gets the coefficients of its set with the
+// factor applied (apply_parameters), so files record cd1 and cd2 as run.
 const Settings<debris::BodyDef>& design_parameters();
 using ParamValues = std::vector<double>;  // one value per design parameter [-]
 
@@ -26,7 +29,7 @@ struct ParameterSet {
 };
 
 // The control case: the defaults of debris::BodyDef, the paper's Cd1 0.8, Cd2 0.4,
-// Cm 2.0, Fc (mu) 0.4, and restitution 0.5.
+// Cm 2.0, Fc (mu) 0.4, and restitution 0.5; drag factor 1.
 ParamValues paper_control();
 
 // Sets the design parameters' values on a body.
@@ -34,7 +37,7 @@ void apply_parameters(const ParamValues& values, debris::BodyDef& def);
 
 // Control, then each varied parameter times `factor` and divided by it: 1 + 2 n sets.
 std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::vector<int>& varied, double factor);
-// Every combination of the levels (levels[p] empty: the control value), last parameter
+// Every combination of the levels (levels[p] empty or absent: the control value), last parameter
 // fastest.
 std::vector<ParameterSet> factorial(const ParamValues& control, const std::vector<std::vector<double>>& levels);
 // Uniform samples over [lo, hi] per parameter (lo == hi: fixed).

@@ -50,8 +50,9 @@ TEST(Settings, TablesAreSoundAndDefaultsInRange) {
     ASSERT_NE(sg, nullptr);
     EXPECT_EQ(sg->variable(), "specific_gravity");
     EXPECT_NE(range_problem(1.0, sg->range), "");  // a body that does not float
-    // The design parameters are the body's coefficients; the control is BodyDef's defaults.
-    EXPECT_EQ(sweep::paper_control(), (sweep::ParamValues{0.8, 0.4, 2.0, 0.4, 0.5}));
+    // The design parameters are the body's coefficients and the drag factor; the control is
+    // BodyDef's defaults and a factor of 1.
+    EXPECT_EQ(sweep::paper_control(), (sweep::ParamValues{0.8, 0.4, 2.0, 0.4, 0.5, 1.0}));
 }
 
 // Every setting of the tables is an option of `flotsam debris`, shown with its default.

@@ -226,6 +226,49 @@ TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
     EXPECT_EQ(enumerate_members(spec).size(), 2u * 2u * 2u * 9u);
 }
 
+// The drag factor cd multiplies cd1 and cd2 together (the paper's "Cd"): the set cdx1.5
+// runs a body with Cd1 = 0.8 × 1.5 = 1.2 and Cd2 = 0.4 × 1.5 = 0.6, all else the control.
+TEST(SweepDesign, DragFactorScalesBothDragCoefficients) {
+    const std::size_t cd = design_parameters().size() - 1;
+    ASSERT_EQ(design_parameters()[cd].key, "cd");
+    const auto sets = one_at_a_time(paper_control(), {int(cd)}, 1.5);
+    ASSERT_EQ(sets.size(), 3u);
+    EXPECT_EQ(sets[1].label, "cdx1.5");
+    EXPECT_EQ(sets[2].label, "cd/1.5");
+    debris::BodyDef up, down;
+    apply_parameters(sets[1].values, up);
+    apply_parameters(sets[2].values, down);
+    EXPECT_DOUBLE_EQ(up.cd1, 1.2);
+    EXPECT_DOUBLE_EQ(up.cd2, 0.6);
+    EXPECT_DOUBLE_EQ(down.cd1, 0.8 / 1.5);
+    EXPECT_DOUBLE_EQ(down.cd2, 0.4 / 1.5);
+    EXPECT_DOUBLE_EQ(up.cm, 2.0);
+    EXPECT_DOUBLE_EQ(up.mu, 0.4);
+}
+
+// The paper's own design: control, then Cd, Cm, Fc × 1.5 and / 1.5 (7 sets).
+TEST(SweepSpec, PaperDesignSpecHasSevenSets) {
+    const auto dir = test::scratch_dir("sweep_example7");
+    const auto flows = two_flows(dir);
+    Scene scene;
+    scene.grid = grid;
+    scene.z.assign(grid.size(), -0.1);
+    scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}};
+    write_scene(dir + "/scene.nc", scene, "test");
+    const SweepSpec spec =
+        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity_7.toml", dir + "/scene.nc", flows);
+    ASSERT_EQ(spec.params.size(), 7u);
+    const std::vector<std::string> labels = {"control", "cdx1.5", "cd/1.5", "cmx1.5", "cm/1.5", "mux1.5", "mu/1.5"};
+    for (std::size_t k = 0; k < 7; ++k) EXPECT_EQ(spec.params[k].label, labels[k]);
+    const auto members = enumerate_members(spec);
+    ASSERT_EQ(members.size(), 2u * 2u * 2u * 7u);
+    EXPECT_DOUBLE_EQ(members[1].def.cd1, 1.2);  // FD, CC+SC, cdx1.5
+    EXPECT_DOUBLE_EQ(members[1].def.cd2, 0.6);
+    EXPECT_DOUBLE_EQ(members[4].def.cm, 2.0 / 1.5);
+    EXPECT_DOUBLE_EQ(members[4].def.cd1, 0.8);
+    EXPECT_DOUBLE_EQ(members[5].def.mu, 0.6);
+}
+
 TEST(SweepSpec, ErrorsNameTheFileLineAndKey) {
     const auto dir = test::scratch_dir("sweep_errors");
     const auto flows = two_flows(dir);
