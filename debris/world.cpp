@@ -16,11 +16,7 @@ const Settings<StepDef>& step_settings() {
         {"dt-max", "s", "largest time step", Range::positive("s").up_to(60.0), &StepDef::dt_max},
         {"vertex-step-fraction", "1", "largest corner displacement per step, in grid cells (no tunnelling at the default)",
          Range::positive().up_to(10.0), &StepDef::vertex_step_fraction},
-        {"integrator",
-         "",
-         "fluid-force stage: semi-implicit Euler or Heun's predictor-corrector",
-         {},
-         choice_of<&StepDef::integrator>()},
+        {"integrator", "", "fluid-force stage: semi-implicit Euler or Heun", {}, choice_of<&StepDef::integrator>()},
     };
     return table;
 }
@@ -29,7 +25,7 @@ const Settings<FlowReaderDef>& flow_replay_settings() {
     static const Settings<FlowReaderDef> table = {
         {"time-interpolation",
          "",
-         "interpolation between stored frames (cubic: Catmull-Rom through four frames, guarded)",
+         "between stored frames: linear, or cubic (Catmull-Rom, guarded)",
          {},
          choice_of<&FlowReaderDef::time_interpolation>()},
     };

@@ -87,12 +87,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         for (std::size_t b = 0; b < on_flow.size(); ++b) {
             const Member& m = *on_flow[b];
             MemberRecord rec;
-            rec.id = m.id;
-            rec.flow = m.flow;
-            rec.body = m.body;
-            rec.perturbation = m.perturbation;
-            rec.variant = m.variant;
-            rec.param_set = m.param_set;
+            static_cast<MemberIndex&>(rec) = m;
             rec.body_name = m.def.name;
             rec.start_name = spec.bodies[std::size_t(m.body)].start;
             rec.variant_name = spec.variants[std::size_t(m.variant)].name;

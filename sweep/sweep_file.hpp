@@ -19,8 +19,7 @@
 
 namespace flotsam::sweep {
 
-struct MemberRecord {
-    int id = 0, flow = 0, body = 0, perturbation = 0, variant = 0, param_set = 0;
+struct MemberRecord : MemberIndex {
     std::string body_name, start_name, variant_name;
     debris::BodyDef def;      // the body as run: start x, y [m], shape, coefficients, model, variant
     double heading0_deg = 0;  // start heading [degree] (def.heading, as written in the file)

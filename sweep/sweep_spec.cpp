@@ -424,12 +424,7 @@ std::vector<Member> enumerate_members(const SweepSpec& spec) {
                 for (int v = 0; v < int(spec.variants.size()); ++v)
                     for (int p = 0; p < int(spec.params.size()); ++p) {
                         Member m;
-                        m.id = int(out.size());
-                        m.flow = f;
-                        m.body = b;
-                        m.perturbation = k;
-                        m.variant = v;
-                        m.param_set = p;
+                        static_cast<MemberIndex&>(m) = {int(out.size()), f, b, k, v, p};
                         debris::BodyDef& d = m.def;
                         d = spec.bodies[std::size_t(b)].def;
                         d.name = spec.bodies[std::size_t(b)].name;

@@ -113,14 +113,17 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
                           const std::vector<std::string>& flow_override = {});
 
 // One trajectory of the sweep.
-struct Member {
+// Where a member sits in the sweep (shared by Member and the file's MemberRecord).
+struct MemberIndex {
     int id = 0;            // position in the full member list
     int flow = 0;          // index into spec.flows
     int body = 0;          // index into spec.bodies
     int perturbation = 0;  // 0: the exact start; k > 0: the k-th perturbed start
     int variant = 0;       // index into spec.variants
     int param_set = 0;     // index into spec.params
-    debris::BodyDef def;   // the body as run (name = the body's name)
+};
+struct Member : MemberIndex {
+    debris::BodyDef def;  // the body as run (name = the body's name)
 };
 
 // All members, flow outermost, then body, perturbation, variant, parameter set.
