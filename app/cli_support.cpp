@@ -1,10 +1,11 @@
 #include <algorithm>
-#include <fstream>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/toml_lite.hpp"
 
 namespace flotsam {
 
@@ -36,11 +37,23 @@ const std::vector<DroppedOption>& hydro_run_control_options() {
     return options;
 }
 
+CLI::Validator in_range(const Range& r) {
+    return CLI::Validator(
+        [r](std::string& text) -> std::string {
+            const char* b = text.c_str();
+            char* e = nullptr;
+            const double v = std::strtod(b, &e);
+            if (e == b || *e != '\0') return "'" + text + "' is not a number";
+            return range_problem(v, r);
+        },
+        describe(r), "range");
+}
+
 void add_config_option(CLI::App* sub) {
     // Read by expand_config_files() before parsing: CLI11 2.1 only reads config files
     // for the top-level app, so a subcommand's file is turned into arguments instead.
     sub->add_option("--config",
-                    "TOML file of settings: keys are the long option names (duration = 420), "
+                    "TOML file of settings: keys are the long option names (output-interval = 0.5), "
                     "optionally under a [section] named after the command; unknown keys are an error");
 }
 
@@ -85,43 +98,42 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
         }
     }
     if (path.empty()) return args;
-    if (!std::ifstream(path)) fail(path, "", "cannot open the settings file");
-    std::vector<CLI::ConfigItem> items;
-    try {
-        items = CLI::ConfigTOML().from_file(path);
-    } catch (const CLI::Error& e) {
-        fail(path, "", std::string("not a valid TOML settings file: ") + e.what());
+    const TomlDoc doc = read_toml_lite(path);
+    std::string command, section;
+    for (const auto& c : chain) {
+        command += (command.empty() ? "" : " ") + c;
+        section += (section.empty() ? "" : ".") + c;
     }
     std::vector<std::string> out(args.begin(), args.begin() + std::ptrdiff_t(first_option));
     std::vector<std::string> from_file;
-    for (const auto& item : items) {
-        if (item.name == "++" || item.name == "--") continue;  // section markers
+    for (const TomlTable& t : doc.tables) {
         // Keys may sit at the top level or under a section named after the command
-        // ([hydro], or [scene.generate] / [generate]).
-        bool ours = item.parents.empty();
-        if (!ours) {
-            ours = item.parents == chain || (item.parents.size() == 1 && item.parents[0] == chain.back());
-            if (!ours) continue;  // a section for another command: fine in a shared file
+        // ([hydro], or [scene.generate] / [generate]); another command's section is fine
+        // in a shared file.
+        if (!t.name.empty() && t.name != section && t.name != chain.back()) continue;
+        for (const auto& [key, v] : t.values) {
+            const CLI::Option* opt = key == "config" || key == "help" ? nullptr : sub->get_option_no_throw("--" + key);
+            if (!opt && sub->get_option_no_throw("--" + kebab_case(key)))
+                toml_fail(doc, t, key,
+                          "is the old spelling: keys are kebab-case, as the command-line options; write '" + kebab_case(key) + "'");
+            if (!opt) toml_fail(doc, t, key, "is not a setting of 'flotsam " + command + "' (see --help)");
+            if (on_command_line(rest, 0, key)) continue;  // the command line wins
+            if (opt->get_expected_max() == 0) {           // a flag (CLI11 gives flags a type size of 1)
+                if (v.kind != TomlValue::Kind::Bool) toml_fail(doc, t, key, "a flag takes true or false, not " + v.raw);
+                from_file.push_back("--" + key + "=" + v.raw);
+                continue;
+            }
+            std::vector<std::string> values;
+            if (v.kind == TomlValue::Kind::String)
+                values = {v.text};
+            else if (v.kind == TomlValue::Kind::NumberArray || v.kind == TomlValue::Kind::StringArray)
+                values = v.items;
+            else
+                values = {v.raw};
+            if (values.empty() || (values.size() == 1 && values[0].empty())) continue;  // "" or []: not set
+            from_file.push_back("--" + key);
+            from_file.insert(from_file.end(), values.begin(), values.end());
         }
-        const CLI::Option* opt = sub->get_option_no_throw("--" + item.name);
-        if (!opt || item.name == "config" || item.name == "help")
-            fail(
-                path, "key '" + item.name + "'", "is not a setting of 'flotsam " + [&] {
-                    std::string c;
-                    for (const auto& s : chain) c += (c.empty() ? "" : " ") + s;
-                    return c;
-                }() + "' (see --help)");
-        if (on_command_line(rest, 0, item.name)) continue;  // the command line wins
-        if (opt->get_type_size() == 0) {                    // a flag
-            const std::string v = item.inputs.empty() ? "true" : item.inputs.front();
-            if (v == "true" || v == "1")
-                from_file.push_back("--" + item.name);
-            else if (v != "false" && v != "0")
-                fail(path, "key '" + item.name + "'", "a flag takes true or false, not '" + v + "'");
-            continue;
-        }
-        from_file.push_back("--" + item.name);
-        for (const auto& v : item.inputs) from_file.push_back(v);
     }
     out.insert(out.end(), from_file.begin(), from_file.end());
     out.insert(out.end(), rest.begin(), rest.end());

@@ -6,7 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "common/checks.hpp"
+
 namespace flotsam {
+
+// A CLI11 check that an option's value is a finite number in `r` (common/checks.hpp):
+// "--cfl: nan is not a finite number (allowed: (0, 1])".
+CLI::Validator in_range(const Range& r);
 
 // An option left out of a recorded command line: its name without "--", and whether it
 // takes a value.
@@ -25,8 +31,8 @@ std::string join_command_line(int argc, char** argv, const std::vector<DroppedOp
 // restarted, or run on another thread count, writes the same bytes.
 const std::vector<DroppedOption>& hydro_run_control_options();
 
-// Adds --config FILE (TOML, keys are the long option names, unknown keys rejected) to a
-// subcommand.
+// Adds --config FILE (TOML, read by common/toml_lite: keys are the long option names,
+// kebab-case; unknown keys rejected) to a subcommand.
 void add_config_option(CLI::App* sub);
 
 // The arguments (without argv[0]) with a subcommand's --config FILE replaced by the

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/settings_cli.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "debris/trajectory_output.hpp"
@@ -21,16 +22,10 @@ namespace {
 struct DebrisOptions {
     std::string flow, scene, out = "trajectories.nc";
     std::vector<std::string> starts, ats;
-    std::string contact = "local", collision = "multi", added_mass = "implicit";
-    debris::BodyDef body = debris::default_body_def();
-    bool no_axis_shift = false;
-    double output_interval = 0.5;  // [s]
-    double end_time = -1.0;        // [s]; < 0: the flow's last frame
-    double dt_max = debris::default_step_def().dt_max;
-    double vertex_step_fraction = debris::default_step_def().vertex_step_fraction;
-    std::string integrator = debris::to_string(debris::default_step_def().integrator);
-    std::string time_interpolation = debris::to_string(debris::default_flow_reader_def().time_interpolation);
-    int threads = 0;
+    debris::BodyDef body = debris::default_body_def();     // every body's settings
+    debris::WorldDef world = debris::default_world_def();  // step, flow replay, threads
+    double output_interval = 0.5;                          // [s]
+    double end_time = -1.0;                                // [s]; < 0: the flow's last frame
     bool quiet = false;
 };
 
@@ -58,12 +53,7 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
 }
 
 void run_debris(const DebrisOptions& o, const std::string& command_line) {
-    debris::BodyDef base = o.body;
-    base.contact = debris::parse_contact_model(o.contact);
-    base.collision = debris::parse_collision_model(o.collision);
-    base.added_mass = debris::parse_added_mass(o.added_mass);
-    base.axis_shift = !o.no_axis_shift;
-    if (!(o.output_interval > 0)) fail("--output-interval", std::to_string(o.output_interval), "must be positive");
+    const debris::BodyDef& base = o.body;
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
 
     std::unique_ptr<Scene> scene;
@@ -87,24 +77,7 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
         start_names.emplace_back();
     }
 
-    debris::WorldDef wdef = debris::default_world_def();
-    if (!(o.dt_max > 0)) fail("--dt-max", std::to_string(o.dt_max), "must be positive");
-    if (!(o.vertex_step_fraction > 0)) fail("--vertex-step-fraction", std::to_string(o.vertex_step_fraction), "must be positive");
-    wdef.step.dt_max = o.dt_max;
-    wdef.step.vertex_step_fraction = o.vertex_step_fraction;
-    wdef.step.integrator = debris::parse_integrator(o.integrator);
-    wdef.flow.time_interpolation = debris::parse_time_interpolation(o.time_interpolation);
-    wdef.threads = o.threads;
-    std::vector<std::uint8_t> building;
-    {
-        const debris::FlowReader probe(o.flow, wdef.flow);  // only for its grid
-        if (scene) building = debris::buildings_on_grid(*scene, probe.grid());
-    }
-    debris::World world(o.flow, std::move(building), wdef);
-    for (const auto& b : bodies) {
-        if (!world.flow().grid().contains(b.x, b.y)) fail("body '" + b.name + "'", "position", "outside the flow grid");
-        world.add_body(b);
-    }
+    debris::World world = debris::make_world(o.flow, scene.get(), bodies, o.world, "");
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
@@ -146,38 +119,17 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
     sub->add_option("--out", opts->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
-    sub->add_option("--cd1", opts->body.cd1, "drag coefficient, flow toward a face")->capture_default_str();
-    sub->add_option("--cd2", opts->body.cd2, "drag coefficient, flow leaving a face")->capture_default_str();
-    sub->add_option("--cm", opts->body.cm, "inertia coefficient Cm = 1 + Ca")->capture_default_str();
-    sub->add_option("--mu", opts->body.mu, "friction coefficient with the ground")->capture_default_str();
-    sub->add_option("--restitution", opts->body.restitution, "coefficient of restitution against obstacles")->capture_default_str();
-    sub->add_option("--contact", opts->contact, "friction model: center (CC) or local (LC)")->capture_default_str();
-    sub->add_option("--collision", opts->collision, "collision model: single (SC) or multi (MC)")->capture_default_str();
-    sub->add_option("--added-mass", opts->added_mass, "implicit (stable) or explicit (for the stability study only)")
-        ->capture_default_str();
-    sub->add_flag("--no-axis-shift", opts->no_axis_shift, "local contact without the rotation about the contact centroid");
-    sub->add_flag("--added-yaw-inertia", opts->body.added_yaw_inertia,
-                  "yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12 (default: the paper's m (L^2 + B^2)/12)");
-    sub->add_option("--length", opts->body.length, "body length [m]")->capture_default_str();
-    sub->add_option("--width", opts->body.width, "body width [m]")->capture_default_str();
-    sub->add_option("--height", opts->body.height, "body height [m]")->capture_default_str();
-    sub->add_option("--specific-gravity", opts->body.specific_gravity, "body specific gravity")->capture_default_str();
-    sub->add_option("--samples-per-face", opts->body.samples_per_face, "drag sample points per side face")->capture_default_str();
-    sub->add_option("--step-tolerance", opts->body.step_tolerance,
-                    "a cell the body moves into blocks where its ground rises above the body's bottom by more than this x draft")
-        ->capture_default_str();
-    sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")->capture_default_str();
+    add_setting_options(sub, debris::body_variant_settings(), opts->body);
+    add_setting_options(sub, debris::body_coefficient_settings(), opts->body);
+    add_setting_options(sub, debris::body_model_settings(), opts->body);
+    add_setting_options(sub, debris::body_shape_settings(), opts->body);
+    sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");
-    sub->add_option("--dt-max", opts->dt_max, "largest time step [s]")->capture_default_str();
-    sub->add_option("--vertex-step-fraction", opts->vertex_step_fraction,
-                    "largest corner displacement per step, in grid cells (no tunnelling at the default)")
-        ->capture_default_str();
-    sub->add_option("--integrator", opts->integrator, "fluid-force stage: euler (semi-implicit) or heun (predictor-corrector)")
-        ->capture_default_str();
-    sub->add_option("--time-interpolation", opts->time_interpolation,
-                    "between stored frames: linear or cubic (Catmull-Rom, guarded)")
-        ->capture_default_str();
-    sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
+    add_setting_options(sub, debris::step_settings(), opts->world.step);
+    add_setting_options(sub, debris::flow_replay_settings(), opts->world.flow);
+    sub->add_option("--threads", opts->world.threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
     sub->callback([opts, command_line] { run_debris(*opts, command_line); });
 }

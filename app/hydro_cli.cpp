@@ -41,13 +41,13 @@ std::string result_settings(const std::string& dump) {
 void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line) {
     using namespace hydro;
     SolverDef& s = o.solver;
-    o.run.scheme = parse_scheme(o.scheme, "--scheme");
-    s.friction = parse_friction(o.friction, "--friction");
-    s.west.kind = parse_boundary_kind(o.west, "--west");
-    s.east.kind = parse_boundary_kind(o.east, "--east");
-    s.south.kind = parse_boundary_kind(o.south, "--south");
-    s.north.kind = parse_boundary_kind(o.north, "--north");
-    const LevelMode mode = parse_level_mode(o.level_mode, "--level-mode");
+    o.run.scheme = parse_enum<Scheme>(o.scheme, "--scheme");
+    s.friction = parse_enum<Friction>(o.friction, "--friction");
+    s.west.kind = parse_enum<BoundaryKind>(o.west, "--west");
+    s.east.kind = parse_enum<BoundaryKind>(o.east, "--east");
+    s.south.kind = parse_enum<BoundaryKind>(o.south, "--south");
+    s.north.kind = parse_enum<BoundaryKind>(o.north, "--north");
+    const LevelMode mode = parse_enum<LevelMode>(o.level_mode, "--level-mode");
     for (BoundaryDef* b : {&s.west, &s.east, &s.south, &s.north}) {
         b->level_mode = mode;
         b->pump_discharge = s.west.pump_discharge;

@@ -108,7 +108,9 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     stats->add_option("--out", to->out, "statistics file to write (NetCDF)")->capture_default_str();
     stats->add_option("--csv", to->csv, "also write CSV tables into this folder");
     stats->add_option("--arrival-time", to->def.arrival_time, "region counts at this time [s]")->capture_default_str();
-    stats->add_option("--yaw-window", to->def.yaw_window, "yaw statistics over this long after motion starts [s]")
+    stats
+        ->add_option("--yaw-window", to->def.yaw_window,
+                     "yaw statistics over this long after the run's start (paper Fig. 16) and after motion start [s]")
         ->capture_default_str();
     stats->add_option("--yaw-min-speed", to->def.yaw_min_speed, "yaw against the motion only when faster than this [m/s]")
         ->capture_default_str();

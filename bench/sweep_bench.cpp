@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 10; ++k) flows.push_back(given[std::size_t(k) % given.size()]);
     std::filesystem::create_directories(dir);
 
-    std::string spec_text = "[sweep]\nscene = \"" + scene + "\"\noutput_interval = 1.0\n[flows]\npaths = [\n";
+    std::string spec_text = "[sweep]\nscene = \"" + scene + "\"\noutput-interval = 1.0\n[flows]\npaths = [\n";
     for (const auto& f : flows) spec_text += "  \"" + f + "\",\n";
     spec_text +=
         "]\n[[body]]\nstart = \"FD\"\n[[body]]\nstart = \"LD\"\n[variants]\nnames = [\"CC+SC\", \"LC+MC\"]\n"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <utility>
 
 #include "common/error.hpp"
 
@@ -18,13 +19,21 @@ std::string trim(const std::string& s) {
 
 // Drops a '#' comment that is not inside a string.
 std::string strip_comment(const std::string& s) {
-    bool quoted = false;
+    char quote = 0;
     for (std::size_t k = 0; k < s.size(); ++k) {
-        if (s[k] == '"') quoted = !quoted;
-        if (s[k] == '#' && !quoted) return s.substr(0, k);
+        if (s[k] == '"' || s[k] == '\'') {
+            if (!quote)
+                quote = s[k];
+            else if (quote == s[k])
+                quote = 0;
+        }
+        if (s[k] == '#' && !quote) return s.substr(0, k);
     }
     return s;
 }
+
+// "text" or 'text' (no escapes in either).
+bool is_string(const std::string& s) { return s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front(); }
 
 bool parse_number(const std::string& s, double& out) {
     if (s.empty()) return false;
@@ -37,7 +46,8 @@ TomlValue parse_value(const std::string& path, int line, const std::string& key,
     const std::string here = "line " + std::to_string(line);
     TomlValue v;
     v.line = line;
-    if (raw.size() >= 2 && raw.front() == '"' && raw.back() == '"') {
+    v.raw = raw;
+    if (is_string(raw)) {
         v.kind = TomlValue::Kind::String;
         v.text = raw.substr(1, raw.size() - 2);
     } else if (raw == "true" || raw == "false") {
@@ -45,15 +55,15 @@ TomlValue parse_value(const std::string& path, int line, const std::string& key,
         v.flag = raw == "true";
     } else if (raw.size() >= 2 && raw.front() == '[' && raw.back() == ']') {
         const std::string body = raw.substr(1, raw.size() - 2);
-        const bool strings = trim(body).starts_with("\"");
+        const bool strings = trim(body).starts_with("\"") || trim(body).starts_with("'");
         v.kind = strings ? TomlValue::Kind::StringArray : TomlValue::Kind::NumberArray;
         // Split at commas outside quotes.
         std::vector<std::string> items;
         std::string item;
-        bool quoted = false;
+        char quote = 0;
         for (char c : body) {
-            if (c == '"') quoted = !quoted;
-            if (c == ',' && !quoted) {
+            if ((c == '"' || c == '\'') && (!quote || quote == c)) quote = quote ? 0 : c;
+            if (c == ',' && !quote) {
                 items.push_back(trim(item));
                 item.clear();
             } else {
@@ -64,13 +74,15 @@ TomlValue parse_value(const std::string& path, int line, const std::string& key,
         if (items.back().empty()) items.pop_back();  // trailing comma or empty array
         for (const auto& it : items) {
             if (strings) {
-                if (it.size() < 2 || it.front() != '"' || it.back() != '"')
+                if (!is_string(it))
                     fail(path, here, "key '" + key + "': array element '" + it + "' is not a \"string\" (arrays hold one kind)");
                 v.texts.push_back(it.substr(1, it.size() - 2));
+                v.items.push_back(v.texts.back());
             } else {
                 double x = 0.0;
                 if (!parse_number(it, x)) fail(path, here, "key '" + key + "': array element '" + it + "' is not a finite number");
                 v.numbers.push_back(x);
+                v.items.push_back(it);
             }
         }
     } else if (!parse_number(raw, v.number)) {
@@ -150,14 +162,38 @@ std::vector<double> toml_numbers(const TomlDoc& doc, const TomlTable& t, const s
     return need(doc, t, key, TomlValue::Kind::NumberArray, "an array of numbers").numbers;
 }
 
+std::string kebab_case(std::string key) {
+    std::replace(key.begin(), key.end(), '_', '-');
+    return key;
+}
+
 void toml_allow_only(const TomlDoc& doc, const TomlTable& t, const std::vector<std::string>& allowed) {
+    auto known = [&](const std::string& key) { return std::find(allowed.begin(), allowed.end(), key) != allowed.end(); };
+    std::vector<std::pair<int, std::string>> unknown, old;  // (line, key)
     for (const auto& [key, v] : t.values)
-        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-            std::string list;
-            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-            fail(doc.path, "line " + std::to_string(v.line),
-                 "unknown key '" + key + "'" + (t.name.empty() ? "" : " in [" + t.name + "]") + " (allowed: " + list + ")");
+        if (!known(key)) (known(kebab_case(key)) ? old : unknown).emplace_back(v.line, key);
+    const std::string in = t.name.empty() ? "" : " in [" + t.name + "]";
+    if (!old.empty()) {  // every renamed key of the table at once, in file order
+        std::sort(old.begin(), old.end());
+        std::string keys, renames;
+        for (const auto& [line, key] : old) {
+            keys += (keys.empty() ? "'" : ", '") + key + "'";
+            renames += (renames.empty() ? "'" : ", '") + kebab_case(key) + "'";
         }
+        fail(doc.path, "line " + std::to_string(old.front().first),
+             "key" + std::string(old.size() > 1 ? "s " : " ") + keys + in + (old.size() > 1 ? " are" : " is") +
+                 " the old spelling: keys are kebab-case, as the command-line options; write " + renames);
+    }
+    if (unknown.empty()) return;
+    std::sort(unknown.begin(), unknown.end());
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    fail(doc.path, "line " + std::to_string(unknown.front().first),
+         "unknown key '" + unknown.front().second + "'" + in + " (allowed: " + list + ")");
+}
+
+void toml_fail(const TomlDoc& doc, const TomlTable& t, const std::string& key, const std::string& problem) {
+    fail(toml_where(doc, t, key), (t.name.empty() ? "" : "[" + t.name + "] ") + "key '" + key + "'", problem);
 }
 
 std::vector<std::string> toml_strings(const TomlDoc& doc, const TomlTable& t, const std::string& key) {

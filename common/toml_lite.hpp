@@ -1,7 +1,9 @@
-// A reader for the small TOML subset the feature files use: comments, `key = value`,
-// `[table]` and `[[array-of-tables]]`; values are numbers, "strings", true/false and
-// arrays of numbers or of "strings" (an array may run over several lines). Errors name
-// the file and line.
+// The one TOML reader of flotsam (settings files given with --config, sweep specs): the
+// subset those use: comments, `key = value`, `[table]` (dotted names such as
+// [scene.generate] are one name) and `[[array-of-tables]]`; values are numbers,
+// "strings" or 'literal strings', true/false and arrays of numbers or of strings (an
+// array may run over several lines). Keys are kebab-case (common/settings.hpp). Errors
+// name the file and line.
 #pragma once
 #include <map>
 #include <string>
@@ -17,6 +19,8 @@ struct TomlValue {
     bool flag = false;
     std::vector<double> numbers;
     std::vector<std::string> texts;  // StringArray
+    std::string raw;                 // the value as written (a number's digits, true/false)
+    std::vector<std::string> items;  // an array's elements as written (numbers) or their text (strings)
     int line = 0;                    // 1-based line in the file
 };
 
@@ -43,7 +47,12 @@ std::vector<std::string> toml_strings(const TomlDoc& doc, const TomlTable& t, co
 bool toml_bool(const TomlDoc& doc, const TomlTable& t, const std::string& key);
 // "file: line N" of a key, or of the table header when the key is absent (for messages).
 std::string toml_where(const TomlDoc& doc, const TomlTable& t, const std::string& key);
-// Fails when the table has a key outside `allowed`.
+// Fails "file: line N: [table] key 'k': problem".
+[[noreturn]] void toml_fail(const TomlDoc& doc, const TomlTable& t, const std::string& key, const std::string& problem);
+// Fails when the table has a key outside `allowed`; a key in the old snake_case spelling
+// of an allowed kebab-case one (output_interval for output-interval) is told the new key.
 void toml_allow_only(const TomlDoc& doc, const TomlTable& t, const std::vector<std::string>& allowed);
+// The kebab-case spelling of a key: '_' becomes '-'.
+std::string kebab_case(std::string key);
 
 }  // namespace flotsam

@@ -6,43 +6,70 @@
 
 namespace flotsam::debris {
 
-const char* to_string(ContactModel m) { return m == ContactModel::center ? "center" : "local"; }
-const char* to_string(CollisionModel m) { return m == CollisionModel::single ? "single" : "multi"; }
-const char* to_string(AddedMass m) { return m == AddedMass::implicit ? "implicit" : "explicit"; }
-
-ContactModel parse_contact_model(const std::string& s) {
-    if (s == "center" || s == "centre" || s == "CC") return ContactModel::center;
-    if (s == "local" || s == "LC") return ContactModel::local;
-    fail("--contact", s, "expected 'center' or 'local'");
-}
-CollisionModel parse_collision_model(const std::string& s) {
-    if (s == "single" || s == "SC") return CollisionModel::single;
-    if (s == "multi" || s == "MC") return CollisionModel::multi;
-    fail("--collision", s, "expected 'single' or 'multi'");
-}
-AddedMass parse_added_mass(const std::string& s) {
-    if (s == "implicit") return AddedMass::implicit;
-    if (s == "explicit") return AddedMass::explicit_;
-    fail("--added-mass", s, "expected 'implicit' or 'explicit'");
-}
-
 BodyDef default_body_def() { return BodyDef{}; }
 
-BodyParams make_body_params(const BodyDef& def, double water_density) {
-    auto positive = [&](double v, const char* what) {
-        if (!(v > 0.0) || !std::isfinite(v)) fail("body '" + def.name + "'", what, "must be positive, got " + std::to_string(v));
+const Settings<BodyDef>& body_shape_settings() {
+    static const Settings<BodyDef> table = {
+        {"length", "m", "body length", Range::positive("m").up_to(1e4), &BodyDef::length},
+        {"width", "m", "body width", Range::positive("m").up_to(1e4), &BodyDef::width},
+        {"height", "m", "body height", Range::positive("m").up_to(1e4), &BodyDef::height},
+        // Below 1: the model floats the body.
+        {"specific-gravity", "1", "body specific gravity", Range::positive().below(1.0), &BodyDef::specific_gravity},
     };
-    positive(def.length, "length");
-    positive(def.width, "width");
-    positive(def.height, "height");
-    positive(def.specific_gravity, "specific gravity");
-    if (def.specific_gravity >= 1.0)
-        fail("body '" + def.name + "'", "specific gravity", "must be below 1 (the model floats the body)");
-    if (def.cd1 < 0 || def.cd2 < 0) fail("body '" + def.name + "'", "drag coefficients", "must not be negative");
-    if (def.cm < 1.0) fail("body '" + def.name + "'", "cm", "must be at least 1 (Cm = 1 + C_a)");
-    if (def.mu < 0) fail("body '" + def.name + "'", "mu", "must not be negative");
-    if (def.restitution < 0 || def.restitution > 1) fail("body '" + def.name + "'", "restitution", "must be in [0, 1]");
-    if (def.samples_per_face < 1 || def.samples_per_face > 16) fail("body '" + def.name + "'", "samples per face", "must be 1..16");
+    return table;
+}
+
+const Settings<BodyDef>& body_coefficient_settings() {
+    static const Settings<BodyDef> table = {
+        {"cd1", "1", "drag coefficient, flow toward a face", Range::closed(0.0, 100.0), &BodyDef::cd1},
+        {"cd2", "1", "drag coefficient, flow leaving a face", Range::closed(0.0, 100.0), &BodyDef::cd2},
+        {"cm", "1", "inertia coefficient Cm = 1 + Ca", Range::closed(1.0, 100.0), &BodyDef::cm},
+        {"mu", "1", "friction coefficient with the ground (Fc)", Range::closed(0.0, 10.0), &BodyDef::mu},
+        {"restitution", "1", "coefficient of restitution against obstacles", Range::closed(0.0, 1.0), &BodyDef::restitution},
+    };
+    return table;
+}
+
+const Settings<BodyDef>& body_model_settings() {
+    static const Settings<BodyDef> table = {
+        {"added-mass",
+         "",
+         "added mass: implicit (stable) or explicit (the stability study only)",
+         {},
+         choice_of<&BodyDef::added_mass>()},
+        {"axis-shift", "", "local contact pivots about the contact centroid (paper Eqs. 6-10)", {}, &BodyDef::axis_shift},
+        {"added-yaw-inertia",
+         "",
+         "yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12 (false: the paper's m (L^2 + B^2)/12, Eq. 2)",
+         {},
+         &BodyDef::added_yaw_inertia},
+        {"samples-per-face", "1", "drag sample points per side face", Range::count(1, 16), &BodyDef::samples_per_face},
+        {"step-tolerance", "1", "ground above the bottom by more than this x draft blocks", Range::closed(0.0, 10.0),
+         &BodyDef::step_tolerance},
+    };
+    return table;
+}
+
+const Settings<BodyDef>& body_variant_settings() {
+    static const Settings<BodyDef> table = {
+        {"contact",
+         "",
+         "friction model: the whole bottom at the centre (CC) or local, cell by cell (LC)",
+         {},
+         choice_of<&BodyDef::contact>()},
+        {"collision",
+         "",
+         "collision model: one contact per step (SC) or repeated until none (MC)",
+         {},
+         choice_of<&BodyDef::collision>()},
+    };
+    return table;
+}
+
+BodyParams make_body_params(const BodyDef& def, double water_density) {
+    for (const auto* table : {&body_shape_settings(), &body_coefficient_settings(), &body_model_settings()})
+        for (const auto& s : *table)
+            if (s.is_number()) check_range(s.key, s.number(def), s.range, "body '" + def.name + "'");
     BodyParams p;
     p.def = def;
     p.plan_area = def.length * def.width;

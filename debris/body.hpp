@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/enum_names.hpp"
+#include "common/settings.hpp"
 #include "formats/trajectory_file.hpp"
 
 namespace flotsam::debris {
@@ -12,18 +14,29 @@ namespace flotsam::debris {
 // Friction model: the whole bottom at the centre (CC, STOC-DM) or cell by cell under
 // the footprint (LC, Chida & Mori), with the axis shift.
 enum class ContactModel { center, local };
+inline constexpr EnumNames<ContactModel, 5> contact_model_names{"contact model",
+                                                                {{{ContactModel::center, "center"},
+                                                                  {ContactModel::local, "local"},
+                                                                  {ContactModel::center, "centre"},
+                                                                  {ContactModel::center, "CC"},
+                                                                  {ContactModel::local, "LC"}}}};
+constexpr const auto& enum_names(ContactModel) { return contact_model_names; }
+
 // Collision model: one contact per step (SC, STOC-DM) or repeated until none (MC).
 enum class CollisionModel { single, multi };
+inline constexpr EnumNames<CollisionModel, 4> collision_model_names{"collision model",
+                                                                    {{{CollisionModel::single, "single"},
+                                                                      {CollisionModel::multi, "multi"},
+                                                                      {CollisionModel::single, "SC"},
+                                                                      {CollisionModel::multi, "MC"}}}};
+constexpr const auto& enum_names(CollisionModel) { return collision_model_names; }
+
 // Added mass on the left-hand side (implicit, the baseline) or as last step's
 // acceleration on the right-hand side (explicit, kept only for the stability study).
 enum class AddedMass { implicit, explicit_ };
-
-const char* to_string(ContactModel m);
-const char* to_string(CollisionModel m);
-const char* to_string(AddedMass m);
-ContactModel parse_contact_model(const std::string& s);      // "center" | "local"
-CollisionModel parse_collision_model(const std::string& s);  // "single" | "multi"
-AddedMass parse_added_mass(const std::string& s);            // "implicit" | "explicit"
+inline constexpr EnumNames<AddedMass, 2> added_mass_names{
+    "added-mass treatment", {{{AddedMass::implicit, "implicit"}, {AddedMass::explicit_, "explicit"}}}};
+constexpr const auto& enum_names(AddedMass) { return added_mass_names; }
 
 struct BodyDef {
     std::string name;                // label in outputs (e.g. the scene point "FD")
@@ -49,6 +62,16 @@ struct BodyDef {
         0.2;  // a cell the body moves into blocks where its ground rises above the body's bottom by more than this × draft (docs/debris.md, "Ground and obstacles") [-]
 };
 BodyDef default_body_def();  // the paper's control case, LC + MC
+
+// The body's settings, one table per family (common/settings.hpp): key, member, unit,
+// help and valid range; the defaults are BodyDef's initialisers above. Every table is
+// an option of `flotsam debris`; in a sweep spec the shape and model go in [[body]] (the
+// model also in [sweep], for every body), the coefficients are what [parameters]
+// designs vary, and the variant is [variants].
+const Settings<BodyDef>& body_shape_settings();        // length, width, height, specific-gravity
+const Settings<BodyDef>& body_coefficient_settings();  // cd1, cd2, cm, mu, restitution
+const Settings<BodyDef>& body_model_settings();        // added-mass, axis-shift, samples-per-face, step-tolerance
+const Settings<BodyDef>& body_variant_settings();      // contact, collision
 
 // Derived once from a BodyDef.
 struct BodyParams {

@@ -13,13 +13,6 @@ namespace flotsam::debris {
 
 StepDef default_step_def() { return StepDef{}; }
 
-const char* to_string(Integrator m) { return m == Integrator::euler ? "euler" : "heun"; }
-Integrator parse_integrator(const std::string& s) {
-    if (s == "euler") return Integrator::euler;
-    if (s == "heun") return Integrator::heun;
-    fail("--integrator", s, "expected 'euler' or 'heun'");
-}
-
 namespace {
 
 // A cell the body reaches into by less than this is not under it: the collision's

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.hpp"
 #include "debris/body.hpp"
 #include "debris/contact.hpp"
 #include "debris/flow_reader.hpp"
@@ -18,8 +19,9 @@ namespace flotsam::debris {
 // end, positions with the mean of the old and new velocity). Friction, the axis shift and
 // collisions follow the same way in both. See docs/debris.md.
 enum class Integrator { euler, heun };
-const char* to_string(Integrator m);
-Integrator parse_integrator(const std::string& s);  // "euler" | "heun"
+inline constexpr EnumNames<Integrator, 2> integrator_names{"integrator",
+                                                           {{{Integrator::euler, "euler"}, {Integrator::heun, "heun"}}}};
+constexpr const auto& enum_names(Integrator) { return integrator_names; }
 
 struct StepDef {
     double water_density = 1000.0;       // ρw [kg/m³]

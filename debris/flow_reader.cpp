@@ -14,13 +14,6 @@ namespace flotsam::debris {
 
 FlowReaderDef default_flow_reader_def() { return FlowReaderDef{}; }
 
-const char* to_string(TimeInterpolation m) { return m == TimeInterpolation::linear ? "linear" : "cubic"; }
-TimeInterpolation parse_time_interpolation(const std::string& s) {
-    if (s == "linear") return TimeInterpolation::linear;
-    if (s == "cubic") return TimeInterpolation::cubic;
-    fail("--time-interpolation", s, "expected 'linear' or 'cubic'");
-}
-
 namespace {
 
 // CPU time of the calling thread [s] (reading runs on one thread, between the parallel

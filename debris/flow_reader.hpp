@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.hpp"
 #include "common/grid.hpp"
 #include "common/netcdf.hpp"
 #include "debris/time_kernels.hpp"
@@ -30,8 +31,9 @@ namespace flotsam::debris {
 // Interpolation between stored frames: linear in the two frames around t, or the cubic
 // Catmull-Rom through the four frames around t (guarded, see above).
 enum class TimeInterpolation { linear, cubic };
-const char* to_string(TimeInterpolation m);
-TimeInterpolation parse_time_interpolation(const std::string& s);  // "linear" | "cubic"
+inline constexpr EnumNames<TimeInterpolation, 2> time_interpolation_names{
+    "time interpolation", {{{TimeInterpolation::linear, "linear"}, {TimeInterpolation::cubic, "cubic"}}}};
+constexpr const auto& enum_names(TimeInterpolation) { return time_interpolation_names; }
 
 struct FlowReaderDef {
     // Below this depth Du/Dt is zero [m]. Not a dry tolerance (that one comes from the

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "common/netcdf.hpp"
 #include "debris/world.hpp"
 #include "formats/trajectory_file.hpp"
 
@@ -22,6 +23,12 @@ struct TrajectoryFileDef {
     std::string flow_file;                 // the replayed flow
     std::vector<std::string> start_names;  // per body: the scene point, or "" for --at
 };
+
+// The step and flow replay settings as global attributes (dt_max_s, vertex_step_fraction,
+// max_collision_passes, integrator, time_interpolation), written alike in trajectory and
+// sweep files; reading gives the defaults for attributes a file lacks.
+void put_world_attributes(nc::File& f, const WorldDef& def);
+WorldDef get_world_attributes(const nc::File& f);
 
 // Writes atomically (temporary file, then rename).
 void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series,

@@ -11,6 +11,27 @@ namespace flotsam::debris {
 
 WorldDef default_world_def() { return WorldDef{}; }
 
+const Settings<StepDef>& step_settings() {
+    static const Settings<StepDef> table = {
+        {"dt-max", "s", "largest time step", Range::positive("s").up_to(60.0), &StepDef::dt_max},
+        {"vertex-step-fraction", "1", "largest corner displacement per step, in grid cells (no tunnelling at the default)",
+         Range::positive().up_to(10.0), &StepDef::vertex_step_fraction},
+        {"integrator", "", "fluid-force stage: semi-implicit Euler or Heun", {}, choice_of<&StepDef::integrator>()},
+    };
+    return table;
+}
+
+const Settings<FlowReaderDef>& flow_replay_settings() {
+    static const Settings<FlowReaderDef> table = {
+        {"time-interpolation",
+         "",
+         "between stored frames: linear, or cubic (Catmull-Rom, guarded)",
+         {},
+         choice_of<&FlowReaderDef::time_interpolation>()},
+    };
+    return table;
+}
+
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {
     if (scene.building.empty()) return {};
     std::vector<std::uint8_t> out(grid.size(), 0);
@@ -29,6 +50,22 @@ World::World(const std::string& flow_path, std::vector<std::uint8_t> building, c
         fail(flow_path, "building mask", "does not match the flow grid");
     obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
     time_ = flow_.start_time();
+}
+
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const std::string& source) {
+    std::vector<std::uint8_t> building;
+    if (scene) {
+        const FlowReader probe(flow_path, def.flow);  // only for its grid
+        building = buildings_on_grid(*scene, probe.grid());
+    }
+    World world(flow_path, std::move(building), def);
+    for (const BodyDef& b : bodies) {
+        if (!world.flow().grid().contains(b.x, b.y))
+            fail(source, "body '" + b.name + "'", "starts outside the grid of flow " + flow_path);
+        world.add_body(b);
+    }
+    return world;
 }
 
 std::size_t World::add_body(const BodyDef& def) {

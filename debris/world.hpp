@@ -23,11 +23,18 @@ struct WorldDef {
 };
 WorldDef default_world_def();
 
+// The settings of the step and of the flow replay (common/settings.hpp; defaults: the
+// structs' initialisers): options of `flotsam debris`, keys of a sweep's [sweep] table.
+const Settings<StepDef>& step_settings();               // dt-max, vertex-step-fraction, integrator
+const Settings<FlowReaderDef>& flow_replay_settings();  // time-interpolation
+
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);
 
 class World {
 public:
+    // A world without bodies; `building` on the flow's grid (empty: none). make_world()
+    // below is the usual way in.
     World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def());
 
     // Adds a body at the current time; returns its index.
@@ -58,5 +65,12 @@ private:
     std::vector<BodyParams> params_;  // cold, read only
     std::vector<BodyStats> stats_;
 };
+
+// The world of one flow: the scene's building mask on the flow's grid (scene null: no
+// buildings), and the bodies, each of which must start on that grid (else an error that
+// names `source`, the body and the flow). Used by `flotsam debris` and by every flow of a
+// sweep.
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const std::string& source);
 
 }  // namespace flotsam::debris

@@ -7,39 +7,6 @@
 
 namespace flotsam::hydro {
 
-BoundaryKind parse_boundary_kind(const std::string& s, const std::string& option) {
-    if (s == "wall") return BoundaryKind::wall;
-    if (s == "transmissive" || s == "open") return BoundaryKind::transmissive;
-    if (s == "level") return BoundaryKind::level;
-    if (s == "discharge") return BoundaryKind::discharge;
-    if (s == "pump") return BoundaryKind::pump;
-    fail("", option, "unknown boundary '" + s + "' (wall, transmissive, level, discharge, pump)");
-}
-
-LevelMode parse_level_mode(const std::string& s, const std::string& option) {
-    if (s == "incident") return LevelMode::incident;
-    if (s == "total") return LevelMode::total;
-    fail("", option, "unknown level mode '" + s + "' (incident, total)");
-}
-
-const char* to_string(BoundaryKind k) {
-    switch (k) {
-        case BoundaryKind::wall:
-            return "wall";
-        case BoundaryKind::transmissive:
-            return "transmissive";
-        case BoundaryKind::level:
-            return "level";
-        case BoundaryKind::discharge:
-            return "discharge";
-        case BoundaryKind::pump:
-            return "pump";
-        case BoundaryKind::nested:
-            return "nested";
-    }
-    return "?";
-}
-
 // Characteristics of the 1-D shallow-water equations normal to the side: un + 2c travels
 // into the domain (set from outside), un - 2c travels out (taken from the interior cell).
 void level_ghost(double h_in, double un_in, double h0, double eta_given, LevelMode mode, double g, double& h_out, double& un_out) {
@@ -100,7 +67,7 @@ Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, cons
         const BoundaryDef& b = def(s);
         if (b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) {
             if (b.series_file.empty())
-                fail("", std::string("boundary ") + to_string(b.kind), "needs a series file (time,value CSV)");
+                fail("", std::string("boundary ") + enum_name(b.kind), "needs a series file (time,value CSV)");
             series_[int(s)] = read_time_series_csv(b.series_file);
         }
         if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.hpp"
 #include "common/grid.hpp"
 #include "common/timeseries.hpp"
 
@@ -22,6 +23,15 @@ enum class BoundaryKind {
                    // first cells until pump_stop, then a level relaxing to still water
     nested,        // ghost cells given by the other grid of a nested pair (hydro/nesting.hpp)
 };
+// The kinds a user may give a side (`nested` is set by the nesting driver only).
+inline constexpr EnumNames<BoundaryKind, 6> boundary_kind_names{"boundary",
+                                                                {{{BoundaryKind::wall, "wall"},
+                                                                  {BoundaryKind::transmissive, "transmissive"},
+                                                                  {BoundaryKind::level, "level"},
+                                                                  {BoundaryKind::discharge, "discharge"},
+                                                                  {BoundaryKind::pump, "pump"},
+                                                                  {BoundaryKind::transmissive, "open"}}}};
+constexpr const auto& enum_names(BoundaryKind) { return boundary_kind_names; }
 
 // A measured record (WG1) is the total level: the wave going in plus what the city sent
 // back. Read as the incoming wave alone, that reflection is counted twice (generated
@@ -34,6 +44,9 @@ enum class LevelMode {
     incident,  // the series is the incoming long wave: the incoming Riemann invariant is
                // imposed, the outgoing one comes from inside, so reflections leave
 };
+inline constexpr EnumNames<LevelMode, 2> level_mode_names{"level mode",
+                                                          {{{LevelMode::incident, "incident"}, {LevelMode::total, "total"}}}};
+constexpr const auto& enum_names(LevelMode) { return level_mode_names; }
 
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
@@ -50,10 +63,6 @@ struct BoundaryDef {
 struct GhostState {
     std::vector<double> h, hu, hv;
 };
-
-BoundaryKind parse_boundary_kind(const std::string& s, const std::string& option);
-LevelMode parse_level_mode(const std::string& s, const std::string& option);
-const char* to_string(BoundaryKind k);
 
 // Ghost state for an open side from Riemann invariants. `un` is the velocity into the
 // domain, c = sqrt(g h). Inputs: interior depth and inward velocity, still-water depth

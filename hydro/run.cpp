@@ -18,12 +18,6 @@ namespace flotsam::hydro {
 
 std::string checkpoint_path(const std::string& out_file) { return out_file + ".checkpoint.nc"; }
 
-Scheme parse_scheme(const std::string& s, const std::string& option) {
-    if (s == "fv") return Scheme::finite_volume;
-    if (s == "leapfrog") return Scheme::leapfrog;
-    fail("", option, "unknown scheme '" + s + "' (fv, leapfrog)");
-}
-
 namespace {
 
 constexpr double kFill = 9.969209968386869e36;  // NetCDF's default float fill

@@ -18,7 +18,8 @@ namespace flotsam::hydro {
 // The numerical scheme of a run: finite volumes (solver.hpp, the default) or the
 // staggered leap-frog of the classic tsunami codes (leapfrog.hpp).
 enum class Scheme { finite_volume, leapfrog };
-Scheme parse_scheme(const std::string& s, const std::string& option);  // "fv" | "leapfrog"
+inline constexpr EnumNames<Scheme, 2> scheme_names{"scheme", {{{Scheme::finite_volume, "fv"}, {Scheme::leapfrog, "leapfrog"}}}};
+constexpr const auto& enum_names(Scheme) { return scheme_names; }
 
 // What the run driver (run.cpp) needs of a solver: stepping, the state for frames,
 // gauges and maxima, the exact state for checkpoints, and how to describe itself.

@@ -13,12 +13,6 @@
 
 namespace flotsam::hydro {
 
-Friction parse_friction(const std::string& s, const std::string& option) {
-    if (s == "implicit") return Friction::implicit;
-    if (s == "explicit") return Friction::explicit_;
-    fail("", option, "unknown friction treatment '" + s + "' (implicit, explicit)");
-}
-
 SolverDef default_solver_def() {
     SolverDef d;
     d.west.kind = BoundaryKind::level;

@@ -28,7 +28,9 @@ namespace flotsam::hydro {
 // Manning friction: implicit (the scheme's) or explicit, forward Euler on the old state,
 // kept only for the stability study (it reverses and blows up thin films).
 enum class Friction { implicit, explicit_ };
-Friction parse_friction(const std::string& s, const std::string& option);  // "implicit" | "explicit"
+inline constexpr EnumNames<Friction, 2> friction_names{"friction treatment",
+                                                       {{{Friction::implicit, "implicit"}, {Friction::explicit_, "explicit"}}}};
+constexpr const auto& enum_names(Friction) { return friction_names; }
 
 // Columns [begin, end) of one grid row, in interior indices (ghosts are -2, -1, nx, nx + 1).
 struct ColumnRange {

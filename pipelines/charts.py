@@ -11,7 +11,8 @@ Writes PNGs into DIR (each skipped, with a line saying why, when its input is mi
   time_to_draft.png     time at which the depth first exceeds the 2.5 cm draft (Fig. 8)
   sections.png          passage position per cross-section (mean, median, std)
   speed_density.png     passage speed kernel densities per section
-  yaw.png               largest yaw in the first 30 s after motion starts
+  yaw.png               largest rotation in the first 30 s of the run and its relation to the
+                        direction of movement (Fig. 16), and the same after motion starts
   relative_error.png    R(t) per parameter against the control
   probability.png       probability that debris passes each cell
   max_speed.png         largest debris speed per cell
@@ -240,21 +241,63 @@ def chart_speed_density(st, out):
     save(fig, out, "speed_density.png")
 
 
+# The paper's experiment (FD, Fig. 16a): largest rotation in the first 30 s, median and range.
+PAPER_FD_ROTATION = {"median": 46.0, "min": 14.0, "max": 64.0}
+
+
+def finite(a):
+    a = np.asarray(a, dtype=float)
+    return np.where(np.abs(a) > 1e30, np.nan, a)
+
+
 def chart_yaw(st, out):
+    """Top: the paper's Fig. 16 (from the run's start): the largest rotation and its relation
+    to the direction of movement. Bottom: the same window counted from motion start."""
     groups = group_labels(st)
     centres = st["yaw_bin"].values
     width = float(centres[1] - centres[0]) if len(centres) > 1 else 10.0
-    fig, axes = plt.subplots(1, 2, figsize=(13, 4.2))
-    for ax, var, title in ((axes[0], "max_rotation_histogram", "largest rotation from the heading at motion start"),
-                           (axes[1], "max_yaw_to_motion_histogram", "largest angle of the long axis to the direction of motion")):
+    window = float(st.attrs.get("yaw_window_s", 30.0))
+    fig, axes = plt.subplots(2, 2, figsize=(13, 8.4))
+    style = {g: dict(color=group_color(g), ls="--" if g.startswith("LD") else "-") for g in groups}
+
+    ax = axes[0][0]
+    med, lo, hi = (finite(st[f"max_rotation_from_start_{k}"].values) for k in ("median", "min", "max"))
+    for g, label in enumerate(groups):
+        ax.step(centres, st["max_rotation_from_start_histogram"].values[g], where="mid", **style[label],
+                label=f"{label}: median {med[g]:.0f}°, {lo[g]:.0f} to {hi[g]:.0f}°")
+    p = PAPER_FD_ROTATION
+    ax.axvspan(p["min"], p["max"], color="tab:red", alpha=0.12, label=f"experiment FD: {p['min']:.0f} to {p['max']:.0f}°")
+    ax.axvline(p["median"], color="tab:red", lw=1.2, label=f"experiment FD median {p['median']:.0f}°")
+    ax.set_xlabel(f"largest rotation from the initial heading, 0 to {window:g} s of the run [degree, ccw +]")
+    ax.set_ylabel(f"trajectories per {width:g}° bin")
+    ax.set_title("largest rotation in the first seconds of the run (paper Fig. 16a, b)", fontsize=10)
+    ax.legend(fontsize=7)
+
+    ax = axes[0][1]
+    rotation, direction = finite(st["member_max_rotation_from_start"].values), finite(st["member_movement_direction"].values)
+    member_group = st["member_group"].values
+    r = finite(st["rotation_direction_correlation"].values)
+    for g, label in enumerate(groups):
+        sel = member_group == g
+        ax.scatter(rotation[sel], direction[sel], s=14, color=style[label]["color"], marker="^" if label.startswith("LD") else "o",
+                   alpha=0.7, label=f"{label} (r = {r[g]:.2f})")
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlabel(f"largest rotation from the initial heading, 0 to {window:g} s [degree]")
+    ax.set_ylabel(f"direction of movement at {window:g} s [° from east, NE +]")
+    ax.set_title("rotation against direction of movement (paper Fig. 16c)", fontsize=10)
+    ax.legend(fontsize=7)
+
+    for ax, var, title in ((axes[1][0], "max_rotation_histogram", "largest rotation from the heading at motion start"),
+                           (axes[1][1], "max_yaw_to_motion_histogram", "largest angle of the long axis to the direction of motion")):
         for g, label in enumerate(groups):
-            ax.step(centres, st[var].values[g], where="mid", color=group_color(label), ls="--" if label.startswith("LD") else "-",
-                    label=label)
-        ax.set_xlabel("angle in the first 30 s after motion starts [degree]")
+            ax.step(centres, st[var].values[g], where="mid", **style[label], label=label)
+        ax.set_xlabel(f"angle in the first {window:g} s after motion starts [degree]")
         ax.set_ylabel(f"trajectories per {width:g}° bin")
-        ax.set_title(title, fontsize=10)
+        ax.set_title(f"after motion start: {title}", fontsize=10)
+    axes[1][0].legend(fontsize=8)
+    for ax in axes.flat:
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=8)
+    fig.tight_layout()
     save(fig, out, "yaw.png")
 
 

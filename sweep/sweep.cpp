@@ -52,10 +52,9 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     r.perturbation = spec.perturbation;
     r.member_count = int(all.size());
     r.output_interval = spec.output_interval;
-    debris::WorldDef wdef = debris::default_world_def();
-    if (spec.dt_max > 0) wdef.step.dt_max = spec.dt_max;
+    debris::WorldDef wdef = spec.world;
     wdef.threads = def.threads;
-    r.dt_max = wdef.step.dt_max;
+    r.world = spec.world;
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
 
@@ -68,17 +67,9 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
             if (all[std::size_t(id)].flow == f) on_flow.push_back(&all[std::size_t(id)]);
         if (on_flow.empty()) continue;
         const std::string& path = spec.flows[std::size_t(f)];
-        std::vector<std::uint8_t> building;
-        if (scene) {
-            const debris::FlowReader probe(path, wdef.flow);  // only for its grid
-            building = debris::buildings_on_grid(*scene, probe.grid());
-        }
-        debris::World world(path, std::move(building), wdef);
-        for (const Member* m : on_flow) {
-            if (!world.flow().grid().contains(m->def.x, m->def.y))
-                fail(spec.path, "body '" + m->def.name + "'", "start outside the grid of flow " + path);
-            world.add_body(m->def);
-        }
+        std::vector<debris::BodyDef> bodies;
+        for (const Member* m : on_flow) bodies.push_back(m->def);
+        debris::World world = debris::make_world(path, scene.get(), bodies, wdef, spec.path);
         debris::TrajectorySeries series;
         debris::record(world, series);
         Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +
@@ -96,24 +87,11 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         for (std::size_t b = 0; b < on_flow.size(); ++b) {
             const Member& m = *on_flow[b];
             MemberRecord rec;
-            rec.id = m.id;
-            rec.flow = m.flow;
-            rec.body = m.body;
-            rec.perturbation = m.perturbation;
-            rec.variant = m.variant;
-            rec.param_set = m.param_set;
+            static_cast<MemberIndex&>(rec) = m;
             rec.body_name = m.def.name;
             rec.start_name = spec.bodies[std::size_t(m.body)].start;
             rec.variant_name = spec.variants[std::size_t(m.variant)].name;
-            rec.contact = debris::to_string(m.def.contact);
-            rec.collision = debris::to_string(m.def.collision);
-            rec.params = {m.def.cd1, m.def.cd2, m.def.cm, m.def.mu, m.def.restitution};
-            rec.length = m.def.length;
-            rec.width = m.def.width;
-            rec.height = m.def.height;
-            rec.specific_gravity = m.def.specific_gravity;
-            rec.x0 = m.def.x;
-            rec.y0 = m.def.y;
+            rec.def = m.def;
             rec.heading0_deg = m.def.heading * 180.0 / std::numbers::pi;
             const debris::BodyStats& bs = world.stats()[b];
             rec.collision_steps = int(bs.collisions);

@@ -4,11 +4,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 
 #include "common/atomic_file.hpp"
 #include "common/cf.hpp"
+#include "common/columns.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
+#include "common/settings_nc.hpp"
+#include "debris/trajectory_output.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
@@ -19,14 +23,6 @@ std::string trajectory_label(const SweepResult& r, const MemberRecord& m) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "/f%02d/p%02d", m.flow, m.perturbation);
     return m.body_name + "/" + m.variant_name + "/" + r.params[std::size_t(m.param_set)].label + buf;
-}
-
-template <class T, class F>
-std::vector<T> column(const std::vector<MemberRecord>& ms, F f) {
-    std::vector<T> out;
-    out.reserve(ms.size());
-    for (const auto& m : ms) out.push_back(T(f(m)));
-    return out;
 }
 
 // A CSV field: quoted when it holds a comma, a quote or a line break.
@@ -46,31 +42,21 @@ std::string summary_path_for(const std::string& nc_path) {
 }
 
 ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim) {
-    auto var = [&](const std::string& name, nc_type type, const char* units, const char* long_name) {
-        return cf::def_var(f, {.name = name, .type = type, .dims = {dim}, .units = units, .long_name = long_name});
+    auto var = [&](const std::string& name, nc_type type, const char* long_name) {
+        return cf::def_var(f, {.name = name, .type = type, .dims = {dim}, .long_name = long_name});
     };
     ParameterSetVariables vars{};
-    vars.label = var("param_set_label", NC_STRING, "", "parameter set label");
-    vars.is_control = var("param_set_is_control", NC_BYTE, "", "1: the control set that R(t) compares against");
-    for (std::size_t p = 0; p < parameter_names.size(); ++p)
-        vars.value[p] = var(std::string("param_set_") + parameter_names[p], NC_DOUBLE, "1", parameter_long_names[p]);
+    vars.label = var("param_set_label", NC_STRING, "parameter set label");
+    vars.is_control = var("param_set_is_control", NC_BYTE, "1: the control set that R(t) compares against");
+    vars.value = def_setting_vars(f, design_parameters(), {dim}, "param_set_");
     return vars;
 }
 
 void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const std::vector<ParameterSet>& sets) {
-    std::vector<std::string> labels;
-    std::vector<std::int8_t> control;
-    for (const ParameterSet& s : sets) {
-        labels.push_back(s.label);
-        control.push_back(s.is_control ? 1 : 0);
-    }
-    f.put(vars.label, labels);
-    f.put(vars.is_control, control);
-    for (std::size_t p = 0; p < parameter_names.size(); ++p) {
-        std::vector<double> values;
-        for (const ParameterSet& s : sets) values.push_back(s.values[p]);
-        f.put(vars.value[p], values);
-    }
+    f.put(vars.label, column<std::string>(sets, &ParameterSet::label));
+    f.put(vars.is_control, column<std::int8_t>(sets, [](const ParameterSet& s) { return s.is_control ? 1 : 0; }));
+    for (std::size_t p = 0; p < design_parameters().size(); ++p)
+        f.put(vars.value[p], column<double>(sets, [p](const ParameterSet& s) { return s.values[p]; }));
 }
 
 void write_sweep_file(const std::string& path, const SweepResult& r) {
@@ -101,12 +87,9 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vcoll = var("collision_model", NC_STRING, {dtraj}, "", "collision model: single (SC) or multi (MC)");
         const int vset = var("param_set", NC_INT, {dtraj}, "", "index of the parameter set (dimension param_set)");
         const int vlabel = var("param_label", NC_STRING, {dtraj}, "", "label of the parameter set");
-        std::array<int, 5> vparam{};
-        for (std::size_t p = 0; p < 5; ++p) vparam[p] = var(parameter_names[p], NC_DOUBLE, {dtraj}, "1", parameter_long_names[p]);
-        const int vl = var("length", NC_DOUBLE, {dtraj}, "m", "body length");
-        const int vw = var("width", NC_DOUBLE, {dtraj}, "m", "body width");
-        const int vh = var("height", NC_DOUBLE, {dtraj}, "m", "body height");
-        const int vsg = var("specific_gravity", NC_DOUBLE, {dtraj}, "1", "body specific gravity");
+        const std::vector<int> vcoef = def_setting_vars(f, debris::body_coefficient_settings(), {dtraj});
+        const std::vector<int> vshape = def_setting_vars(f, debris::body_shape_settings(), {dtraj});
+        const std::vector<int> vmodel = def_setting_vars(f, debris::body_model_settings(), {dtraj});
         const int vx0 = var("x0", NC_DOUBLE, {dtraj}, "m", "start x of the centre (perturbation included)");
         const int vy0 = var("y0", NC_DOUBLE, {dtraj}, "m", "start y of the centre (perturbation included)");
         const int vh0 = var("heading0", NC_DOUBLE, {dtraj}, "degree", "start heading of the long axis from +x, counter-clockwise");
@@ -129,7 +112,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put_att(NC_GLOBAL, "member_count", r.member_count);
         f.put_att(NC_GLOBAL, "shard", std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count));
         f.put_att(NC_GLOBAL, "output_interval_s", r.output_interval);
-        f.put_att(NC_GLOBAL, "dt_max_s", r.dt_max);
+        debris::put_world_attributes(f, r.world);
         f.put_att(NC_GLOBAL, "perturbation_count", r.perturbation.count);
         f.put_att(NC_GLOBAL, "perturbation_position_std_m", r.perturbation.position_std);
         f.put_att(NC_GLOBAL, "perturbation_heading_std_deg", r.perturbation.heading_std);
@@ -141,29 +124,27 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         std::vector<std::string> ids;
         for (const auto& m : ms) ids.push_back(trajectory_label(r, m));
         f.put(vid, ids);
-        f.put(vmember, column<int>(ms, [](const MemberRecord& m) { return m.id; }));
-        f.put(vflowi, column<int>(ms, [](const MemberRecord& m) { return m.flow; }));
+        f.put(vmember, column<int>(ms, &MemberRecord::id));
+        f.put(vflowi, column<int>(ms, &MemberRecord::flow));
         f.put(vflow, column<std::string>(ms, [&](const MemberRecord& m) { return r.flows[std::size_t(m.flow)]; }));
-        f.put(vbody, column<std::string>(ms, [](const MemberRecord& m) { return m.body_name; }));
-        f.put(vstart, column<std::string>(ms, [](const MemberRecord& m) { return m.start_name; }));
-        f.put(vpert, column<int>(ms, [](const MemberRecord& m) { return m.perturbation; }));
-        f.put(vvariant, column<std::string>(ms, [](const MemberRecord& m) { return m.variant_name; }));
-        f.put(vcontact, column<std::string>(ms, [](const MemberRecord& m) { return m.contact; }));
-        f.put(vcoll, column<std::string>(ms, [](const MemberRecord& m) { return m.collision; }));
-        f.put(vset, column<int>(ms, [](const MemberRecord& m) { return m.param_set; }));
+        f.put(vbody, column<std::string>(ms, &MemberRecord::body_name));
+        f.put(vstart, column<std::string>(ms, &MemberRecord::start_name));
+        f.put(vpert, column<int>(ms, &MemberRecord::perturbation));
+        f.put(vvariant, column<std::string>(ms, &MemberRecord::variant_name));
+        f.put(vcontact, column<std::string>(ms, [](const MemberRecord& m) { return enum_name(m.def.contact); }));
+        f.put(vcoll, column<std::string>(ms, [](const MemberRecord& m) { return enum_name(m.def.collision); }));
+        f.put(vset, column<int>(ms, &MemberRecord::param_set));
         f.put(vlabel, column<std::string>(ms, [&](const MemberRecord& m) { return r.params[std::size_t(m.param_set)].label; }));
-        for (std::size_t p = 0; p < 5; ++p)
-            f.put(vparam[p], column<double>(ms, [p](const MemberRecord& m) { return m.params[p]; }));
-        f.put(vl, column<double>(ms, [](const MemberRecord& m) { return m.length; }));
-        f.put(vw, column<double>(ms, [](const MemberRecord& m) { return m.width; }));
-        f.put(vh, column<double>(ms, [](const MemberRecord& m) { return m.height; }));
-        f.put(vsg, column<double>(ms, [](const MemberRecord& m) { return m.specific_gravity; }));
-        f.put(vx0, column<double>(ms, [](const MemberRecord& m) { return m.x0; }));
-        f.put(vy0, column<double>(ms, [](const MemberRecord& m) { return m.y0; }));
-        f.put(vh0, column<double>(ms, [](const MemberRecord& m) { return m.heading0_deg; }));
-        f.put(vnc, column<int>(ms, [](const MemberRecord& m) { return m.collision_steps; }));
-        f.put(vnu, column<int>(ms, [](const MemberRecord& m) { return m.unresolved_collisions; }));
-        f.put(vns, column<int>(ms, [](const MemberRecord& m) { return m.axis_shift_steps; }));
+        const auto def_of = [](const MemberRecord& m) -> const debris::BodyDef& { return m.def; };
+        put_setting_vars(f, vcoef, debris::body_coefficient_settings(), ms, def_of);
+        put_setting_vars(f, vshape, debris::body_shape_settings(), ms, def_of);
+        put_setting_vars(f, vmodel, debris::body_model_settings(), ms, def_of);
+        f.put(vx0, column<double>(ms, [](const MemberRecord& m) { return m.def.x; }));
+        f.put(vy0, column<double>(ms, [](const MemberRecord& m) { return m.def.y; }));
+        f.put(vh0, column<double>(ms, &MemberRecord::heading0_deg));
+        f.put(vnc, column<int>(ms, &MemberRecord::collision_steps));
+        f.put(vnu, column<int>(ms, &MemberRecord::unresolved_collisions));
+        f.put(vns, column<int>(ms, &MemberRecord::axis_shift_steps));
         for (std::size_t b = 0; b < nm && nt > 0; ++b) {
             if (ms[b].track.x.size() != nt)
                 fail(path, "member " + std::to_string(ms[b].id), "track length does not match the time axis");
@@ -200,7 +181,7 @@ SweepResult read_sweep_file(const std::string& path) {
     r.member_count = int(number("member_count"));
     r.shard = parse_shard(text("shard"));
     r.output_interval = number("output_interval_s");
-    r.dt_max = number("dt_max_s");
+    r.world = debris::get_world_attributes(f);
     r.perturbation.count = int(number("perturbation_count"));
     r.perturbation.position_std = number("perturbation_position_std_m");
     r.perturbation.heading_std = number("perturbation_heading_std_deg");
@@ -211,11 +192,16 @@ SweepResult read_sweep_file(const std::string& path) {
     r.variants = f.get_strings(f.var("variant_name"));
     const auto labels = f.get_strings(f.var("param_set_label"));
     const auto ctrl = f.get_int(f.var("param_set_is_control"));
-    std::array<std::vector<double>, 5> setp;
-    for (std::size_t p = 0; p < 5; ++p) setp[p] = f.get_double(f.var(std::string("param_set_") + parameter_names[p]));
+    std::vector<std::vector<double>> set_values;
+    for (const auto& p : design_parameters()) {
+        const std::string name = "param_set_" + p.variable();
+        // A parameter added since the file was written (the drag factor): its control value.
+        set_values.push_back(f.has_var(name) ? f.get_double(f.var(name))
+                                             : std::vector<double>(labels.size(), p.number(debris::default_body_def())));
+    }
     for (std::size_t s = 0; s < labels.size(); ++s) {
         ParameterSet ps{labels[s], {}, ctrl[s] != 0};
-        for (std::size_t p = 0; p < 5; ++p) ps.values[p] = setp[p][s];
+        for (const auto& v : set_values) ps.values.push_back(v[s]);
         r.params.push_back(ps);
     }
 
@@ -227,10 +213,11 @@ SweepResult read_sweep_file(const std::string& path) {
     const auto nc_ = ints("collision_steps"), nu = ints("unresolved_collisions"), ns = ints("axis_shift_steps");
     const auto body = strings("body"), start = strings("start_name"), variant = strings("variant"),
                contact = strings("contact_model"), coll = strings("collision_model");
-    std::array<std::vector<double>, 5> par;
-    for (std::size_t p = 0; p < 5; ++p) par[p] = doubles(parameter_names[p]);
-    const auto len = doubles("length"), wid = doubles("width"), hei = doubles("height"), sg = doubles("specific_gravity");
     const auto x0 = doubles("x0"), y0 = doubles("y0"), h0 = doubles("heading0");
+    std::vector<debris::BodyDef> defs(nm);
+    get_setting_vars(f, debris::body_coefficient_settings(), defs);
+    get_setting_vars(f, debris::body_shape_settings(), defs);
+    get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
     const int vx = f.var("x"), vy = f.var("y"), vyaw = f.var("yaw"), vu = f.var("u"), vv = f.var("v"), vom = f.var("omega"),
               vst = f.var("status");
     std::vector<double> statusd(nt);
@@ -243,8 +230,10 @@ SweepResult read_sweep_file(const std::string& path) {
         m.body_name = body[b];
         m.start_name = start[b];
         m.variant_name = variant[b];
-        m.contact = contact[b];
-        m.collision = coll[b];
+        m.def = defs[b];
+        m.def.name = m.body_name;
+        m.def.contact = parse_enum<debris::ContactModel>(contact[b], path + ": variable 'contact_model'");
+        m.def.collision = parse_enum<debris::CollisionModel>(coll[b], path + ": variable 'collision_model'");
         const auto bi = std::find(r.bodies.begin(), r.bodies.end(), m.body_name);
         const auto vi = std::find(r.variants.begin(), r.variants.end(), m.variant_name);
         if (bi == r.bodies.end() || vi == r.variants.end() || m.flow < 0 || m.flow >= int(r.flows.size()) || m.param_set < 0 ||
@@ -252,14 +241,10 @@ SweepResult read_sweep_file(const std::string& path) {
             fail(path, "trajectory " + std::to_string(b), "body, variant, flow or parameter set not in the sweep's tables");
         m.body = int(bi - r.bodies.begin());
         m.variant = int(vi - r.variants.begin());
-        for (std::size_t p = 0; p < 5; ++p) m.params[p] = par[p][b];
-        m.length = len[b];
-        m.width = wid[b];
-        m.height = hei[b];
-        m.specific_gravity = sg[b];
-        m.x0 = x0[b];
-        m.y0 = y0[b];
+        m.def.x = x0[b];
+        m.def.y = y0[b];
         m.heading0_deg = h0[b];
+        m.def.heading = h0[b] * std::numbers::pi / 180.0;
         m.collision_steps = nc_[b];
         m.unresolved_collisions = nu[b];
         m.axis_shift_steps = ns[b];
@@ -308,10 +293,13 @@ SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vecto
 }
 
 void write_summary_csv(const std::string& path, const SweepResult& r) {
-    std::string s =
-        "member,flow,flow_path,body,start_name,variant,param_set,param_label,perturbation,cd1,cd2,cm,mu,restitution,"
-        "x0_m,y0_m,heading0_deg,motion_start_s,final_x_m,final_y_m,final_yaw_deg,net_displacement_m,travel_distance_m,"
-        "max_speed_m_s,time_of_max_speed_s,collision_steps,unresolved_collisions,axis_shift_steps\n";
+    std::string s = "member,flow,flow_path,body,start_name,variant,param_set,param_label,perturbation";
+    for (const auto& p : debris::body_coefficient_settings()) {
+        s += ',';
+        s += p.variable();
+    }
+    s += ",x0_m,y0_m,heading0_deg,motion_start_s,final_x_m,final_y_m,final_yaw_deg,net_displacement_m,travel_distance_m,"
+         "max_speed_m_s,time_of_max_speed_s,collision_steps,unresolved_collisions,axis_shift_steps\n";
     char buf[512];
     for (const auto& m : r.members) {
         const debris::Track& t = m.track;
@@ -328,18 +316,18 @@ void write_summary_csv(const std::string& path, const SweepResult& r) {
         s += std::to_string(m.id) + "," + std::to_string(m.flow) + "," + csv_field(r.flows[std::size_t(m.flow)]) + "," +
              csv_field(m.body_name) + "," + csv_field(m.start_name) + "," + m.variant_name + "," + std::to_string(m.param_set) +
              "," + csv_field(r.params[std::size_t(m.param_set)].label) + "," + std::to_string(m.perturbation);
-        for (double p : m.params) {
-            std::snprintf(buf, sizeof buf, ",%.10g", p);
+        for (const auto& p : debris::body_coefficient_settings()) {
+            std::snprintf(buf, sizeof buf, ",%.10g", p.number(m.def));
             s += buf;
         }
-        std::snprintf(buf, sizeof buf, ",%.10g,%.10g,%.10g,", m.x0, m.y0, m.heading0_deg);
+        std::snprintf(buf, sizeof buf, ",%.10g,%.10g,%.10g,", m.def.x, m.def.y, m.heading0_deg);
         s += buf;
         if (k0 >= 0) {
             std::snprintf(buf, sizeof buf, "%.10g", r.time[std::size_t(k0)]);
             s += buf;
         }  // empty: never moved
-        std::snprintf(buf, sizeof buf, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%d,%d\n", any ? t.x.back() : m.x0,
-                      any ? t.y.back() : m.y0, any ? t.yaw_deg.back() : m.heading0_deg,
+        std::snprintf(buf, sizeof buf, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%d,%d\n", any ? t.x.back() : m.def.x,
+                      any ? t.y.back() : m.def.y, any ? t.yaw_deg.back() : m.heading0_deg,
                       any ? std::hypot(t.x.back() - t.x.front(), t.y.back() - t.y.front()) : 0.0, any ? path_length(t.x, t.y) : 0.0,
                       vmax, tmax, m.collision_steps, m.unresolved_collisions, m.axis_shift_steps);
         s += buf;

@@ -13,18 +13,16 @@
 #include <vector>
 
 #include "common/netcdf.hpp"
+#include "debris/world.hpp"
 #include "formats/trajectory_file.hpp"
 #include "sweep/sweep_spec.hpp"
 
 namespace flotsam::sweep {
 
-struct MemberRecord {
-    int id = 0, flow = 0, body = 0, perturbation = 0, variant = 0, param_set = 0;
-    std::string body_name, start_name, variant_name, contact, collision;
-    ParamValues params{};                      // cd1, cd2, cm, mu, restitution [-]
-    double length = 0, width = 0, height = 0;  // [m]
-    double specific_gravity = 0;               // [-]
-    double x0 = 0, y0 = 0, heading0_deg = 0;   // start [m, m, degree]
+struct MemberRecord : MemberIndex {
+    std::string body_name, start_name, variant_name;
+    debris::BodyDef def;      // the body as run: start x, y [m], shape, coefficients, model, variant
+    double heading0_deg = 0;  // start heading [degree] (def.heading, as written in the file)
     int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
     debris::Track track;  // on SweepResult::time
 };
@@ -37,7 +35,7 @@ struct SweepResult {
     PerturbationDef perturbation;
     int member_count = 0;          // members in the whole sweep
     double output_interval = 0.0;  // [s]
-    double dt_max = 0.0;           // [s]
+    debris::WorldDef world;        // step and flow replay settings (threads: not recorded)
     std::vector<double> time;      // output times [s]
     // This part.
     Shard shard;                        // {0, 1}: the whole sweep
@@ -48,7 +46,7 @@ struct SweepResult {
 // dimension `dim`: written alike in sweep files and statistics files.
 struct ParameterSetVariables {
     int label, is_control;
-    std::array<int, parameter_names.size()> value;  // in the order of parameter_names
+    std::vector<int> value;  // in the order of design_parameters()
 };
 ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim);
 void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const std::vector<ParameterSet>& sets);

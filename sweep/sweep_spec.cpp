@@ -14,7 +14,29 @@
 
 namespace flotsam::sweep {
 
-ParamValues paper_control() { return {0.8, 0.4, 2.0, 0.4, 0.5}; }
+const Settings<debris::BodyDef>& design_parameters() {
+    static const Settings<debris::BodyDef> table = [] {
+        Settings<debris::BodyDef> t = debris::body_coefficient_settings();
+        t.push_back({"cd", "1", "drag factor Cd: multiplies cd1 and cd2 together (the paper's sensitivity parameter Cd)",
+                     Range::positive().up_to(100.0), Factor<debris::BodyDef>{{&debris::BodyDef::cd1, &debris::BodyDef::cd2}}});
+        return t;
+    }();
+    return table;
+}
+
+ParamValues paper_control() {
+    ParamValues out;
+    for (const auto& p : design_parameters()) out.push_back(p.number(debris::default_body_def()));
+    return out;
+}
+
+void apply_parameters(const ParamValues& values, debris::BodyDef& def) {
+    const auto& table = design_parameters();
+    // Members first, then the factors that scale them.
+    for (bool factors : {false, true})
+        for (std::size_t p = 0; p < table.size(); ++p)
+            if (table[p].is_factor() == factors) table[p].set_number(def, values[p]);
+}
 
 namespace {
 
@@ -49,9 +71,10 @@ double Rng::normal() {
 std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::vector<int>& varied, double factor) {
     std::vector<ParameterSet> out{{"control", control, true}};
     for (int p : varied) {
-        ParameterSet up{std::string(parameter_names[p]) + "x" + fmt(factor), control, false};
+        const std::string& key = design_parameters()[std::size_t(p)].key;
+        ParameterSet up{key + "x" + fmt(factor), control, false};
         up.values[p] = control[p] * factor;
-        ParameterSet down{std::string(parameter_names[p]) + "/" + fmt(factor), control, false};
+        ParameterSet down{key + "/" + fmt(factor), control, false};
         down.values[p] = control[p] / factor;
         out.push_back(up);
         out.push_back(down);
@@ -59,18 +82,19 @@ std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::v
     return out;
 }
 
-std::vector<ParameterSet> factorial(const ParamValues& control, const std::array<std::vector<double>, 5>& levels) {
-    std::array<std::vector<double>, 5> lv;
+std::vector<ParameterSet> factorial(const ParamValues& control, const std::vector<std::vector<double>>& levels) {
+    const std::size_t np = control.size();
+    std::vector<std::vector<double>> lv(np);
     std::size_t total = 1;
-    for (std::size_t p = 0; p < 5; ++p) {
-        lv[p] = levels[p].empty() ? std::vector<double>{control[p]} : levels[p];
+    for (std::size_t p = 0; p < np; ++p) {
+        lv[p] = p >= levels.size() || levels[p].empty() ? std::vector<double>{control[p]} : levels[p];
         total *= lv[p].size();
     }
     std::vector<ParameterSet> out;
     for (std::size_t k = 0; k < total; ++k) {
-        ParameterSet s{numbered("grid", int(k), int(total)), {}, false};
+        ParameterSet s{numbered("grid", int(k), int(total)), ParamValues(np), false};
         std::size_t rest = k;
-        for (int p = 4; p >= 0; --p) {  // last parameter fastest
+        for (int p = int(np) - 1; p >= 0; --p) {  // last parameter fastest
             s.values[p] = lv[p][rest % lv[p].size()];
             rest /= lv[p].size();
         }
@@ -80,22 +104,22 @@ std::vector<ParameterSet> factorial(const ParamValues& control, const std::array
     return out;
 }
 
-std::vector<ParameterSet> random_samples(const std::array<std::array<double, 2>, 5>& ranges, int count, std::uint64_t seed) {
+std::vector<ParameterSet> random_samples(const ParamRanges& ranges, int count, std::uint64_t seed) {
     Rng rng(seed);
     std::vector<ParameterSet> out;
     for (int k = 0; k < count; ++k) {
-        ParameterSet s{numbered("random", k, count), {}, false};
-        for (std::size_t p = 0; p < 5; ++p) s.values[p] = ranges[p][0] + (ranges[p][1] - ranges[p][0]) * rng.uniform();
+        ParameterSet s{numbered("random", k, count), ParamValues(ranges.size()), false};
+        for (std::size_t p = 0; p < ranges.size(); ++p) s.values[p] = ranges[p][0] + (ranges[p][1] - ranges[p][0]) * rng.uniform();
         out.push_back(s);
     }
     return out;
 }
 
-std::vector<ParameterSet> latin_hypercube(const std::array<std::array<double, 2>, 5>& ranges, int count, std::uint64_t seed) {
+std::vector<ParameterSet> latin_hypercube(const ParamRanges& ranges, int count, std::uint64_t seed) {
     Rng rng(seed);
     std::vector<ParameterSet> out(static_cast<std::size_t>(count));
-    for (int k = 0; k < count; ++k) out[std::size_t(k)].label = numbered("lhs", k, count);
-    for (std::size_t p = 0; p < 5; ++p) {
+    for (int k = 0; k < count; ++k) out[std::size_t(k)] = {numbered("lhs", k, count), ParamValues(ranges.size()), false};
+    for (std::size_t p = 0; p < ranges.size(); ++p) {
         std::vector<int> strata(static_cast<std::size_t>(count));
         for (int k = 0; k < count; ++k) strata[std::size_t(k)] = k;
         for (int k = count - 1; k > 0; --k)
@@ -131,27 +155,21 @@ const TomlTable* find_table(const TomlDoc& doc, const std::string& name) {
 
 bool has(const TomlTable& t, const std::string& key) { return t.values.count(key) > 0; }
 
-[[noreturn]] void bad(const TomlDoc& doc, const TomlTable& t, const std::string& key, const std::string& problem) {
-    fail(toml_where(doc, t, key), (t.name.empty() ? "" : "[" + t.name + "] ") + "key '" + key + "'", problem);
-}
-
-double positive(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+// A number of the spec in its range; the error names the file, line and key.
+double number_in(const TomlDoc& doc, const TomlTable& t, const std::string& key, const Range& range) {
     const double v = toml_number(doc, t, key);
-    if (!(v > 0)) bad(doc, t, key, "must be positive");
+    const std::string problem = range_problem(v, range);
+    if (!problem.empty()) toml_fail(doc, t, key, problem);
     return v;
 }
 
-int count_of(const TomlDoc& doc, const TomlTable& t, const std::string& key, int min) {
-    const double v = toml_number(doc, t, key);
-    if (v != std::floor(v) || v < min || v > 1e6) bad(doc, t, key, "must be a whole number >= " + std::to_string(min));
-    return int(v);
+std::uint64_t seed_of(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+    return has(t, key) ? std::uint64_t(number_in(doc, t, key, Range::count(0, 9e15))) : 1;
 }
 
-std::uint64_t seed_of(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
-    if (!has(t, key)) return 1;
-    const double v = toml_number(doc, t, key);
-    if (v != std::floor(v) || v < 0 || v > 9e15) bad(doc, t, key, "must be a whole number >= 0");
-    return std::uint64_t(v);
+std::vector<std::string> keys_with(std::vector<std::string> keys, const std::vector<std::string>& more) {
+    keys.insert(keys.end(), more.begin(), more.end());
+    return keys;
 }
 
 // Flow files matching "dir/prefix*suffix" (one '*' in the file name), sorted by name.
@@ -161,7 +179,7 @@ std::vector<std::string> glob_flows(const TomlDoc& doc, const TomlTable& t, cons
     const std::string name = p.filename().string();
     const auto star = name.find('*');
     if (star == std::string::npos || name.find('*', star + 1) != std::string::npos)
-        bad(doc, t, "pattern", "expects exactly one '*' in the file name (e.g. runs/flows/flow_r*.nc)");
+        toml_fail(doc, t, "pattern", "expects exactly one '*' in the file name (e.g. runs/flows/flow_r*.nc)");
     const std::string pre = name.substr(0, star), post = name.substr(star + 1);
     std::vector<std::string> out;
     std::error_code ec;
@@ -170,94 +188,185 @@ std::vector<std::string> glob_flows(const TomlDoc& doc, const TomlTable& t, cons
         if (f.size() >= pre.size() + post.size() && f.starts_with(pre) && f.ends_with(post))
             out.push_back((p.has_parent_path() ? p.parent_path() / f : std::filesystem::path(f)).string());
     }
-    if (ec) bad(doc, t, "pattern", "cannot list directory '" + dir + "': " + ec.message());
+    if (ec) toml_fail(doc, t, "pattern", "cannot list directory '" + dir + "': " + ec.message());
     std::sort(out.begin(), out.end());
-    if (out.empty()) bad(doc, t, "pattern", "no file matches '" + pattern + "'");
+    if (out.empty()) toml_fail(doc, t, "pattern", "no file matches '" + pattern + "'");
     return out;
 }
 
+// [parameters]: the design and the values of the design parameters. Scalars set the
+// control (and fixed) values; arrays are levels (factorial) or [low, high] ranges
+// (random, latin_hypercube).
 void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
+    const auto& table = design_parameters();
+    const std::size_t np = table.size();
     ParamValues control = paper_control();
     if (!t) {
-        spec.design = "control";
+        spec.design = enum_name(Design::control);
         spec.params = {{"control", control, true}};
         return;
     }
-    std::vector<std::string> allowed = {"design", "factor", "vary", "samples", "seed", "include_control"};
-    for (const char* p : parameter_names) allowed.emplace_back(p);
-    toml_allow_only(doc, *t, allowed);
-    spec.design = has(*t, "design") ? toml_string(doc, *t, "design") : std::string("control");
-    const std::string& d = spec.design;
-    if (d != "control" && d != "one_at_a_time" && d != "factorial" && d != "random" && d != "latin_hypercube")
-        bad(doc, *t, "design", "unknown design '" + d + "' (control, one_at_a_time, factorial, random, latin_hypercube)");
-    const bool sampled = d == "random" || d == "latin_hypercube";
+    toml_allow_only(doc, *t, keys_with({"design", "factor", "vary", "samples", "seed", "include-control"}, setting_keys(table)));
+    const Design d = has(*t, "design") ? toml_enum<Design>(doc, *t, "design") : Design::control;
+    spec.design = enum_name(d);
+    const bool sampled = d == Design::random || d == Design::latin_hypercube;
     for (const std::string key : {"factor", "vary"})
-        if (has(*t, key) && d != "one_at_a_time") bad(doc, *t, key, "only for design = \"one_at_a_time\"");
+        if (has(*t, key) && d != Design::one_at_a_time) toml_fail(doc, *t, key, "only for design = \"one_at_a_time\"");
     for (const std::string key : {"samples", "seed"})
-        if (has(*t, key) && !sampled) bad(doc, *t, key, "only for design = \"random\" or \"latin_hypercube\"");
+        if (has(*t, key) && !sampled) toml_fail(doc, *t, key, "only for design = \"random\" or \"latin_hypercube\"");
 
-    // Scalars set the control (and fixed) values; arrays are levels (factorial) or
-    // [low, high] ranges (random, latin_hypercube).
-    std::array<std::vector<double>, 5> arrays;
-    for (std::size_t p = 0; p < 5; ++p) {
-        const std::string key = parameter_names[p];
+    std::vector<std::vector<double>> arrays(np);
+    for (std::size_t p = 0; p < np; ++p) {
+        const std::string& key = table[p].key;
         if (!has(*t, key)) continue;
         const TomlValue& v = t->values.at(key);
         if (v.kind == TomlValue::Kind::Number) {
             control[p] = v.number;
         } else if (v.kind == TomlValue::Kind::NumberArray) {
-            if (d != "factorial" && !sampled)
-                bad(doc, *t, key, "an array (levels or a range) needs a factorial, random or latin_hypercube design");
-            if (v.numbers.empty()) bad(doc, *t, key, "empty array");
+            if (d != Design::factorial && !sampled)
+                toml_fail(doc, *t, key, "an array (levels or a range) needs a factorial, random or latin_hypercube design");
+            if (v.numbers.empty()) toml_fail(doc, *t, key, "empty array");
             if (sampled && (v.numbers.size() != 2 || !(v.numbers[0] <= v.numbers[1])))
-                bad(doc, *t, key, "a range is [low, high] with low <= high");
+                toml_fail(doc, *t, key, "a range is [low, high] with low <= high");
             arrays[p] = v.numbers;
         } else {
-            bad(doc, *t, key, "must be a number or an array of numbers");
+            toml_fail(doc, *t, key, "must be a number or an array of numbers");
         }
     }
-    const bool include_control = has(*t, "include_control") ? toml_bool(doc, *t, "include_control") : true;
-    if (d == "control") {
+    const bool include_control = has(*t, "include-control") ? toml_bool(doc, *t, "include-control") : true;
+    if (d == Design::control) {
         spec.params = {{"control", control, true}};
-    } else if (d == "one_at_a_time") {
-        const double factor = has(*t, "factor") ? positive(doc, *t, "factor") : 1.5;
+    } else if (d == Design::one_at_a_time) {
+        const double factor = has(*t, "factor") ? number_in(doc, *t, "factor", Range::positive()) : 1.5;
         std::vector<int> varied;
         const std::vector<std::string> names =
             has(*t, "vary") ? toml_strings(doc, *t, "vary") : std::vector<std::string>{"cd1", "cd2", "cm", "mu"};
         for (const auto& n : names) {
-            const auto it = std::find(parameter_names.begin(), parameter_names.end(), n);
-            if (it == parameter_names.end()) bad(doc, *t, "vary", "unknown parameter '" + n + "' (cd1, cd2, cm, mu, restitution)");
-            varied.push_back(int(it - parameter_names.begin()));
+            const Setting<debris::BodyDef>* p = find_setting(table, n);
+            if (!p) {
+                std::string list;
+                for (const auto& k : setting_keys(table)) list += (list.empty() ? "" : ", ") + k;
+                toml_fail(doc, *t, "vary", "unknown parameter '" + n + "' (" + list + ")");
+            }
+            varied.push_back(int(p - table.data()));
         }
         spec.params = one_at_a_time(control, varied, factor);
-    } else if (d == "factorial") {
+    } else if (d == Design::factorial) {
         spec.params = factorial(control, arrays);
         const bool found = std::any_of(spec.params.begin(), spec.params.end(), [](const ParameterSet& s) { return s.is_control; });
         if (include_control && !found) spec.params.insert(spec.params.begin(), {"control", control, true});
         if (!include_control)
             for (auto& s : spec.params) s.is_control = false;
     } else {
-        const int n = count_of(doc, *t, "samples", 1);
-        std::array<std::array<double, 2>, 5> ranges;
-        for (std::size_t p = 0; p < 5; ++p)
+        const int n = int(number_in(doc, *t, "samples", Range::count(1, 1e6)));
+        ParamRanges ranges(np);
+        for (std::size_t p = 0; p < np; ++p)
             ranges[p] = arrays[p].empty() ? std::array<double, 2>{control[p], control[p]}
                                           : std::array<double, 2>{arrays[p][0], arrays[p][1]};
-        spec.params = d == "random" ? random_samples(ranges, n, seed_of(doc, *t, "seed"))
-                                    : latin_hypercube(ranges, n, seed_of(doc, *t, "seed"));
+        spec.params = d == Design::random ? random_samples(ranges, n, seed_of(doc, *t, "seed"))
+                                          : latin_hypercube(ranges, n, seed_of(doc, *t, "seed"));
         if (include_control) spec.params.insert(spec.params.begin(), {"control", control, true});
     }
     // The body model rejects impossible values; check here to name the spec and key.
     for (const auto& s : spec.params)
-        for (std::size_t p = 0; p < 5; ++p) {
-            const double v = s.values[p];
-            const bool ok = p == 4 ? (v >= 0 && v <= 1) : (p == 3 ? v >= 0 : v > 0);
-            if (!ok)
-                bad(doc, *t, parameter_names[p],
-                    "parameter set '" + s.label + "' gets " + parameter_names[p] + " = " + fmt(v) +
-                        (p == 4   ? " (restitution must lie in [0, 1])"
-                         : p == 3 ? " (must be >= 0)"
-                                  : " (must be positive)"));
+        for (std::size_t p = 0; p < np; ++p) {
+            const std::string problem = range_problem(s.values[p], table[p].range);
+            if (!problem.empty())
+                toml_fail(doc, *t, table[p].key, "parameter set '" + s.label + "' gets " + table[p].key + " = " + problem);
         }
+}
+
+// [sweep]: the scene, the output times, and the step, flow replay and body model
+// settings for every member.
+void read_sweep_table(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec, debris::BodyDef& body_model) {
+    if (!t) return;
+    toml_allow_only(doc, *t,
+                    keys_with(keys_with(keys_with({"scene", "output-interval", "end-time"}, setting_keys(debris::step_settings())),
+                                        setting_keys(debris::flow_replay_settings())),
+                              setting_keys(debris::body_model_settings())));
+    if (has(*t, "scene")) spec.scene = toml_string(doc, *t, "scene");
+    if (has(*t, "output-interval")) spec.output_interval = number_in(doc, *t, "output-interval", Range::positive("s"));
+    if (has(*t, "end-time")) spec.end_time = number_in(doc, *t, "end-time", Range::positive("s"));
+    read_settings(doc, *t, debris::step_settings(), spec.world.step);
+    read_settings(doc, *t, debris::flow_replay_settings(), spec.world.flow);
+    read_settings(doc, *t, debris::body_model_settings(), body_model);
+}
+
+// One [[body]]: where it starts (a scene point or coordinates), its name, and its shape
+// and model settings over those of [sweep].
+BodySpec read_body(const TomlDoc& doc, const TomlTable& t, SweepSpec& spec, const debris::BodyDef& body_model,
+                   std::unique_ptr<Scene>& scene) {
+    toml_allow_only(doc, t,
+                    keys_with(keys_with({"start", "at", "name"}, setting_keys(debris::body_shape_settings())),
+                              setting_keys(debris::body_model_settings())));
+    BodySpec b;
+    b.def = body_model;
+    if (has(t, "start") == has(t, "at"))
+        toml_fail(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
+    if (has(t, "start")) {
+        b.start = toml_string(doc, t, "start");
+        if (spec.scene.empty()) toml_fail(doc, t, "start", "a named start needs a scene ([sweep] scene = \"...\" or --scene)");
+        if (!scene) scene = std::make_unique<Scene>(read_scene(spec.scene));
+        const ScenePoint* p = scene->find_point(b.start);
+        if (!p || p->kind != "start") toml_fail(doc, t, "start", "scene '" + spec.scene + "' has no start point '" + b.start + "'");
+        b.name = b.start;
+        b.x = p->x;
+        b.y = p->y;
+        b.heading_deg = p->heading_deg;
+    } else {
+        const std::vector<double> at = toml_numbers(doc, t, "at");
+        if (at.size() != 3) toml_fail(doc, t, "at", "expected [x, y, heading_deg]");
+        b.x = at[0];
+        b.y = at[1];
+        b.heading_deg = at[2];
+        b.name = "body" + std::to_string(spec.bodies.size());
+    }
+    if (has(t, "name")) b.name = toml_string(doc, t, "name");
+    if (b.name.empty()) toml_fail(doc, t, "name", "must not be empty");
+    for (const auto& other : spec.bodies)
+        if (other.name == b.name)
+            toml_fail(doc, t, has(t, "name") ? "name" : "start", "body name '" + b.name + "' used twice (set name = \"...\")");
+    read_settings(doc, t, debris::body_shape_settings(), b.def);
+    read_settings(doc, t, debris::body_model_settings(), b.def);
+    return b;
+}
+
+void read_flows(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
+    if (!t) fail(doc.path, "[flows]", "missing: give paths = [\"flow.nc\", ...] or pattern = \"dir/flow_r*.nc\" (or --flow)");
+    toml_allow_only(doc, *t, {"paths", "pattern"});
+    if (has(*t, "paths") == has(*t, "pattern")) toml_fail(doc, *t, "paths", "give exactly one of paths and pattern");
+    spec.flows = has(*t, "paths") ? toml_strings(doc, *t, "paths") : glob_flows(doc, *t, toml_string(doc, *t, "pattern"));
+    if (spec.flows.empty()) toml_fail(doc, *t, "paths", "no flow files listed");
+    for (const auto& f : spec.flows)
+        if (!std::filesystem::exists(f))
+            toml_fail(doc, *t, has(*t, "paths") ? "paths" : "pattern", "flow file '" + f + "' does not exist");
+}
+
+void read_variants(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
+    if (!t) {
+        spec.variants = {parse_variant("LC+MC")};
+        return;
+    }
+    toml_allow_only(doc, *t, {"names"});
+    for (const auto& n : toml_strings(doc, *t, "names")) {
+        try {
+            spec.variants.push_back(parse_variant(n));
+        } catch (const Error& e) {
+            toml_fail(doc, *t, "names", e.what());
+        }
+        for (std::size_t k = 0; k + 1 < spec.variants.size(); ++k)
+            if (spec.variants[k].name == n) toml_fail(doc, *t, "names", "variant '" + n + "' listed twice");
+    }
+    if (spec.variants.empty()) toml_fail(doc, *t, "names", "no variants listed");
+}
+
+void read_perturbation(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
+    if (!t) return;
+    toml_allow_only(doc, *t, {"count", "position-std", "heading-std", "seed"});
+    if (has(*t, "count")) spec.perturbation.count = int(number_in(doc, *t, "count", Range::count(0, 1e6)));
+    if (has(*t, "position-std")) spec.perturbation.position_std = number_in(doc, *t, "position-std", Range::non_negative("m"));
+    if (has(*t, "heading-std")) spec.perturbation.heading_std = number_in(doc, *t, "heading-std", Range::non_negative("degree"));
+    spec.perturbation.seed = seed_of(doc, *t, "seed");
 }
 
 }  // namespace
@@ -275,95 +384,21 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
                  "unknown table [" + t.name + "] (sweep, flows, [[body]], variants, parameters, perturbation)");
     toml_allow_only(doc, doc.tables.front(), {});
 
-    if (const TomlTable* t = find_table(doc, "sweep")) {
-        toml_allow_only(doc, *t, {"scene", "output_interval", "end_time", "dt_max"});
-        if (has(*t, "scene")) spec.scene = toml_string(doc, *t, "scene");
-        if (has(*t, "output_interval")) spec.output_interval = positive(doc, *t, "output_interval");
-        if (has(*t, "end_time")) spec.end_time = positive(doc, *t, "end_time");
-        if (has(*t, "dt_max")) spec.dt_max = positive(doc, *t, "dt_max");
-    }
+    debris::BodyDef body_model = debris::default_body_def();
+    read_sweep_table(doc, find_table(doc, "sweep"), spec, body_model);
     if (!scene_override.empty()) spec.scene = scene_override;
-
-    if (!flow_override.empty()) {
+    if (!flow_override.empty())
         spec.flows = flow_override;
-    } else {
-        const TomlTable* t = find_table(doc, "flows");
-        if (!t) fail(path, "[flows]", "missing: give paths = [\"flow.nc\", ...] or pattern = \"dir/flow_r*.nc\" (or --flow)");
-        toml_allow_only(doc, *t, {"paths", "pattern"});
-        if (has(*t, "paths") == has(*t, "pattern")) bad(doc, *t, "paths", "give exactly one of paths and pattern");
-        spec.flows = has(*t, "paths") ? toml_strings(doc, *t, "paths") : glob_flows(doc, *t, toml_string(doc, *t, "pattern"));
-        if (spec.flows.empty()) bad(doc, *t, "paths", "no flow files listed");
-        for (const auto& f : spec.flows)
-            if (!std::filesystem::exists(f))
-                bad(doc, *t, has(*t, "paths") ? "paths" : "pattern", "flow file '" + f + "' does not exist");
-    }
-
+    else
+        read_flows(doc, find_table(doc, "flows"), spec);
     std::unique_ptr<Scene> scene;
-    for (const auto& t : doc.tables) {
-        if (t.name != "body") continue;
-        toml_allow_only(doc, t, {"start", "at", "name", "length", "width", "height", "specific_gravity"});
-        BodySpec b;
-        if (has(t, "start") == has(t, "at"))
-            bad(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
-        if (has(t, "start")) {
-            b.start = toml_string(doc, t, "start");
-            if (spec.scene.empty()) bad(doc, t, "start", "a named start needs a scene ([sweep] scene = \"...\" or --scene)");
-            if (!scene) scene = std::make_unique<Scene>(read_scene(spec.scene));
-            const ScenePoint* p = scene->find_point(b.start);
-            if (!p || p->kind != "start") bad(doc, t, "start", "scene '" + spec.scene + "' has no start point '" + b.start + "'");
-            b.name = b.start;
-            b.x = p->x;
-            b.y = p->y;
-            b.heading_deg = p->heading_deg;
-        } else {
-            const std::vector<double> at = toml_numbers(doc, t, "at");
-            if (at.size() != 3) bad(doc, t, "at", "expected [x, y, heading_deg]");
-            b.x = at[0];
-            b.y = at[1];
-            b.heading_deg = at[2];
-            b.name = "body" + std::to_string(spec.bodies.size());
-        }
-        if (has(t, "name")) b.name = toml_string(doc, t, "name");
-        if (b.name.empty()) bad(doc, t, "name", "must not be empty");
-        for (const auto& other : spec.bodies)
-            if (other.name == b.name)
-                bad(doc, t, has(t, "name") ? "name" : "start", "body name '" + b.name + "' used twice (set name = \"...\")");
-        if (has(t, "length")) b.shape.length = positive(doc, t, "length");
-        if (has(t, "width")) b.shape.width = positive(doc, t, "width");
-        if (has(t, "height")) b.shape.height = positive(doc, t, "height");
-        if (has(t, "specific_gravity")) b.shape.specific_gravity = positive(doc, t, "specific_gravity");
-        spec.bodies.push_back(b);
-    }
+    for (const auto& t : doc.tables)
+        if (t.name == "body") spec.bodies.push_back(read_body(doc, t, spec, body_model, scene));
     if (spec.bodies.empty())
         fail(path, "[[body]]", "missing: give at least one [[body]] with start = \"FD\" or at = [x, y, heading_deg]");
-
-    if (const TomlTable* t = find_table(doc, "variants")) {
-        toml_allow_only(doc, *t, {"names"});
-        for (const auto& n : toml_strings(doc, *t, "names")) {
-            try {
-                spec.variants.push_back(parse_variant(n));
-            } catch (const Error& e) {
-                bad(doc, *t, "names", e.what());
-            }
-            for (std::size_t k = 0; k + 1 < spec.variants.size(); ++k)
-                if (spec.variants[k].name == n) bad(doc, *t, "names", "variant '" + n + "' listed twice");
-        }
-        if (spec.variants.empty()) bad(doc, *t, "names", "no variants listed");
-    } else {
-        spec.variants = {parse_variant("LC+MC")};
-    }
-
+    read_variants(doc, find_table(doc, "variants"), spec);
     read_parameters(doc, find_table(doc, "parameters"), spec);
-
-    if (const TomlTable* t = find_table(doc, "perturbation")) {
-        toml_allow_only(doc, *t, {"count", "position_std", "heading_std", "seed"});
-        if (has(*t, "count")) spec.perturbation.count = count_of(doc, *t, "count", 0);
-        for (const std::string key : {"position_std", "heading_std"})
-            if (has(*t, key) && !(toml_number(doc, *t, key) >= 0)) bad(doc, *t, key, "must be >= 0");
-        if (has(*t, "position_std")) spec.perturbation.position_std = toml_number(doc, *t, "position_std");
-        if (has(*t, "heading_std")) spec.perturbation.heading_std = toml_number(doc, *t, "heading_std");
-        spec.perturbation.seed = seed_of(doc, *t, "seed");
-    }
+    read_perturbation(doc, find_table(doc, "perturbation"), spec);
     return spec;
 }
 
@@ -389,26 +424,16 @@ std::vector<Member> enumerate_members(const SweepSpec& spec) {
                 for (int v = 0; v < int(spec.variants.size()); ++v)
                     for (int p = 0; p < int(spec.params.size()); ++p) {
                         Member m;
-                        m.id = int(out.size());
-                        m.flow = f;
-                        m.body = b;
-                        m.perturbation = k;
-                        m.variant = v;
-                        m.param_set = p;
+                        static_cast<MemberIndex&>(m) = {int(out.size()), f, b, k, v, p};
                         debris::BodyDef& d = m.def;
-                        d = spec.bodies[std::size_t(b)].shape;
+                        d = spec.bodies[std::size_t(b)].def;
                         d.name = spec.bodies[std::size_t(b)].name;
                         d.x = start[0];
                         d.y = start[1];
                         d.heading = start[2];
                         d.contact = spec.variants[std::size_t(v)].contact;
                         d.collision = spec.variants[std::size_t(v)].collision;
-                        const ParamValues& pv = spec.params[std::size_t(p)].values;
-                        d.cd1 = pv[0];
-                        d.cd2 = pv[1];
-                        d.cm = pv[2];
-                        d.mu = pv[3];
-                        d.restitution = pv[4];
+                        apply_parameters(spec.params[std::size_t(p)].values, d);
                         out.push_back(m);
                     }
             }

@@ -8,36 +8,56 @@
 #include <string>
 #include <vector>
 
+#include "common/settings.hpp"
 #include "debris/body.hpp"
+#include "debris/world.hpp"
 
 namespace flotsam::sweep {
 
-// The parameters a design varies, in this order everywhere (files, CSV, grids).
-inline constexpr std::array<const char*, 5> parameter_names = {"cd1", "cd2", "cm", "mu", "restitution"};
-inline constexpr std::array<const char*, 5> parameter_long_names = {
-    "drag coefficient, flow toward a face", "drag coefficient, flow leaving a face", "inertia coefficient Cm = 1 + Ca",
-    "friction coefficient with the ground (Fc)", "coefficient of restitution against obstacles"};
-using ParamValues = std::array<double, 5>;  // cd1, cd2, cm, mu [-], restitution [-]
+// The parameters a design varies, in this order everywhere (files, CSV, grids): the
+// body's coefficients (debris::body_coefficient_settings(): key, unit, help, range), then
+// the drag factor `cd`, which multiplies cd1 and cd2 together (control 1): the paper's
+// sensitivity parameter "Cd". A member's body gets the coefficients of its set with the
+// factor applied (apply_parameters), so files record cd1 and cd2 as run.
+const Settings<debris::BodyDef>& design_parameters();
+using ParamValues = std::vector<double>;  // one value per design parameter [-]
 
 struct ParameterSet {
-    std::string label;     // "control", "cd1x1.5", "cm/1.5", "grid3", "lhs07", ...
-    ParamValues values{};  // [-]
+    std::string label;   // "control", "cd1x1.5", "cm/1.5", "grid3", "lhs07", ...
+    ParamValues values;  // [-]
     bool is_control = false;
 };
 
-// The paper's control case: Cd1 0.8, Cd2 0.4, Cm 2.0, Fc (mu) 0.4, e 0.5.
+// The control case: the defaults of debris::BodyDef, the paper's Cd1 0.8, Cd2 0.4,
+// Cm 2.0, Fc (mu) 0.4, and restitution 0.5; drag factor 1.
 ParamValues paper_control();
+
+// Sets the design parameters' values on a body.
+void apply_parameters(const ParamValues& values, debris::BodyDef& def);
 
 // Control, then each varied parameter times `factor` and divided by it: 1 + 2 n sets.
 std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::vector<int>& varied, double factor);
-// Every combination of the levels (levels[p] empty: the control value), last parameter
+// Every combination of the levels (levels[p] empty or absent: the control value), last parameter
 // fastest.
-std::vector<ParameterSet> factorial(const ParamValues& control, const std::array<std::vector<double>, 5>& levels);
+std::vector<ParameterSet> factorial(const ParamValues& control, const std::vector<std::vector<double>>& levels);
 // Uniform samples over [lo, hi] per parameter (lo == hi: fixed).
-std::vector<ParameterSet> random_samples(const std::array<std::array<double, 2>, 5>& ranges, int count, std::uint64_t seed);
+using ParamRanges = std::vector<std::array<double, 2>>;
+std::vector<ParameterSet> random_samples(const ParamRanges& ranges, int count, std::uint64_t seed);
 // Latin hypercube: each parameter's range cut into `count` equal strata, each stratum
 // used exactly once, a uniform point inside it.
-std::vector<ParameterSet> latin_hypercube(const std::array<std::array<double, 2>, 5>& ranges, int count, std::uint64_t seed);
+std::vector<ParameterSet> latin_hypercube(const ParamRanges& ranges, int count, std::uint64_t seed);
+
+// How the parameter sets are chosen ([parameters] design = ...).
+enum class Design { control, one_at_a_time, factorial, random, latin_hypercube };
+inline constexpr EnumNames<Design, 7> design_names{"design",
+                                                   {{{Design::control, "control"},
+                                                     {Design::one_at_a_time, "one_at_a_time"},
+                                                     {Design::factorial, "factorial"},
+                                                     {Design::random, "random"},
+                                                     {Design::latin_hypercube, "latin_hypercube"},
+                                                     {Design::one_at_a_time, "one-at-a-time"},
+                                                     {Design::latin_hypercube, "latin-hypercube"}}}};
+constexpr const auto& enum_names(Design) { return design_names; }
 
 // Deterministic random numbers (SplitMix64): same values on every platform and library.
 struct Rng {
@@ -57,11 +77,11 @@ struct Variant {
 Variant parse_variant(const std::string& name);  // throws naming the bad text
 
 struct BodySpec {
-    std::string name;                                    // label ("FD", or the [[body]] name)
-    std::string start;                                   // scene start point, or "" when at = [x, y, heading]
-    double x = 0.0, y = 0.0;                             // [m], from the scene point or `at`
-    double heading_deg = 0.0;                            // long axis from +x, counter-clockwise [degree]
-    debris::BodyDef shape = debris::default_body_def();  // length, width, height, specific gravity
+    std::string name;                                  // label ("FD", or the [[body]] name)
+    std::string start;                                 // scene start point, or "" when at = [x, y, heading]
+    double x = 0.0, y = 0.0;                           // [m], from the scene point or `at`
+    double heading_deg = 0.0;                          // long axis from +x, counter-clockwise [degree]
+    debris::BodyDef def = debris::default_body_def();  // shape and model settings ([[body]], [sweep])
 };
 
 struct PerturbationDef {
@@ -81,9 +101,9 @@ struct SweepSpec {
     std::vector<ParameterSet> params;
     std::string design;  // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
     PerturbationDef perturbation;
-    double output_interval = 1.0;  // trajectory sample spacing [s]
-    double end_time = -1.0;        // [s]; < 0: the earliest last frame of the flows
-    double dt_max = -1.0;          // largest debris step [s]; < 0: the debris default
+    double output_interval = 1.0;                          // trajectory sample spacing [s]
+    double end_time = -1.0;                                // [s]; < 0: the earliest last frame of the flows
+    debris::WorldDef world = debris::default_world_def();  // step and flow replay settings ([sweep])
 };
 
 // Reads and checks a spec. Bodies given by a scene start name are placed from the scene
@@ -93,14 +113,17 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
                           const std::vector<std::string>& flow_override = {});
 
 // One trajectory of the sweep.
-struct Member {
+// Where a member sits in the sweep (shared by Member and the file's MemberRecord).
+struct MemberIndex {
     int id = 0;            // position in the full member list
     int flow = 0;          // index into spec.flows
     int body = 0;          // index into spec.bodies
     int perturbation = 0;  // 0: the exact start; k > 0: the k-th perturbed start
     int variant = 0;       // index into spec.variants
     int param_set = 0;     // index into spec.params
-    debris::BodyDef def;   // the body as run (name = the body's name)
+};
+struct Member : MemberIndex {
+    debris::BodyDef def;  // the body as run (name = the body's name)
 };
 
 // All members, flow outermost, then body, perturbation, variant, parameter set.

@@ -13,7 +13,7 @@
 namespace flotsam::sweep {
 
 struct StatsDef {
-    double yaw_window = 30.0;      // yaw statistics over this long after motion starts [s]
+    double yaw_window = 30.0;      // yaw statistics over this long after the start (and after motion starts) [s]
     double yaw_min_speed = 0.005;  // yaw against the motion only at samples at least this fast [m/s]
     double yaw_bin_width = 10.0;   // histogram bins over [−180, 180] [degree]
     double arrival_time = 300.0;   // region counts at this time [s]
@@ -56,6 +56,18 @@ struct SweepStats {
 
     std::vector<double> yaw_edges;                                 // bin edges [degree]
     std::vector<std::vector<int>> rotation_hist, yaw_motion_hist;  // [group][bin]
+
+    // The paper's Fig. 16, over the first yaw_window seconds of the run (from the first
+    // output time, whether or not the body moves yet): per member the largest rotation
+    // from the initial heading and the direction of movement from the initial location.
+    std::vector<double> max_rotation_from_start, movement_direction;  // [member] [degree]
+    std::vector<std::vector<int>> rotation_from_start_hist;           // [group][bin]
+    struct RotationSummary {
+        int count = 0;                                  // members with a rotation
+        double median = 0, mean = 0, min = 0, max = 0;  // of the largest rotation [degree]
+        double direction_correlation = 0;               // Pearson r with the movement direction [-]
+    };
+    std::vector<RotationSummary> rotation_from_start;  // [group]
 
     std::vector<std::vector<int>> region_count;                        // [group][region]
     std::vector<std::vector<std::vector<int>>> region_count_by_param;  // [group][param][region]

@@ -92,6 +92,37 @@ inline double max_yaw_to_motion(const std::vector<double>& t, const std::vector<
     return best;
 }
 
+// Direction of the straight line from the first sample to the position at time te
+// (linear between samples), from +x (east) counter-clockwise in (−180, 180] [degree]:
+// positive north of east, so north-east is positive and south-east negative, as the
+// paper's Fig. 16c plots it. NaN when that position is less than `min_distance` from the
+// first sample (no direction yet).
+inline double movement_direction(const std::vector<double>& t, const std::vector<double>& x, const std::vector<double>& y,
+                                 double te, double min_distance = motion_threshold);
+
+// Pearson's correlation coefficient of the pairs (a_k, b_k) in which both are defined
+// (not NaN); NaN with fewer than two such pairs or when either side does not vary.
+inline double pearson_correlation(const std::vector<double>& a, const std::vector<double>& b) {
+    double n = 0, sa = 0, sb = 0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        if (!std::isnan(a[k]) && !std::isnan(b[k])) {
+            n += 1;
+            sa += a[k];
+            sb += b[k];
+        }
+    if (n < 2) return std::nan("");
+    const double ma = sa / n, mb = sb / n;
+    double cab = 0, caa = 0, cbb = 0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        if (!std::isnan(a[k]) && !std::isnan(b[k])) {
+            cab += (a[k] - ma) * (b[k] - mb);
+            caa += (a[k] - ma) * (a[k] - ma);
+            cbb += (b[k] - mb) * (b[k] - mb);
+        }
+    if (!(caa > 0) || !(cbb > 0)) return std::nan("");
+    return cab / std::sqrt(caa * cbb);
+}
+
 // Value at time tq of a sampled series (linear; held beyond the ends).
 inline double sample_at(const std::vector<double>& t, const std::vector<double>& f, double tq) {
     if (tq <= t.front()) return f.front();
@@ -99,6 +130,13 @@ inline double sample_at(const std::vector<double>& t, const std::vector<double>&
     const std::size_t k = std::size_t(std::upper_bound(t.begin(), t.end(), tq) - t.begin());
     const double w = (tq - t[k - 1]) / (t[k] - t[k - 1]);
     return f[k - 1] + w * (f[k] - f[k - 1]);
+}
+
+inline double movement_direction(const std::vector<double>& t, const std::vector<double>& x, const std::vector<double>& y,
+                                 double te, double min_distance) {
+    const double dx = sample_at(t, x, te) - x.front(), dy = sample_at(t, y, te) - y.front();
+    if (std::hypot(dx, dy) < min_distance) return std::nan("");
+    return std::atan2(dy, dx) * 180.0 / std::numbers::pi;
 }
 
 // Quantile q of sorted values, linear between order statistics (Hyndman & Fan type 7).

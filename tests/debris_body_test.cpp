@@ -105,8 +105,8 @@ TEST(DebrisBody, FrictionMatchesHandValuesDryAndAtTwoCentimetres) {
     const auto dry = test::uniform_flow(dir + "/dry.nc", fine, 2, 0.0, 0.0, 0.0);
     const auto wet = test::uniform_flow(dir + "/wet.nc", fine, 2, 0.02, 0.0, 0.0);
     for (ContactModel contact : {ContactModel::center, ContactModel::local}) {
-        EXPECT_NEAR(friction_capacity_at_rest(dry, contact), 2.4525, 2.4525e-2) << to_string(contact);
-        EXPECT_NEAR(friction_capacity_at_rest(wet, contact), 0.4905, 0.4905e-2) << to_string(contact);
+        EXPECT_NEAR(friction_capacity_at_rest(dry, contact), 2.4525, 2.4525e-2) << enum_name(contact);
+        EXPECT_NEAR(friction_capacity_at_rest(wet, contact), 0.4905, 0.4905e-2) << enum_name(contact);
         for (const auto& [path, v0, v_end] :
              {std::tuple{dry, 0.5, 0.5 - 3.924 * 0.1}, std::tuple{wet, 0.2, 0.2 - 0.4905 / 1.125 * 0.1}}) {
             World w(path, {});
@@ -115,7 +115,7 @@ TEST(DebrisBody, FrictionMatchesHandValuesDryAndAtTwoCentimetres) {
             w.add_body(b);
             released(w, 0).vx = v0;
             w.advance_to(0.1);
-            EXPECT_NEAR(w.states()[0].vx, v_end, 0.01 * v_end) << to_string(contact) << " from " << v0;
+            EXPECT_NEAR(w.states()[0].vx, v_end, 0.01 * v_end) << enum_name(contact) << " from " << v0;
             EXPECT_EQ(w.states()[0].vy, 0.0);
         }
     }
@@ -238,14 +238,14 @@ TEST(DebrisBody, StaticFrictionHoldsJustBelowTheDragThatEqualsItAndSlidesJustAbo
         weak.add_body(body_at(0.0, 0.0, 0.0, contact));
         released(weak, 0);
         weak.advance_to(5.0);
-        EXPECT_EQ(weak.states()[0].x, 0.0) << to_string(contact);
+        EXPECT_EQ(weak.states()[0].x, 0.0) << enum_name(contact);
         EXPECT_TRUE(weak.states()[0].flags & flag_grounded);
 
         World strong(test::uniform_flow(dir + "/strong.nc", fine, 1, 0.02, 1.01 * U_star, 0.0), {});
         strong.add_body(body_at(0.0, 0.0, 0.0, contact));
         released(strong, 0);
         strong.advance_to(1.0);
-        EXPECT_GT(strong.states()[0].x, 1e-4) << to_string(contact);
+        EXPECT_GT(strong.states()[0].x, 1e-4) << enum_name(contact);
         EXPECT_NEAR(strong.states()[0].y, 0.0, 1e-12);
     }
 }

@@ -89,10 +89,10 @@ TEST(FlowReader, ThinFastFilmBarelyMovesTheVelocity) {
         FlowReader r(path, def);
         r.prepare(0.5);
         const FlowPoint film = r.sample(0.2, 0.1, 0.5);  // between nodes x = 0.15 (deep) and 0.25 (film)
-        EXPECT_NEAR(film.u, (0.5 * 0.1 * 0.5 + 0.5 * 1e-4 * 5.0) / (0.5 * 0.1 + 0.5 * 1e-4), 1e-5) << to_string(interp);
+        EXPECT_NEAR(film.u, (0.5 * 0.1 * 0.5 + 0.5 * 1e-4 * 5.0) / (0.5 * 0.1 + 0.5 * 1e-4), 1e-5) << enum_name(interp);
         const FlowPoint front = r.sample(0.3, 0.3, 0.5);  // between x = 0.25 (wet) and 0.35 (dry)
-        EXPECT_NEAR(front.u, 1.5, 1e-5) << to_string(interp);
-        EXPECT_NEAR(front.v, -0.7, 1e-5) << to_string(interp);
+        EXPECT_NEAR(front.u, 1.5, 1e-5) << enum_name(interp);
+        EXPECT_NEAR(front.v, -0.7, 1e-5) << enum_name(interp);
     }
 }
 
@@ -128,7 +128,7 @@ TEST(FlowReader, HoldsLastFrameAndLoadsFramesOnce) {
         def.time_interpolation = interp;
         FlowReader r(path, def);
         for (double t = 0.0; t < 5.0; t += 0.25) r.prepare(t);
-        EXPECT_EQ(r.frames_loaded(), 6u) << to_string(interp);  // each frame read once while time advances
+        EXPECT_EQ(r.frames_loaded(), 6u) << enum_name(interp);  // each frame read once while time advances
         r.prepare(7.0);
         const FlowPointAccel p = r.sample_accel(0.0, 2.2, 7.0);
         EXPECT_NEAR(p.u, 0.5, 1e-6);  // held

@@ -44,7 +44,7 @@ Drift drift_after(World& w, double t, const std::string& label) {
         const BodyState& s = w.states()[b];
         const double move = std::hypot(s.x - start[b].x, s.y - start[b].y), turn = std::fabs(s.theta - start[b].theta);
         std::printf("%s, body %zu (%s, heading %.0f deg): moved %.2f mm, turned %.3f deg\n", label.c_str(), b,
-                    to_string(w.params()[b].def.contact), start[b].theta / deg, 1e3 * move, turn / deg);
+                    enum_name(w.params()[b].def.contact), start[b].theta / deg, 1e3 * move, turn / deg);
         d.move = std::max(d.move, move);
         d.turn = std::max(d.turn, turn);
     }

@@ -39,7 +39,6 @@ struct SyntheticSweep {
         for (int p = 0; p < param_sets; ++p)
             r.params.push_back({p == 0 ? "control" : "set" + std::to_string(p), paper_control(), p == 0});
         r.output_interval = dt;
-        r.dt_max = 0.01;
         for (int k = 0; dt * k <= t_end + 1e-9; ++k) r.time.push_back(dt * k);
     }
     int add(int body, int variant, int param_set, int flow, const Motion& m) {
@@ -51,9 +50,8 @@ struct SyntheticSweep {
         rec.flow = flow;
         rec.body_name = r.bodies[std::size_t(body)];
         rec.variant_name = r.variants[std::size_t(variant)];
-        rec.contact = variant ? "local" : "center";
-        rec.collision = variant ? "multi" : "single";
-        rec.params = paper_control();
+        rec.def.contact = variant ? debris::ContactModel::local : debris::ContactModel::center;
+        rec.def.collision = variant ? debris::CollisionModel::multi : debris::CollisionModel::single;
         for (double t : r.time) {
             const Sample s = m(t);
             rec.track.x.push_back(s.x);
@@ -64,8 +62,8 @@ struct SyntheticSweep {
             rec.track.omega.push_back(0.0);
             rec.track.status.push_back(3);
         }
-        rec.x0 = rec.track.x[0];
-        rec.y0 = rec.track.y[0];
+        rec.def.x = rec.track.x[0];
+        rec.def.y = rec.track.y[0];
         rec.heading0_deg = rec.track.yaw_deg[0];
         r.members.push_back(rec);
         r.member_count = int(r.members.size());
@@ -170,6 +168,66 @@ TEST(SweepStats, LargestYawInTheFirstThirtySeconds) {
     EXPECT_EQ(s.yaw_motion_hist[0][17], 1);  // −10
 }
 
+// The paper's Fig. 16 counts from the run's start (here t0 = 100 s on the flow's clock),
+// not from motion start. A turns +40° in place over the first 10 s, then drifts
+// south-east: its rotation after motion start is 0°, from the start +40°, direction
+// −45°. B turns to −20° by 20 s heading north-east and to −90° only after the window.
+// C turns +10° and heads east. D turns 0° and never moves (no direction). Rotations
+// (40, −20, 10) against directions (−45, 45, 0) correlate with r = −1 exactly.
+TEST(SweepStats, LargestRotationFromTheStartAndItsCorrelationWithTheDirection) {
+    SyntheticSweep sw(1.0, 60.0);
+    for (double& t : sw.r.time) t += 100.0;
+    auto a = [](double t) {
+        t -= 100.0;
+        const double k = std::max(0.0, t - 10.0);
+        return Sample{0.01 * k, -0.01 * k, std::min(t, 10.0) * 4.0, t > 10 ? 0.01 : 0.0, t > 10 ? -0.01 : 0.0};
+    };
+    auto b = [](double t) {
+        t -= 100.0;
+        return Sample{0.01 * t, 1.0 + 0.01 * t, t <= 30.0 ? -std::min(t, 20.0) : -90.0, 0.01, 0.01};
+    };
+    auto c = [](double t) {
+        t -= 100.0;
+        return Sample{0.01 * t, 2.0, std::min(t, 5.0) * 2.0, 0.01, 0.0};
+    };
+    sw.add(0, 1, 0, 0, a);
+    sw.add(0, 1, 0, 0, b);
+    sw.add(0, 1, 0, 0, c);
+    sw.add(0, 1, 0, 0, line(0.0, 3.0, 0.0, 0.0, 0.0));
+    const SweepStats s = compute_stats(sw.r, scene_with(Grid{10, 10, 0.5, 0.5, 1, 1}));
+    EXPECT_DOUBLE_EQ(s.motion_start[0], 111.0);  // 1.4 cm from the start one second after it leaves
+    EXPECT_DOUBLE_EQ(s.max_rotation[0], 0.0);    // after motion start: it turned before
+    EXPECT_DOUBLE_EQ(s.max_rotation_from_start[0], 40.0);
+    EXPECT_DOUBLE_EQ(s.max_rotation_from_start[1], -20.0);
+    EXPECT_DOUBLE_EQ(s.max_rotation_from_start[2], 10.0);
+    EXPECT_DOUBLE_EQ(s.max_rotation_from_start[3], 0.0);
+    EXPECT_NEAR(s.movement_direction[0], -45.0, 1e-12);  // south-east: negative
+    EXPECT_NEAR(s.movement_direction[1], 45.0, 1e-12);   // north-east: positive
+    EXPECT_NEAR(s.movement_direction[2], 0.0, 1e-12);
+    EXPECT_TRUE(std::isnan(s.movement_direction[3]));
+    const SweepStats::RotationSummary& q = s.rotation_from_start[0];
+    EXPECT_EQ(q.count, 4);
+    EXPECT_DOUBLE_EQ(q.median, 5.0);
+    EXPECT_DOUBLE_EQ(q.mean, 7.5);
+    EXPECT_DOUBLE_EQ(q.min, -20.0);
+    EXPECT_DOUBLE_EQ(q.max, 40.0);
+    EXPECT_NEAR(q.direction_correlation, -1.0, 1e-12);
+    const auto& h = s.rotation_from_start_hist[0];
+    EXPECT_EQ(h[22], 1);  // [40, 50)
+    EXPECT_EQ(h[16], 1);  // [−20, −10)
+    EXPECT_EQ(h[19], 1);  // [10, 20)
+    EXPECT_EQ(h[18], 1);  // [0, 10)
+}
+
+TEST(SweepStats, PearsonCorrelationByHand) {
+    // a = (1, 2, 3, 4), b = (2, 1, 4, 3): deviations (−1.5, −0.5, 0.5, 1.5) and (−0.5, −1.5,
+    // 1.5, 0.5); Σ ab = 0.75 + 0.75 + 0.75 + 0.75 = 3, Σ a² = Σ b² = 5: r = 0.6. The NaN pair
+    // is left out; no spread gives NaN.
+    EXPECT_NEAR(pearson_correlation({1, 2, 3, 4, 7}, {2, 1, 4, 3, std::nan("")}), 0.6, 1e-15);
+    EXPECT_TRUE(std::isnan(pearson_correlation({1, 1, 1}, {1, 2, 3})));
+    EXPECT_TRUE(std::isnan(pearson_correlation({1}, {2})));
+}
+
 // Region counts use the position at 300 s, not the last one.
 TEST(SweepStats, ArrivalCountsPerRegionAtThreeHundredSeconds) {
     SyntheticSweep sw(10.0, 400.0);
@@ -268,7 +326,10 @@ TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
     EXPECT_NEAR(f.get_double(f.var("passage_y_mean"))[0], 0.21, 1e-12);
     EXPECT_EQ(f.get_int(f.var("region_count"))[0], 3);
     EXPECT_EQ(f.shape(f.var("pass_probability")), (std::vector<std::size_t>{1, 20, 30}));
-    for (const char* name : {"sections.csv", "speed_kde.csv", "yaw_histogram.csv", "regions.csv", "distance.csv", "members.csv"})
+    EXPECT_EQ(f.get_int(f.var("max_rotation_from_start_count"))[0], 3);
+    EXPECT_NEAR(f.get_double(f.var("max_rotation_from_start_max"))[0], 0.0, 1e-12);  // constant headings
+    for (const char* name : {"sections.csv", "speed_kde.csv", "yaw_histogram.csv", "rotation_from_start.csv", "regions.csv",
+                             "distance.csv", "members.csv"})
         EXPECT_TRUE(std::filesystem::exists(dir + "/csv/" + name)) << name;
 
     // A shard is refused until merged.

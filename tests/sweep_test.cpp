@@ -31,7 +31,7 @@ std::vector<std::string> two_flows(const std::string& dir) {
 
 std::string small_spec(const std::string& dir, const std::vector<std::string>& flows) {
     return test::write_file(dir, "spec.toml",
-                            "[sweep]\noutput_interval = 0.5\n"
+                            "[sweep]\noutput-interval = 0.5\n"
                             "[flows]\npaths = [\"" +
                                 flows[0] + "\",\n  \"" + flows[1] +
                                 "\"]  # two flows\n"
@@ -39,7 +39,7 @@ std::string small_spec(const std::string& dir, const std::vector<std::string>& f
                                 "[[body]]\nname = \"B\"\nat = [0.40, 0.55, 90]\n"
                                 "[variants]\nnames = [\"CC+SC\", \"LC+MC\"]\n"
                                 "[parameters]\ndesign = \"one_at_a_time\"\nvary = [\"cd1\"]\n"
-                                "[perturbation]\ncount = 1\nposition_std = 0.01\nheading_std = 5\nseed = 3\n");
+                                "[perturbation]\ncount = 1\nposition-std = 0.01\nheading-std = 5\nseed = 3\n");
 }
 
 }  // namespace
@@ -69,7 +69,7 @@ TEST(SweepDesign, OneAtATimeIsThePapersNineSets) {
 }
 
 TEST(SweepDesign, FactorialLastParameterFastestAndFindsTheControl) {
-    std::array<std::vector<double>, 5> levels;
+    std::vector<std::vector<double>> levels(5);
     levels[0] = {0.6, 0.8};
     levels[2] = {1.5, 2.0, 3.0};
     const auto sets = factorial(paper_control(), levels);
@@ -87,7 +87,7 @@ TEST(SweepDesign, FactorialLastParameterFastestAndFindsTheControl) {
 }
 
 TEST(SweepDesign, LatinHypercubeUsesEveryStratumOnceAndIsSeeded) {
-    std::array<std::array<double, 2>, 5> ranges{{{0.5, 1.2}, {0.2, 0.6}, {1.5, 3.0}, {0.2, 0.6}, {0.5, 0.5}}};
+    const ParamRanges ranges{{0.5, 1.2}, {0.2, 0.6}, {1.5, 3.0}, {0.2, 0.6}, {0.5, 0.5}};
     const int n = 20;
     const auto a = latin_hypercube(ranges, n, 7), b = latin_hypercube(ranges, n, 7), c = latin_hypercube(ranges, n, 8);
     ASSERT_EQ(a.size(), std::size_t(n));
@@ -226,6 +226,49 @@ TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
     EXPECT_EQ(enumerate_members(spec).size(), 2u * 2u * 2u * 9u);
 }
 
+// The drag factor cd multiplies cd1 and cd2 together (the paper's "Cd"): the set cdx1.5
+// runs a body with Cd1 = 0.8 × 1.5 = 1.2 and Cd2 = 0.4 × 1.5 = 0.6, all else the control.
+TEST(SweepDesign, DragFactorScalesBothDragCoefficients) {
+    const std::size_t cd = design_parameters().size() - 1;
+    ASSERT_EQ(design_parameters()[cd].key, "cd");
+    const auto sets = one_at_a_time(paper_control(), {int(cd)}, 1.5);
+    ASSERT_EQ(sets.size(), 3u);
+    EXPECT_EQ(sets[1].label, "cdx1.5");
+    EXPECT_EQ(sets[2].label, "cd/1.5");
+    debris::BodyDef up, down;
+    apply_parameters(sets[1].values, up);
+    apply_parameters(sets[2].values, down);
+    EXPECT_DOUBLE_EQ(up.cd1, 1.2);
+    EXPECT_DOUBLE_EQ(up.cd2, 0.6);
+    EXPECT_DOUBLE_EQ(down.cd1, 0.8 / 1.5);
+    EXPECT_DOUBLE_EQ(down.cd2, 0.4 / 1.5);
+    EXPECT_DOUBLE_EQ(up.cm, 2.0);
+    EXPECT_DOUBLE_EQ(up.mu, 0.4);
+}
+
+// The paper's own design: control, then Cd, Cm, Fc × 1.5 and / 1.5 (7 sets).
+TEST(SweepSpec, PaperDesignSpecHasSevenSets) {
+    const auto dir = test::scratch_dir("sweep_example7");
+    const auto flows = two_flows(dir);
+    Scene scene;
+    scene.grid = grid;
+    scene.z.assign(grid.size(), -0.1);
+    scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}};
+    write_scene(dir + "/scene.nc", scene, "test");
+    const SweepSpec spec =
+        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity_7.toml", dir + "/scene.nc", flows);
+    ASSERT_EQ(spec.params.size(), 7u);
+    const std::vector<std::string> labels = {"control", "cdx1.5", "cd/1.5", "cmx1.5", "cm/1.5", "mux1.5", "mu/1.5"};
+    for (std::size_t k = 0; k < 7; ++k) EXPECT_EQ(spec.params[k].label, labels[k]);
+    const auto members = enumerate_members(spec);
+    ASSERT_EQ(members.size(), 2u * 2u * 2u * 7u);
+    EXPECT_DOUBLE_EQ(members[1].def.cd1, 1.2);  // FD, CC+SC, cdx1.5
+    EXPECT_DOUBLE_EQ(members[1].def.cd2, 0.6);
+    EXPECT_DOUBLE_EQ(members[4].def.cm, 2.0 / 1.5);
+    EXPECT_DOUBLE_EQ(members[4].def.cd1, 0.8);
+    EXPECT_DOUBLE_EQ(members[5].def.mu, 0.6);
+}
+
 TEST(SweepSpec, ErrorsNameTheFileLineAndKey) {
     const auto dir = test::scratch_dir("sweep_errors");
     const auto flows = two_flows(dir);
@@ -234,29 +277,24 @@ TEST(SweepSpec, ErrorsNameTheFileLineAndKey) {
         const std::string path = test::write_file(dir, name, body);
         return test::error_of([&] { read_sweep_spec(path); });
     };
-    std::string e = err("a.toml", head + "[[body]]\nat = [0.3, 0.3, 0]\n[parameters]\ndesign = \"one_at_a_time\"\nspeed = 2\n");
-    EXPECT_NE(e.find("a.toml"), std::string::npos) << e;
-    EXPECT_NE(e.find("line 7"), std::string::npos) << e;
-    EXPECT_NE(e.find("'speed'"), std::string::npos) << e;
-    e = err("b.toml", head + "[[body]]\nat = [0.3, 0.3, 0]\n[variants]\nnames = [\"LC+MC\", \"XC+SC\"]\n");
-    EXPECT_NE(e.find("b.toml: line 6"), std::string::npos) << e;
-    EXPECT_NE(e.find("names"), std::string::npos) << e;
-    EXPECT_NE(e.find("XC+SC"), std::string::npos) << e;
-    e = err("c.toml", head + "[[body]]\nstart = \"FD\"\n");
-    EXPECT_NE(e.find("c.toml: line 4"), std::string::npos) << e;
-    EXPECT_NE(e.find("needs a scene"), std::string::npos) << e;
-    e = err("d.toml", head + "[[body]]\nat = [0.3, 0.3, 0]\n[parameters]\ndesign = \"random\"\nsamples = 4\ncd1 = [1.2, 0.5]\n");
-    EXPECT_NE(e.find("d.toml: line 8"), std::string::npos) << e;
-    EXPECT_NE(e.find("'cd1'"), std::string::npos) << e;
-    e = err("e.toml", "[flows]\npaths = [\"" + dir + "/missing.nc\"]\n[[body]]\nat = [0.3, 0.3, 0]\n");
-    EXPECT_NE(e.find("e.toml: line 2"), std::string::npos) << e;
-    EXPECT_NE(e.find("missing.nc"), std::string::npos) << e;
-    e = err("f.toml", head + "[[body]]\nat = [0.3, 0.3, 0]\n[parameters]\ndesign = \"one_at_a_time\"\nmu = -0.4\n");
-    EXPECT_NE(e.find("f.toml: line 7"), std::string::npos) << e;
-    EXPECT_NE(e.find("mu"), std::string::npos) << e;
-    e = err("g.toml", head + "[[body]]\nat = [0.3, 0.3, 0]\n[bodies]\n");
-    EXPECT_NE(e.find("g.toml: line 5"), std::string::npos) << e;
-    EXPECT_NE(e.find("[bodies]"), std::string::npos) << e;
+    const std::string at = "[[body]]\nat = [0.3, 0.3, 0]\n";
+    struct Case {
+        std::string file, text;
+        std::vector<std::string> says;  // parts of the message
+    };
+    const std::vector<Case> cases = {
+        {"a.toml", head + at + "[parameters]\ndesign = \"one_at_a_time\"\nspeed = 2\n", {"a.toml: line 7", "'speed'"}},
+        {"b.toml", head + at + "[variants]\nnames = [\"LC+MC\", \"XC+SC\"]\n", {"b.toml: line 6", "names", "XC+SC"}},
+        {"c.toml", head + "[[body]]\nstart = \"FD\"\n", {"c.toml: line 4", "needs a scene"}},
+        {"d.toml", head + at + "[parameters]\ndesign = \"random\"\nsamples = 4\ncd1 = [1.2, 0.5]\n", {"d.toml: line 8", "'cd1'"}},
+        {"e.toml", "[flows]\npaths = [\"" + dir + "/missing.nc\"]\n" + at, {"e.toml: line 2", "missing.nc"}},
+        {"f.toml", head + at + "[parameters]\ndesign = \"one_at_a_time\"\nmu = -0.4\n", {"f.toml: line 7", "mu"}},
+        {"g.toml", head + at + "[bodies]\n", {"g.toml: line 5", "[bodies]"}},
+    };
+    for (const Case& c : cases) {
+        const std::string e = err(c.file, c.text);
+        for (const std::string& part : c.says) EXPECT_NE(e.find(part), std::string::npos) << part << " not in: " << e;
+    }
 }
 
 // Every member of a flow advances in one World: the frames read are those of one

@@ -1,0 +1,71 @@
+// Settings (common/settings.hpp) recorded in NetCDF files: one variable per setting of a
+// table, over the file's items (trajectories, parameter sets), named Setting::variable()
+// with the setting's unit and its help as long_name. Numbers are doubles, switches
+// bytes (1: on), whole numbers ints, choices strings (the value's name).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/cf.hpp"
+#include "common/columns.hpp"
+#include "common/settings.hpp"
+
+namespace flotsam {
+
+template <class Def>
+std::vector<int> def_setting_vars(nc::File& f, const Settings<Def>& table, const std::vector<int>& dims,
+                                  const std::string& prefix = "") {
+    std::vector<int> ids;
+    for (const auto& s : table) {
+        const nc_type type = s.is_switch() ? NC_BYTE : s.is_choice() ? NC_STRING : s.is_whole() ? NC_INT : NC_DOUBLE;
+        ids.push_back(
+            cf::def_var(f, {.name = prefix + s.variable(), .type = type, .dims = dims, .units = s.unit, .long_name = s.help}));
+    }
+    return ids;
+}
+
+// Writes the settings of each row's definition, def_of(row), into the variables of
+// def_setting_vars.
+template <class Def, class Rows, class DefOf>
+void put_setting_vars(nc::File& f, const std::vector<int>& ids, const Settings<Def>& table, const Rows& rows, DefOf def_of) {
+    for (std::size_t p = 0; p < table.size(); ++p) {
+        const Setting<Def>& s = table[p];
+        if (s.is_switch())
+            f.put(ids[p], column<std::int8_t>(rows, [&](const auto& r) { return s.flag(def_of(r)) ? 1 : 0; }));
+        else if (s.is_choice())
+            f.put(ids[p], column<std::string>(rows, [&](const auto& r) { return s.choice().get(def_of(r)); }));
+        else if (s.is_whole())
+            f.put(ids[p], column<int>(rows, [&](const auto& r) { return s.number(def_of(r)); }));
+        else
+            f.put(ids[p], column<double>(rows, [&](const auto& r) { return s.number(def_of(r)); }));
+    }
+}
+
+// Reads the variables of def_setting_vars back into the definitions defs[k] (item k);
+// `prefix` as when written. A missing variable is an error naming it, unless not
+// `required` (then defs keep their values).
+template <class Def>
+void get_setting_vars(const nc::File& f, const Settings<Def>& table, std::vector<Def>& defs, const std::string& prefix = "",
+                      bool required = true) {
+    for (const auto& s : table) {
+        if (!required && !f.has_var(prefix + s.variable())) continue;
+        const int id = f.var(prefix + s.variable());
+        if (s.is_choice()) {
+            const std::vector<std::string> names = f.get_strings(id);
+            for (std::size_t k = 0; k < defs.size() && k < names.size(); ++k)
+                s.choice().set(defs[k], names[k], f.path() + ": variable '" + prefix + s.variable() + "'");
+        } else if (s.is_switch()) {
+            const std::vector<int> v = f.get_int(id);
+            for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) s.set_flag(defs[k], v[k] != 0);
+        } else if (s.is_whole()) {
+            const std::vector<int> v = f.get_int(id);
+            for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) s.set_number(defs[k], v[k]);
+        } else {
+            const std::vector<double> v = f.get_double(id);
+            for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) s.set_number(defs[k], v[k]);
+        }
+    }
+}
+
+}  // namespace flotsam
