@@ -1,5 +1,8 @@
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,6 +39,18 @@ const std::vector<DroppedOption>& hydro_run_control_options() {
     return options;
 }
 
+CLI::Validator in_range(const Range& r) {
+    return CLI::Validator(
+        [r](std::string& text) -> std::string {
+            const char* b = text.c_str();
+            char* e = nullptr;
+            const double v = std::strtod(b, &e);
+            if (e == b || *e != '\0') return "'" + text + "' is not a number";
+            return range_problem(v, r);
+        },
+        describe(r), "range");
+}
+
 void add_config_option(CLI::App* sub) {
     // Read by expand_config_files() before parsing: CLI11 2.1 only reads config files
     // for the top-level app, so a subcommand's file is turned into arguments instead.
@@ -45,6 +60,72 @@ void add_config_option(CLI::App* sub) {
 }
 
 namespace {
+
+// Every subcommand name under `app` ("hydro", "scene", "generate", ...).
+void command_names(const CLI::App* app, std::set<std::string>& out) {
+    for (const CLI::App* sub : app->get_subcommands([](const CLI::App*) { return true; })) {
+        out.insert(sub->get_name());
+        command_names(sub, out);
+    }
+}
+
+// Runs the option's own checks (in_range and the like) on one value from a settings file.
+void check_setting(CLI::Option* opt, const std::string& path, const std::string& key, const std::string& value) {
+    std::vector<std::string> parts;
+    const char delimiter = opt->get_delimiter();
+    if (delimiter != '\0') {
+        std::string part;
+        for (char c : value) {
+            if (c == delimiter) {
+                parts.push_back(part);
+                part.clear();
+            } else {
+                part += c;
+            }
+        }
+        parts.push_back(part);
+    } else {
+        parts.push_back(value);
+    }
+    for (int k = 0;; ++k) {
+        CLI::Validator* check = nullptr;
+        try {
+            check = opt->get_validator(k);
+        } catch (const CLI::OptionNotFound&) {
+            return;
+        }
+        for (std::string p : parts) {
+            const std::string problem = (*check)(p);
+            if (!problem.empty()) fail(path, "key '" + key + "'", problem);
+        }
+    }
+}
+
+// CLI11 merges a key given twice into an array; a settings file that says a thing twice
+// is a mistake, so it is named before CLI11 reads the file.
+void reject_repeated_keys(const std::string& path) {
+    std::ifstream in(path);
+    std::map<std::string, int> first_line;
+    std::string line, section;
+    for (int n = 1; std::getline(in, line); ++n) {
+        const auto a = line.find_first_not_of(" \t");
+        if (a == std::string::npos || line[a] == '#') continue;
+        if (line[a] == '[') {
+            section = line.substr(a, line.find(']', a) == std::string::npos ? std::string::npos : line.find(']', a) - a + 1);
+            continue;
+        }
+        const auto eq = line.find('=', a);
+        if (eq == std::string::npos) continue;
+        std::string key = line.substr(a, eq - a);
+        while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.pop_back();
+        if (key.empty() || key.find_first_of("\"'[") != std::string::npos) continue;
+        const auto [it, fresh] = first_line.emplace(section + " " + key, n);
+        if (!fresh)
+            fail(path, "line " + std::to_string(n),
+                 "key '" + key + "' given twice" + (section.empty() ? std::string() : " in " + section) + " (first at line " +
+                     std::to_string(it->second) + ")");
+    }
+}
 
 bool on_command_line(const std::vector<std::string>& args, std::size_t from, const std::string& name) {
     for (std::size_t k = from; k < args.size(); ++k)
@@ -86,6 +167,7 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
     }
     if (path.empty()) return args;
     if (!std::ifstream(path)) fail(path, "", "cannot open the settings file");
+    reject_repeated_keys(path);
     std::vector<CLI::ConfigItem> items;
     try {
         items = CLI::ConfigTOML().from_file(path);
@@ -94,8 +176,26 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
     }
     std::vector<std::string> out(args.begin(), args.begin() + std::ptrdiff_t(first_option));
     std::vector<std::string> from_file;
+    std::set<std::string> commands, seen;
+    command_names(&app, commands);
+    const std::string command = [&] {
+        std::string c;
+        for (const auto& s : chain) c += (c.empty() ? "" : " ") + s;
+        return c;
+    }();
     for (const auto& item : items) {
         if (item.name == "++" || item.name == "--") continue;  // section markers
+        std::string section;
+        for (const auto& p : item.parents) section += (section.empty() ? "" : ".") + p;
+        // A section must name a command: [hydor] is a typo, not another command's settings.
+        for (const auto& p : item.parents)
+            if (!commands.count(p)) {
+                std::string known;
+                for (const auto& c : commands) known += (known.empty() ? "" : ", ") + c;
+                fail(path, "section [" + section + "]", "'" + p + "' is not a flotsam command (sections: " + known + ")");
+            }
+        const std::string key = section.empty() ? item.name : section + "." + item.name;
+        if (!seen.insert(key).second) fail(path, "key '" + key + "'", "given twice");
         // Keys may sit at the top level or under a section named after the command
         // ([hydro], or [scene.generate] / [generate]).
         bool ours = item.parents.empty();
@@ -103,14 +203,13 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
             ours = item.parents == chain || (item.parents.size() == 1 && item.parents[0] == chain.back());
             if (!ours) continue;  // a section for another command: fine in a shared file
         }
-        const CLI::Option* opt = sub->get_option_no_throw("--" + item.name);
+        CLI::Option* opt = sub->get_option_no_throw("--" + item.name);
         if (!opt || item.name == "config" || item.name == "help")
-            fail(
-                path, "key '" + item.name + "'", "is not a setting of 'flotsam " + [&] {
-                    std::string c;
-                    for (const auto& s : chain) c += (c.empty() ? "" : " ") + s;
-                    return c;
-                }() + "' (see --help)");
+            fail(path, "key '" + item.name + "'", "is not a setting of 'flotsam " + command + "' (see --help)");
+        if (item.inputs.size() > 1 && opt->get_items_expected_max() == 1)
+            fail(path, "key '" + item.name + "'",
+                 "takes one value, the file gives an array of " + std::to_string(item.inputs.size()));
+        for (const auto& v : item.inputs) check_setting(opt, path, item.name, v);
         if (on_command_line(rest, 0, item.name)) continue;  // the command line wins
         if (opt->get_type_size() == 0) {                    // a flag
             const std::string v = item.inputs.empty() ? "true" : item.inputs.front();

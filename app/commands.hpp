@@ -6,7 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "common/checks.hpp"
+
 namespace flotsam {
+
+// A CLI11 check that an option's value is a finite number in `r` (common/checks.hpp):
+// "--cfl: nan is not a finite number (allowed: (0, 1])". Values from a settings file go
+// through the same check, with the file and key named (expand_config_files).
+CLI::Validator in_range(const Range& r);
 
 // An option left out of a recorded command line: its name without "--", and whether it
 // takes a value.
@@ -31,7 +38,9 @@ void add_config_option(CLI::App* sub);
 
 // The arguments (without argv[0]) with a subcommand's --config FILE replaced by the
 // settings it holds; options given on the command line win over the file. Throws
-// flotsam::Error naming the file and key for an unknown setting.
+// flotsam::Error naming the file and key for an unknown setting, a section that is no
+// command ([hydor]), a key given twice, an array for a one-value setting, or a value
+// that fails the option's check.
 std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** argv);
 
 void register_hydro_commands(CLI::App& app, const std::string& command_line);     // app/hydro_cli.cpp

@@ -9,7 +9,9 @@
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/output_lock.hpp"
 #include "common/progress.hpp"
+#include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 #include "formats/scene.hpp"
@@ -44,8 +46,9 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
             std::size_t used = 0;
             v.push_back(std::stod(part, &used));
             if (used != part.size()) throw std::invalid_argument(part);
+            if (!std::isfinite(v.back())) throw std::invalid_argument(part);
         } catch (const std::exception&) {
-            fail("--at", text, "expected x,y,heading_deg (numbers)");
+            fail("--at", text, "expected x,y,heading_deg (finite numbers)");
         }
     }
     if (v.size() != 3) fail("--at", text, "expected x,y,heading_deg (three numbers)");
@@ -63,7 +66,7 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     base.collision = debris::parse_collision_model(o.collision);
     base.added_mass = debris::parse_added_mass(o.added_mass);
     base.axis_shift = !o.no_axis_shift;
-    if (!(o.output_interval > 0)) fail("--output-interval", std::to_string(o.output_interval), "must be positive");
+    const OutputGuard guard({{"--out", o.out}}, {{"--flow", o.flow}, {"--scene", o.scene}});
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
 
     std::unique_ptr<Scene> scene;
@@ -98,16 +101,21 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     std::vector<std::uint8_t> building;
     {
         const debris::FlowReader probe(o.flow, wdef.flow);  // only for its grid
-        if (scene) building = debris::buildings_on_grid(*scene, probe.grid());
+        if (scene) {
+            debris::check_flow_matches_scene(probe, *scene);
+            building = debris::buildings_on_grid(*scene, probe.grid());
+        }
+        for (const auto& b : bodies) debris::check_body_start(b, probe, scene.get());
     }
     debris::World world(o.flow, std::move(building), wdef);
     for (const auto& b : bodies) {
-        if (!world.flow().grid().contains(b.x, b.y)) fail("body '" + b.name + "'", "position", "outside the flow grid");
         world.add_body(b);
     }
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
+    check_allocation("--output-interval", number_text(o.output_interval) + " s", (t_end - t0) / o.output_interval + 2,
+                     7.0 * sizeof(double) * double(bodies.size()), "trajectory samples");
 
     debris::TrajectorySeries series;
     debris::record(world, series);
@@ -146,35 +154,64 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
     sub->add_option("--out", opts->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
-    sub->add_option("--cd1", opts->body.cd1, "drag coefficient, flow toward a face")->capture_default_str();
-    sub->add_option("--cd2", opts->body.cd2, "drag coefficient, flow leaving a face")->capture_default_str();
-    sub->add_option("--cm", opts->body.cm, "inertia coefficient Cm = 1 + Ca")->capture_default_str();
-    sub->add_option("--mu", opts->body.mu, "friction coefficient with the ground")->capture_default_str();
-    sub->add_option("--restitution", opts->body.restitution, "coefficient of restitution against obstacles")->capture_default_str();
+    sub->add_option("--cd1", opts->body.cd1, "drag coefficient, flow toward a face")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("cd1")));
+    sub->add_option("--cd2", opts->body.cd2, "drag coefficient, flow leaving a face")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("cd2")));
+    sub->add_option("--cm", opts->body.cm, "inertia coefficient Cm = 1 + Ca")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("cm")));
+    sub->add_option("--mu", opts->body.mu, "friction coefficient with the ground")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("mu")));
+    sub->add_option("--restitution", opts->body.restitution, "coefficient of restitution against obstacles")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("restitution")));
     sub->add_option("--contact", opts->contact, "friction model: center (CC) or local (LC)")->capture_default_str();
     sub->add_option("--collision", opts->collision, "collision model: single (SC) or multi (MC)")->capture_default_str();
     sub->add_option("--added-mass", opts->added_mass, "implicit (stable) or explicit (for the stability study only)")
         ->capture_default_str();
     sub->add_flag("--no-axis-shift", opts->no_axis_shift, "local contact without the rotation about the contact centroid");
-    sub->add_option("--length", opts->body.length, "body length [m]")->capture_default_str();
-    sub->add_option("--width", opts->body.width, "body width [m]")->capture_default_str();
-    sub->add_option("--height", opts->body.height, "body height [m]")->capture_default_str();
-    sub->add_option("--specific-gravity", opts->body.specific_gravity, "body specific gravity")->capture_default_str();
-    sub->add_option("--samples-per-face", opts->body.samples_per_face, "drag sample points per side face")->capture_default_str();
+    sub->add_option("--length", opts->body.length, "body length [m]")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("length")));
+    sub->add_option("--width", opts->body.width, "body width [m]")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("width")));
+    sub->add_option("--height", opts->body.height, "body height [m]")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("height")));
+    sub->add_option("--specific-gravity", opts->body.specific_gravity, "body specific gravity")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("specific_gravity")));
+    sub->add_option("--samples-per-face", opts->body.samples_per_face, "drag sample points per side face")
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("samples_per_face")));
     sub->add_option("--step-tolerance", opts->body.step_tolerance, "ground above the bottom by more than this x draft blocks")
-        ->capture_default_str();
-    sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")->capture_default_str();
-    sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");
-    sub->add_option("--dt-max", opts->dt_max, "largest time step [s]")->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(debris::body_parameter_range("step_tolerance")));
+    sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
+    sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)")
+        ->check(in_range(Range::non_negative("s")));
+    sub->add_option("--dt-max", opts->dt_max, "largest time step [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     sub->add_option("--vertex-step-fraction", opts->vertex_step_fraction,
                     "largest corner displacement per step, in grid cells (no tunnelling at the default)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::positive().up_to(10.0)));
     sub->add_option("--integrator", opts->integrator, "fluid-force stage: euler (semi-implicit) or heun (predictor-corrector)")
         ->capture_default_str();
     sub->add_option("--time-interpolation", opts->time_interpolation,
                     "between stored frames: linear or cubic (Catmull-Rom, guarded)")
         ->capture_default_str();
-    sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
+    sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")
+        ->capture_default_str()
+        ->check(in_range(Range::count(0, 4096)));
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
     sub->callback([opts, command_line] { run_debris(*opts, command_line); });
 }

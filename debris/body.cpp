@@ -1,6 +1,8 @@
 #include "debris/body.hpp"
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "common/error.hpp"
 
@@ -28,21 +30,41 @@ AddedMass parse_added_mass(const std::string& s) {
 
 BodyDef default_body_def() { return BodyDef{}; }
 
-BodyParams make_body_params(const BodyDef& def, double water_density) {
-    auto positive = [&](double v, const char* what) {
-        if (!(v > 0.0) || !std::isfinite(v)) fail("body '" + def.name + "'", what, "must be positive, got " + std::to_string(v));
+const Range& body_parameter_range(const std::string& name) {
+    static const std::vector<std::pair<std::string, Range>> table = {
+        {"length", Range::positive("m").up_to(1e4)},
+        {"width", Range::positive("m").up_to(1e4)},
+        {"height", Range::positive("m").up_to(1e4)},
+        {"specific_gravity", Range::positive().below(1.0)},  // the model floats the body
+        {"cd1", Range::closed(0.0, 100.0)},
+        {"cd2", Range::closed(0.0, 100.0)},
+        {"cm", Range::closed(1.0, 100.0)},  // Cm = 1 + C_a
+        {"mu", Range::closed(0.0, 10.0)},
+        {"restitution", Range::closed(0.0, 1.0)},
+        {"samples_per_face", Range::count(1, 16)},
+        {"step_tolerance", Range::closed(0.0, 10.0)},
     };
-    positive(def.length, "length");
-    positive(def.width, "width");
-    positive(def.height, "height");
-    positive(def.specific_gravity, "specific gravity");
-    if (def.specific_gravity >= 1.0)
-        fail("body '" + def.name + "'", "specific gravity", "must be below 1 (the model floats the body)");
-    if (def.cd1 < 0 || def.cd2 < 0) fail("body '" + def.name + "'", "drag coefficients", "must not be negative");
-    if (def.cm < 1.0) fail("body '" + def.name + "'", "cm", "must be at least 1 (Cm = 1 + C_a)");
-    if (def.mu < 0) fail("body '" + def.name + "'", "mu", "must not be negative");
-    if (def.restitution < 0 || def.restitution > 1) fail("body '" + def.name + "'", "restitution", "must be in [0, 1]");
-    if (def.samples_per_face < 1 || def.samples_per_face > 16) fail("body '" + def.name + "'", "samples per face", "must be 1..16");
+    for (const auto& [n, r] : table)
+        if (n == name) return r;
+    fail("", "body parameter '" + name + "'", "unknown");
+}
+
+BodyParams make_body_params(const BodyDef& def, double water_density) {
+    const std::string body = "body '" + def.name + "'";
+    const std::pair<const char*, double> values[] = {{"length", def.length},
+                                                     {"width", def.width},
+                                                     {"height", def.height},
+                                                     {"specific_gravity", def.specific_gravity},
+                                                     {"cd1", def.cd1},
+                                                     {"cd2", def.cd2},
+                                                     {"cm", def.cm},
+                                                     {"mu", def.mu},
+                                                     {"restitution", def.restitution},
+                                                     {"samples_per_face", double(def.samples_per_face)},
+                                                     {"step_tolerance", def.step_tolerance}};
+    for (const auto& [name, value] : values) check_range(body + ": " + name, value, body_parameter_range(name));
+    for (const auto& [name, value] : {std::pair<const char*, double>{"x", def.x}, {"y", def.y}, {"heading", def.heading}})
+        check_range(body + ": " + name, value, Range::any());
     BodyParams p;
     p.def = def;
     p.plan_area = def.length * def.width;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "common/checks.hpp"
 #include "formats/trajectory_file.hpp"
 
 namespace flotsam::debris {
@@ -47,6 +48,12 @@ struct BodyDef {
     double step_tolerance = 0.2;  // ground higher than the bottom by more than this × draft blocks [-]
 };
 BodyDef default_body_def();  // the paper's control case, LC + MC
+
+// The allowed range of a body parameter, by the name that options and sweep-spec keys
+// use: "length", "width", "height", "specific_gravity", "cd1", "cd2", "cm", "mu",
+// "restitution", "samples_per_face", "step_tolerance". One table for make_body_params,
+// the command line and the sweep spec (common/checks.hpp). Throws for an unknown name.
+const Range& body_parameter_range(const std::string& name);
 
 // Derived once from a BodyDef.
 struct BodyParams {

@@ -7,12 +7,15 @@
 #include <filesystem>
 
 #include "common/atomic_file.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
+#include "common/output_lock.hpp"
 #include "common/progress.hpp"
 #include "common/sha256.hpp"
 #include "common/version.hpp"
 #include "hydro/restart_key.hpp"
+#include "hydro/state_checks.hpp"
 
 namespace flotsam::hydro {
 
@@ -41,6 +44,13 @@ Window make_window(const Grid& g, const std::optional<std::array<double, 4>>& w)
     } else {
         const auto& b = *w;
         if (!(b[0] < b[1] && b[2] < b[3])) fail("", "--output-window", "needs x_min < x_max and y_min < y_max");
+        // At least two cells each way inside the grid (a replayed flow interpolates).
+        if (!(b[0] < g.x(g.nx - 2) && b[1] > g.x(1) && b[2] < g.y(g.ny - 2) && b[3] > g.y(1)))
+            fail("", "--output-window",
+                 "x " + number_text(b[0]) + " to " + number_text(b[1]) + ", y " + number_text(b[2]) + " to " + number_text(b[3]) +
+                     " m does not cover two cells of the scene's grid (x " + number_text(g.x_min_edge()) + " to " +
+                     number_text(g.x_max_edge()) + ", y " + number_text(g.y_min_edge()) + " to " + number_text(g.y_max_edge()) +
+                     " m)");
         out.i0 = g.cell_i(b[0]);
         out.i1 = g.cell_i(b[1]);
         out.j0 = g.cell_j(b[2]);
@@ -51,7 +61,9 @@ Window make_window(const Grid& g, const std::optional<std::array<double, 4>>& w)
 }
 
 std::vector<double> frame_times(double duration, double interval) {
-    if (!(interval > 0.0)) fail("", "--output-interval", "must be positive");
+    check_range("--output-interval", interval, Range::positive("s"));
+    check_allocation("--output-interval", number_text(interval) + " s over " + number_text(duration) + " s",
+                     duration / interval + 2, sizeof(double), "frame times");
     std::vector<double> t;
     const long n = long(std::floor(duration / interval + 1e-9));
     for (long k = 0; k <= n; ++k) t.push_back(double(k) * interval);
@@ -80,6 +92,11 @@ public:
             }
             cells_.push_back({g.cell_i(p.x), g.cell_j(p.y)});
         }
+        check_range("--gauge-interval", interval, Range::positive("s"));
+        if (!gauges.empty())
+            check_allocation("--gauge-interval", number_text(interval) + " s over " + number_text(duration) + " s",
+                             (duration / interval + 1) * double(gauges.size()), 4 * sizeof(float) + sizeof(double),
+                             "gauge samples");
         samples_ = gauges.empty() ? 0 : std::size_t(std::floor(duration / interval + 1e-9)) + 1;
     }
     std::size_t samples() const { return samples_; }
@@ -375,6 +392,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         fd.attributes["history"] = run.command_line;
         fd.attributes["flotsam_config"] = run.config_text;
         fd.attributes["scene_file"] = run.scene_file;
+        fd.attributes["scene_sha256"] = sha256_file(run.scene_file);  // debris replays check it (debris/scene_match.hpp)
         fd.attributes["scene_title"] = scene.title;
         fd.attributes["realisation"] = std::to_string(run.realisation);
         fd.attributes["boundary_file"] = boundary_files(solver_def);
@@ -402,6 +420,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         const double t0 = solver.time();
         const double target = times[state.next_frame];
         double dt = solver.stable_dt();
+        check_step(solver, scene.grid, run.out_file, t0, dt, state.volume_start);
         // A step that would stop within a millionth of itself short of the frame goes to
         // it (a fixed step that divides the interval lands there despite round-off in t).
         const bool reaches = t0 + dt >= target - 1e-6 * dt;
@@ -415,15 +434,22 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         before = std::move(after);
         accumulate(sum, solver, win, t1, run.arrival_depth);
         if (reaches) {
-            write_frame(*writer, state.next_frame, solver, win);
+            check_state(solver, scene.grid, run.out_file, t1, state.volume_start);  // never write NaN
+            try {
+                write_frame(*writer, state.next_frame, solver, win);
+                gauges.flush(*writer);
+                writer->sync();  // a full disk shows here, at this frame, not at the end
+            } catch (const Error& e) {
+                throw Error(std::string(e.what()) + "; while writing frame " + std::to_string(state.next_frame) + " (t = " +
+                            number_text(t1) + " s)");
+            }
             ++state.next_frame;
-            gauges.flush(*writer);
-            writer->sync();
         }
         // Checkpoints and stops fall on stored frames, and every frame ends with a sync:
         // the file then has the same bytes (HDF5's layout included) whether the run was
         // checkpointed, stopped and restarted, or never interrupted.
         if (reaches && (t1 >= next_checkpoint - 1e-12 || (run.stop_after >= 0.0 && t1 >= run.stop_after))) {
+            check_state(solver, scene.grid, run.out_file, t1, state.volume_start);
             gauges.flush(*writer);
             writer->sync();
             state.time = t1;
@@ -473,6 +499,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
 
 RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");
+    const OutputLock lock(run.out_file);  // one writer per output: a second run stops here
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
     // Boundary series must cover the whole run before any work starts.

@@ -5,8 +5,10 @@
 #include <memory>
 #include <numbers>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 #include "formats/scene.hpp"
@@ -29,6 +31,10 @@ std::vector<double> sweep_output_times(const SweepSpec& spec) {
     }
     const double t_end = spec.end_time > 0 ? spec.end_time : last;
     if (t_end < t0) fail(spec.path, "end_time", "before the flows' first frame");
+    // Sized before it is built: the trajectories hold 7 series of this length per member.
+    check_allocation("output_interval", number_text(spec.output_interval) + " s", (t_end - t0) / spec.output_interval + 2,
+                     7.0 * sizeof(double) * double(std::max<std::size_t>(1, enumerate_members(spec).size())),
+                     "output times (for every member)", spec.path);
     // t0 + k Δ from k (no accumulated round-off), the last one at t_end.
     std::vector<double> times{t0};
     for (long k = 1; times.back() < t_end; ++k) times.push_back(std::min(t0 + double(k) * spec.output_interval, t_end));
@@ -71,12 +77,12 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         std::vector<std::uint8_t> building;
         if (scene) {
             const debris::FlowReader probe(path, wdef.flow);  // only for its grid
+            debris::check_flow_matches_scene(probe, *scene);
             building = debris::buildings_on_grid(*scene, probe.grid());
         }
         debris::World world(path, std::move(building), wdef);
         for (const Member* m : on_flow) {
-            if (!world.flow().grid().contains(m->def.x, m->def.y))
-                fail(spec.path, "body '" + m->def.name + "'", "start outside the grid of flow " + path);
+            debris::check_body_start(m->def, world.flow(), scene.get());
             world.add_body(m->def);
         }
         debris::TrajectorySeries series;

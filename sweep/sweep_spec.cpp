@@ -7,6 +7,7 @@
 #include <memory>
 #include <numbers>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/sha256.hpp"
 #include "common/toml_lite.hpp"
@@ -135,11 +136,16 @@ bool has(const TomlTable& t, const std::string& key) { return t.values.count(key
     fail(toml_where(doc, t, key), (t.name.empty() ? "" : "[" + t.name + "] ") + "key '" + key + "'", problem);
 }
 
-double positive(const TomlDoc& doc, const TomlTable& t, const std::string& key) {
+// A number of the spec checked against its range (common/checks.hpp), the error naming
+// file, line and key.
+double in_range(const TomlDoc& doc, const TomlTable& t, const std::string& key, const Range& range) {
     const double v = toml_number(doc, t, key);
-    if (!(v > 0)) bad(doc, t, key, "must be positive");
+    const std::string problem = range_problem(v, range);
+    if (!problem.empty()) bad(doc, t, key, problem);
     return v;
 }
+
+double positive(const TomlDoc& doc, const TomlTable& t, const std::string& key) { return in_range(doc, t, key, Range::positive()); }
 
 int count_of(const TomlDoc& doc, const TomlTable& t, const std::string& key, int min) {
     const double v = toml_number(doc, t, key);
@@ -249,14 +255,9 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
     // The body model rejects impossible values; check here to name the spec and key.
     for (const auto& s : spec.params)
         for (std::size_t p = 0; p < 5; ++p) {
-            const double v = s.values[p];
-            const bool ok = p == 4 ? (v >= 0 && v <= 1) : (p == 3 ? v >= 0 : v > 0);
-            if (!ok)
-                bad(doc, *t, parameter_names[p],
-                    "parameter set '" + s.label + "' gets " + parameter_names[p] + " = " + fmt(v) +
-                        (p == 4   ? " (restitution must lie in [0, 1])"
-                         : p == 3 ? " (must be >= 0)"
-                                  : " (must be positive)"));
+            const std::string problem = range_problem(s.values[p], debris::body_parameter_range(parameter_names[p]));
+            if (!problem.empty())
+                bad(doc, *t, parameter_names[p], "parameter set '" + s.label + "' gets " + parameter_names[p] + " = " + problem);
         }
 }
 
@@ -328,10 +329,11 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
         for (const auto& other : spec.bodies)
             if (other.name == b.name)
                 bad(doc, t, has(t, "name") ? "name" : "start", "body name '" + b.name + "' used twice (set name = \"...\")");
-        if (has(t, "length")) b.shape.length = positive(doc, t, "length");
-        if (has(t, "width")) b.shape.width = positive(doc, t, "width");
-        if (has(t, "height")) b.shape.height = positive(doc, t, "height");
-        if (has(t, "specific_gravity")) b.shape.specific_gravity = positive(doc, t, "specific_gravity");
+        if (has(t, "length")) b.shape.length = in_range(doc, t, "length", debris::body_parameter_range("length"));
+        if (has(t, "width")) b.shape.width = in_range(doc, t, "width", debris::body_parameter_range("width"));
+        if (has(t, "height")) b.shape.height = in_range(doc, t, "height", debris::body_parameter_range("height"));
+        if (has(t, "specific_gravity"))
+            b.shape.specific_gravity = in_range(doc, t, "specific_gravity", debris::body_parameter_range("specific_gravity"));
         spec.bodies.push_back(b);
     }
     if (spec.bodies.empty())
@@ -359,7 +361,7 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
         toml_allow_only(doc, *t, {"count", "position_std", "heading_std", "seed"});
         if (has(*t, "count")) spec.perturbation.count = count_of(doc, *t, "count", 0);
         for (const std::string key : {"position_std", "heading_std"})
-            if (has(*t, key) && !(toml_number(doc, *t, key) >= 0)) bad(doc, *t, key, "must be >= 0");
+            if (has(*t, key)) in_range(doc, *t, key, Range::non_negative());
         if (has(*t, "position_std")) spec.perturbation.position_std = toml_number(doc, *t, "position_std");
         if (has(*t, "heading_std")) spec.perturbation.heading_std = toml_number(doc, *t, "heading_std");
         spec.perturbation.seed = seed_of(doc, *t, "seed");
@@ -382,6 +384,13 @@ std::array<double, 3> perturbed_start(const SweepSpec& spec, int body, int k) {
 std::vector<Member> enumerate_members(const SweepSpec& spec) {
     std::vector<Member> out;
     const int np = spec.perturbation.count + 1;
+    // Sized before anything is allocated: flows x bodies x starts x variants x sets.
+    const double members = double(spec.flows.size()) * double(spec.bodies.size()) * double(np) * double(spec.variants.size()) *
+                           double(spec.params.size());
+    if (members > 2e9)
+        fail(spec.path, "sweep size",
+             number_text(members) + " members (flows x bodies x starts x variants x parameter sets), more than 2e9");
+    check_allocation("sweep size", number_text(members) + " members", members, double(sizeof(Member)), "members", spec.path);
     for (int f = 0; f < int(spec.flows.size()); ++f)
         for (int b = 0; b < int(spec.bodies.size()); ++b)
             for (int k = 0; k < np; ++k) {
