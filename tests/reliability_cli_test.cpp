@@ -451,3 +451,15 @@ TEST(ReliabilityCli, AFullDiskIsANamedErrorNotACrash) {
     EXPECT_NE(out.find("No space left on device"), std::string::npos) << out;
     EXPECT_FALSE(fs::exists(mnt + "/scene.nc"));
 }
+
+// A flow whose structure was corrupted (two bytes in its first 16 kB) so that libhdf5
+// itself segfaults parsing it (ncdump does too): flotsam names the file instead of
+// crashing (nc::probe_structure).
+TEST(ReliabilityCli, AFileThatCrashesLibhdf5IsANamedError) {
+    const std::string corrupt = std::string(FLOTSAM_SOURCE_DIR) + "/tests/data/corrupt/flow_libhdf5_segfault.nc";
+    const auto dir = test::scratch_dir("cli_corrupt");
+    std::string out;
+    EXPECT_EQ(test::run_cli("debris --flow " + corrupt + " --at 0.5,-1,0 --quiet --out " + dir + "/d.nc", &out), 1) << out;
+    EXPECT_NE(out.find("flow_libhdf5_segfault.nc: corrupted: libhdf5 crashed reading the file's structure"), std::string::npos)
+        << out;
+}
