@@ -449,7 +449,6 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         // the file then has the same bytes (HDF5's layout included) whether the run was
         // checkpointed, stopped and restarted, or never interrupted.
         if (reaches && (t1 >= next_checkpoint - 1e-12 || (run.stop_after >= 0.0 && t1 >= run.stop_after))) {
-            check_state(solver, scene.grid, run.out_file, t1, state.volume_start);
             gauges.flush(*writer);
             writer->sync();
             state.time = t1;
