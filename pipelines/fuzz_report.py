@@ -27,6 +27,18 @@ def summarise(target, folder):
             m = re.match(r"INFO: exiting: \d+ time: (\d+)s", line)
             if m:
                 seconds = int(m.group(1))
+            m = re.match(r"Done (\d+) runs in (\d+) second", line)  # one-process mode
+            if m:
+                runs, seconds = int(m.group(1)), int(m.group(2))
+            m = re.match(r"stat::number_of_executed_units: (\d+)", line)
+            if m:
+                runs = max(runs, int(m.group(1)))
+            if "ERROR: AddressSanitizer" in line or "runtime error:" in line or "deadly signal" in line:
+                counts["crash"] = max(counts["crash"], 1)
+            if "ERROR: libFuzzer: timeout" in line:
+                counts["timeout"] += 1
+            if "out-of-memory" in line:
+                counts["oom"] += 1
     crashes = os.path.join(folder, "crashes")
     artifacts = sorted(os.listdir(crashes)) if os.path.isdir(crashes) else []
     return {"target": target, "runs": runs, "seconds": seconds, "coverage": cov, "crashes": counts["crash"],
