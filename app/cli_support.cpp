@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstdlib>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,46 @@ void add_config_option(CLI::App* sub) {
 
 namespace {
 
+// Every subcommand name under `app` ("hydro", "scene", "generate", ...).
+void command_names(const CLI::App* app, std::set<std::string>& out) {
+    for (const CLI::App* sub : app->get_subcommands([](const CLI::App*) { return true; })) {
+        out.insert(sub->get_name());
+        command_names(sub, out);
+    }
+}
+
+// Runs the option's own checks (in_range and the like) on one value from a settings file.
+void check_setting(CLI::Option* opt, const std::string& path, const std::string& key, const std::string& value) {
+    std::vector<std::string> parts;
+    const char delimiter = opt->get_delimiter();
+    if (delimiter != '\0') {
+        std::string part;
+        for (char c : value) {
+            if (c == delimiter) {
+                parts.push_back(part);
+                part.clear();
+            } else {
+                part += c;
+            }
+        }
+        parts.push_back(part);
+    } else {
+        parts.push_back(value);
+    }
+    for (int k = 0;; ++k) {
+        CLI::Validator* check = nullptr;
+        try {
+            check = opt->get_validator(k);
+        } catch (const CLI::OptionNotFound&) {
+            return;
+        }
+        for (std::string p : parts) {
+            const std::string problem = (*check)(p);
+            if (!problem.empty()) fail(path, "key '" + key + "'", problem);
+        }
+    }
+}
+
 bool on_command_line(const std::vector<std::string>& args, std::size_t from, const std::string& name) {
     for (std::size_t k = from; k < args.size(); ++k)
         if (args[k] == "--" + name || args[k].rfind("--" + name + "=", 0) == 0) return true;
@@ -106,13 +147,24 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
     }
     std::vector<std::string> out(args.begin(), args.begin() + std::ptrdiff_t(first_option));
     std::vector<std::string> from_file;
+    std::set<std::string> commands;
+    command_names(&app, commands);
     for (const TomlTable& t : doc.tables) {
+        // A section must name a command: [hydor] is a typo, not another command's settings.
+        for (std::size_t a = 0, b; a < t.name.size(); a = b + 1) {
+            b = std::min(t.name.find('.', a), t.name.size());
+            const std::string part = t.name.substr(a, b - a);
+            if (commands.count(part)) continue;
+            std::string known;
+            for (const auto& c : commands) known += (known.empty() ? "" : ", ") + c;
+            fail(path, "section [" + t.name + "]", "'" + part + "' is not a flotsam command (sections: " + known + ")");
+        }
         // Keys may sit at the top level or under a section named after the command
         // ([hydro], or [scene.generate] / [generate]); another command's section is fine
         // in a shared file.
         if (!t.name.empty() && t.name != section && t.name != chain.back()) continue;
         for (const auto& [key, v] : t.values) {
-            const CLI::Option* opt = key == "config" || key == "help" ? nullptr : sub->get_option_no_throw("--" + key);
+            CLI::Option* opt = key == "config" || key == "help" ? nullptr : sub->get_option_no_throw("--" + key);
             if (!opt && sub->get_option_no_throw("--" + kebab_case(key)))
                 toml_fail(doc, t, key,
                           "is the old spelling: keys are kebab-case, as the command-line options; write '" + kebab_case(key) + "'");
@@ -131,6 +183,9 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
             else
                 values = {v.raw};
             if (values.empty() || (values.size() == 1 && values[0].empty())) continue;  // "" or []: not set
+            if (values.size() > 1 && opt->get_items_expected_max() == 1)
+                toml_fail(doc, t, key, "takes one value, the file gives an array of " + std::to_string(values.size()));
+            for (const auto& value : values) check_setting(opt, path, key, value);
             from_file.push_back("--" + key);
             from_file.insert(from_file.end(), values.begin(), values.end());
         }

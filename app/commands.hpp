@@ -11,7 +11,8 @@
 namespace flotsam {
 
 // A CLI11 check that an option's value is a finite number in `r` (common/checks.hpp):
-// "--cfl: nan is not a finite number (allowed: (0, 1])".
+// "--cfl: nan is not a finite number (allowed: (0, 1])". Values from a settings file go
+// through the same check, with the file and key named (expand_config_files).
 CLI::Validator in_range(const Range& r);
 
 // An option left out of a recorded command line: its name without "--", and whether it
@@ -31,13 +32,15 @@ std::string join_command_line(int argc, char** argv, const std::vector<DroppedOp
 // restarted, or run on another thread count, writes the same bytes.
 const std::vector<DroppedOption>& hydro_run_control_options();
 
-// Adds --config FILE (TOML, read by common/toml_lite: keys are the long option names,
-// kebab-case; unknown keys rejected) to a subcommand.
+// Adds --config FILE (TOML, keys are the long option names, unknown keys rejected) to a
+// subcommand.
 void add_config_option(CLI::App* sub);
 
 // The arguments (without argv[0]) with a subcommand's --config FILE replaced by the
 // settings it holds; options given on the command line win over the file. Throws
-// flotsam::Error naming the file and key for an unknown setting.
+// flotsam::Error naming the file and key for an unknown setting, a section that is no
+// command ([hydor]), a key given twice, an array for a one-value setting, or a value
+// that fails the option's check.
 std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** argv);
 
 void register_hydro_commands(CLI::App& app, const std::string& command_line);     // app/hydro_cli.cpp

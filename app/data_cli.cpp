@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "common/output_lock.hpp"
 #include "data/boundary_generator.hpp"
 #include "data/dem_import.hpp"
 #include "data/scene_generator.hpp"
@@ -20,13 +21,17 @@ void register_scene_generate(CLI::App* scene, const std::string& command_line) {
         scene->add_subcommand("generate",
                               "Write the synthetic analogue of the Kainan port-city flume (SCENE.md) at any grid spacing; "
                               "deterministic from --seed; marked synthetic in its metadata");
-    sub->add_option("--resolution", def->resolution, "grid spacing [m], e.g. 0.01, 0.02, 0.04")->capture_default_str();
+    sub->add_option("--resolution", def->resolution, "grid spacing [m], e.g. 0.01, 0.02, 0.04")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("m").up_to(100.0)));
     sub->add_option("--seed", def->seed, "seed of the building layout")->capture_default_str();
     sub->add_option("--out", *out, "output scene file (NetCDF)")->required();
     sub->add_option("--lot-build-probability", def->lot_build_probability, "chance that a city lot holds a building")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::closed(0.0, 1.0)));
     add_config_option(sub);
     sub->callback([def, out, command_line] {
+        const OutputGuard guard({{"--out", *out}}, {});
         const GeneratedScene g = generate_scene(*def);
         write_scene(*out, g.scene, command_line);
         std::printf("scene: %s (%d x %d cells of %.4g m, synthetic)\n", out->c_str(), g.scene.grid.nx, g.scene.grid.ny,
@@ -45,10 +50,13 @@ void register_scene_import(CLI::App* scene, const std::string& command_line) {
         "gets the Kainan defaults; any other DEM gets no features and no Manning field.");
     sub->add_option("--dem", def->dem_path, "DEM file (.nc or .asc)")->required();
     sub->add_option("--features", def->features_path, "features TOML file");
-    sub->add_option("--resolution", def->resolution, "grid spacing of the scene [m]")->capture_default_str();
+    sub->add_option("--resolution", def->resolution, "grid spacing of the scene [m]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("m").up_to(1e5)));
     sub->add_option("--out", *out, "output scene file (NetCDF)")->required();
     add_config_option(sub);
     sub->callback([def, out, command_line] {
+        const OutputGuard guard({{"--out", *out}}, {{"--dem", def->dem_path}, {"--features", def->features_path}});
         const Scene s = import_scene(*def);
         write_scene(*out, s, command_line);
         std::size_t roofs = 0;
@@ -68,16 +76,27 @@ void register_boundary_generate(CLI::App* boundary) {
         "one smooth leading wave (peak at the end of pumping, then return flow) plus smooth departures with "
         "ensemble std --spread; deterministic from --seed. Prints a summary.");
     sub->add_option("--out-dir", *dir, "directory for the CSV records")->required();
-    sub->add_option("--count", def->count, "number of realisations")->capture_default_str();
+    sub->add_option("--count", def->count, "number of realisations")->capture_default_str()->check(in_range(Range::count(1, 1e5)));
     sub->add_option("--seed", def->seed, "seed of the departures")->capture_default_str();
-    sub->add_option("--duration", def->duration, "record length [s]")->capture_default_str();
-    sub->add_option("--dt", def->dt, "sample interval [s]")->capture_default_str();
-    sub->add_option("--peak", def->peak, "mean level at the end of pumping [m]")->capture_default_str();
-    sub->add_option("--spread", def->spread, "ensemble standard deviation of the departures [m]")->capture_default_str();
-    sub->add_option("--pump-end", def->pump_end, "end of pumping [s]")->capture_default_str();
-    sub->add_option("--return-time", def->return_time, "relaxation time of the return flow [s]")->capture_default_str();
+    sub->add_option("--duration", def->duration, "record length [s]")->capture_default_str()->check(in_range(Range::positive("s")));
+    sub->add_option("--dt", def->dt, "sample interval [s]")->capture_default_str()->check(in_range(Range::positive("s")));
+    sub->add_option("--peak", def->peak, "mean level at the end of pumping [m]")
+        ->capture_default_str()
+        ->check(in_range(Range::any("m")));
+    sub->add_option("--spread", def->spread, "ensemble standard deviation of the departures [m]")
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("m")));
+    sub->add_option("--pump-end", def->pump_end, "end of pumping [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("s")));
+    sub->add_option("--return-time", def->return_time, "relaxation time of the return flow [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     add_config_option(sub);
     sub->callback([def, dir] {
+        std::vector<NamedPath> outputs;
+        for (const auto& p : boundary_record_paths(*dir, def->count)) outputs.push_back({"--out-dir", p});
+        const OutputGuard guard(outputs, {});
         const auto records = generate_boundary_records(*def);
         const auto paths = write_boundary_records(*dir, records);
         const BoundarySummary s = summarise_boundary(records);

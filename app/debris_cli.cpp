@@ -10,7 +10,9 @@
 #include "app/commands.hpp"
 #include "app/settings_cli.hpp"
 #include "common/error.hpp"
+#include "common/output_lock.hpp"
 #include "common/progress.hpp"
+#include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 #include "formats/scene.hpp"
@@ -39,8 +41,9 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
             std::size_t used = 0;
             v.push_back(std::stod(part, &used));
             if (used != part.size()) throw std::invalid_argument(part);
+            if (!std::isfinite(v.back())) throw std::invalid_argument(part);
         } catch (const std::exception&) {
-            fail("--at", text, "expected x,y,heading_deg (numbers)");
+            fail("--at", text, "expected x,y,heading_deg (finite numbers)");
         }
     }
     if (v.size() != 3) fail("--at", text, "expected x,y,heading_deg (three numbers)");
@@ -54,6 +57,7 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
 
 void run_debris(const DebrisOptions& o, const std::string& command_line) {
     const debris::BodyDef& base = o.body;
+    const OutputGuard guard({{"--out", o.out}}, {{"--flow", o.flow}, {"--scene", o.scene}});
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
 
     std::unique_ptr<Scene> scene;
@@ -77,10 +81,12 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
         start_names.emplace_back();
     }
 
-    debris::World world = debris::make_world(o.flow, scene.get(), bodies, o.world, "");
+    debris::World world = debris::make_world(o.flow, scene.get(), bodies, o.world);
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
+    check_allocation("--output-interval", number_text(o.output_interval) + " s", (t_end - t0) / o.output_interval + 2,
+                     7.0 * sizeof(double) * double(bodies.size()), "trajectory samples");
 
     debris::TrajectorySeries series;
     debris::record(world, series);
@@ -126,10 +132,13 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")
         ->capture_default_str()
         ->check(in_range(Range::positive("s")));
-    sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");
+    sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)")
+        ->check(in_range(Range::non_negative("s")));
     add_setting_options(sub, debris::step_settings(), opts->world.step);
     add_setting_options(sub, debris::flow_replay_settings(), opts->world.flow);
-    sub->add_option("--threads", opts->world.threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
+    sub->add_option("--threads", opts->world.threads, "OpenMP threads over bodies (0: default)")
+        ->capture_default_str()
+        ->check(in_range(Range::count(0, 4096)));
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
     sub->callback([opts, command_line] { run_debris(*opts, command_line); });
 }

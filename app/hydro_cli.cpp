@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/output_lock.hpp"
 #include "hydro/run.hpp"
 
 namespace flotsam {
@@ -64,10 +65,19 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
         } catch (const std::exception&) {
             fail("", "--gauge '" + g + "'", "X and Y must be numbers");
         }
+        check_range("--gauge '" + g + "': x", o.run.gauges.back().x, Range::any("m"));
+        check_range("--gauge '" + g + "': y", o.run.gauges.back().y, Range::any("m"));
     }
     if (o.threads > 0) omp_set_num_threads(o.threads);
     o.run.command_line = command_line;
     o.run.config_text = result_settings(sub->config_to_str(true, false));
+    // One writer per output, and no output over an input (common/output_lock.hpp).
+    const OutputGuard guard({{"--out", o.run.out_file}, {"--out (its checkpoint)", checkpoint_path(o.run.out_file)}},
+                            {{"--scene", o.run.scene_file},
+                             {"--west-series", s.west.series_file},
+                             {"--east-series", s.east.series_file},
+                             {"--south-series", s.south.series_file},
+                             {"--north-series", s.north.series_file}});
     const RunResult r = run_hydro(o.run, s);
     if (!o.run.quiet)
         std::fprintf(stderr,
@@ -91,24 +101,38 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->required()
         ->check(CLI::ExistingFile);
     sub->add_option("--out", r.out_file, "Output flow file (.nc); written as <out>.part and renamed when complete")->required();
-    sub->add_option("--duration", r.duration, "Simulated time [s]")->capture_default_str();
-    sub->add_option("--output-interval", r.output_interval, "Time between stored frames [s]")->capture_default_str();
-    sub->add_option("--output-window", o->window, "Store frames only in x_min,x_max,y_min,y_max [m]")->expected(4)->delimiter(',');
-    sub->add_option("--gauge-interval", r.gauge_interval, "Time between gauge samples [s]")->capture_default_str();
+    sub->add_option("--duration", r.duration, "Simulated time [s]")->capture_default_str()->check(in_range(Range::positive("s")));
+    sub->add_option("--output-interval", r.output_interval, "Time between stored frames [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
+    sub->add_option("--output-window", o->window, "Store frames only in x_min,x_max,y_min,y_max [m]")
+        ->expected(4)
+        ->delimiter(',')
+        ->check(in_range(Range::any("m")));
+    sub->add_option("--gauge-interval", r.gauge_interval, "Time between gauge samples [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     sub->add_option("--gauge", o->gauges, "Extra gauge NAME,X,Y (repeatable); the scene's gauge points are always recorded");
     sub->add_option("--arrival-depth", r.arrival_depth, "Depth threshold of the arrival-time map [m] (the debris draft)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::positive("m")));
     sub->add_option("--checkpoint-interval", r.checkpoint_interval, "Simulated time between checkpoints [s]; 0: none")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("s")));
     sub->add_flag("--restart", r.restart, "Continue an interrupted run from <out>.checkpoint.nc and <out>.part");
-    sub->add_option("--stop-after", r.stop_after, "Stop as if interrupted once past this time [s] (leaves a checkpoint)");
-    sub->add_option("--realisation", r.realisation, "Boundary realisation id recorded in the file")->capture_default_str();
+    sub->add_option("--stop-after", r.stop_after, "Stop as if interrupted once past this time [s] (leaves a checkpoint)")
+        ->check(in_range(Range::non_negative("s")));
+    sub->add_option("--realisation", r.realisation, "Boundary realisation id recorded in the file")
+        ->capture_default_str()
+        ->check(in_range(Range::count(-1, 1e9)));
     sub->add_option("--deflate", r.deflate_level, "Deflate level of stored fields, 0-9")
-        ->check(CLI::Range(0, 9))
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::count(0, 9)));
     sub->add_option("--label", r.label, "Progress label")->capture_default_str();
     sub->add_flag("--quiet", r.quiet, "No progress output");
-    sub->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")->capture_default_str();
+    sub->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")
+        ->capture_default_str()
+        ->check(in_range(Range::count(0, 4096)));
     // Scheme.
     sub->add_option("--scheme", o->scheme,
                     "fv: finite volumes (MUSCL + HLL + Heun); leapfrog: staggered leap-frog of the classic tsunami codes")
@@ -116,16 +140,23 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str();
     sub->add_option("--courant", r.leapfrog.courant,
                     "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::positive().up_to(10.0)));
     sub->add_option("--order", s.order, "1: first order; 2: MUSCL + Heun (default)")
         ->check(CLI::IsMember({1, 2}))
         ->capture_default_str();
-    sub->add_option("--cfl", s.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")->capture_default_str();
-    sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")->capture_default_str();
+    sub->add_option("--cfl", s.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")
+        ->capture_default_str()
+        ->check(in_range(Range::positive().up_to(1.0)));
+    sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")
-        ->check(CLI::Range(1.0, 2.0))
-        ->capture_default_str();
-    sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::closed(1.0, 2.0)));
+    sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("m").up_to(1.0)));
     sub->add_option("--friction", o->friction,
                     "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
         ->capture_default_str();
@@ -134,11 +165,14 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         "Stability study only: accept --cfl above 0.5 and let the leap-frog run past Courant number 1 (to see the failure)");
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
-        ->check(CLI::Range(1, 16))
-        ->capture_default_str();
-    sub->add_option("--nest-x", r.nest.x, "x of the nesting interface [m]; keep it in water that stays wet")->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::count(1, 16)));
+    sub->add_option("--nest-x", r.nest.x, "x of the nesting interface [m]; keep it in water that stays wet")
+        ->capture_default_str()
+        ->check(in_range(Range::any("m")));
     sub->add_option("--manning-n", s.default_manning_n, "Manning n where the scene has no manning_n [s m^-1/3]")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("s m^-1/3").below(1.0)));
     // Boundaries.
     const std::string kinds = "wall, transmissive, level, discharge or pump";
     sub->add_option("--west", o->west, "West boundary: " + kinds)->capture_default_str();
@@ -153,12 +187,18 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
                     "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the "
                     "'incident' wave (reflections leave)")
         ->capture_default_str();
-    sub->add_option("--pump-discharge", s.west.pump_discharge, "Pump boundary: mass source [m^3/s]")->capture_default_str();
-    sub->add_option("--pump-stop", s.west.pump_stop, "Pump boundary: end of pumping [s]")->capture_default_str();
+    sub->add_option("--pump-discharge", s.west.pump_discharge, "Pump boundary: mass source [m^3/s]")
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("m^3/s")));
+    sub->add_option("--pump-stop", s.west.pump_stop, "Pump boundary: end of pumping [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("s")));
     sub->add_option("--pump-relax", s.west.pump_relax_time, "Pump boundary: relaxation time of the level after pumping [s]")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     sub->add_option("--pump-length", s.west.pump_length, "Pump boundary: width of the source strip along x [m]")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::positive("m")));
     sub->callback([o, sub, command_line] { run_command(*o, sub, command_line); });
 }
 

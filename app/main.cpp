@@ -4,11 +4,22 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
 #include "common/version.hpp"
+
+// After an error, the outputs are already closed or removed (the stack has unwound), but
+// libhdf5 may still hold a file whose close failed (a full disk): its exit handler would
+// then flush it again and crash (rc 139 after "close: NetCDF: HDF error"). Leave without
+// running exit handlers.
+[[noreturn]] void exit_after_error(int code) {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(code);
+}
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -28,10 +39,10 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const flotsam::Error& e) {
         std::fprintf(stderr, "flotsam: error: %s\n", e.what());
-        return 1;
+        exit_after_error(1);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "flotsam: internal error: %s\n", e.what());
-        return 2;
+        exit_after_error(2);
     }
     return 0;
 }

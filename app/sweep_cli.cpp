@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/output_lock.hpp"
 #include "formats/scene.hpp"
 #include "sweep/sweep.hpp"
 #include "sweep/sweep_stats.hpp"
@@ -33,6 +34,10 @@ struct StatsOptions {
 void run_sweep_command(const SweepOptions& o) {
     if (o.spec.empty()) fail("sweep", "--spec", "required (or use `flotsam sweep merge`)");
     const sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, o.scene, o.flows);
+    const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
+    std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}};
+    for (const auto& f : spec.flows) inputs.push_back({"--flow", f});
+    const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;
     def.shard = sweep::parse_shard(o.shard);
     def.threads = o.threads;
@@ -40,7 +45,6 @@ void run_sweep_command(const SweepOptions& o) {
     sweep::SweepRunStats st;
     const sweep::SweepResult r = sweep::run_sweep(spec, def, &st);
     sweep::write_sweep_file(o.out, r);
-    const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
     sweep::write_summary_csv(summary, r);
     if (!o.quiet)
         std::fprintf(stderr,
@@ -50,14 +54,19 @@ void run_sweep_command(const SweepOptions& o) {
 }
 
 void run_merge_command(const MergeOptions& o) {
+    const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
+    std::vector<NamedPath> inputs;
+    for (const auto& p : o.parts) inputs.push_back({"part", p});
+    const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     std::vector<sweep::SweepResult> parts;
     for (const auto& p : o.parts) parts.push_back(sweep::read_sweep_file(p));
     const sweep::SweepResult r = sweep::merge_sweeps(parts, o.parts);
     sweep::write_sweep_file(o.out, r);
-    sweep::write_summary_csv(o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary, r);
+    sweep::write_summary_csv(summary, r);
 }
 
 void run_stats_command(const StatsOptions& o, const std::string& command_line) {
+    const OutputGuard guard({{"--out", o.out}, {"--csv", o.csv}}, {{"--sweep", o.sweep}, {"--scene", o.scene}});
     const sweep::SweepResult r = sweep::read_sweep_file(o.sweep);
     const std::string scene_path = o.scene.empty() ? r.scene_file : o.scene;
     if (scene_path.empty())
@@ -80,7 +89,9 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     sweep_cmd->add_option("--summary", so->summary, "one-row-per-trajectory CSV (default: --out with .csv)");
     sweep_cmd->add_option("--shard", so->shard, "run block i of n of the member list (i/n); join with `sweep merge`")
         ->capture_default_str();
-    sweep_cmd->add_option("--threads", so->threads, "OpenMP threads over members (0: default)")->capture_default_str();
+    sweep_cmd->add_option("--threads", so->threads, "OpenMP threads over members (0: default)")
+        ->capture_default_str()
+        ->check(in_range(Range::count(0, 4096)));
     sweep_cmd->add_option("--scene", so->scene, "scene file (overrides the spec's [sweep] scene)")->check(CLI::ExistingFile);
     sweep_cmd->add_option("--flow", so->flows, "flow file (repeatable; replaces the spec's [flows])")->check(CLI::ExistingFile);
     sweep_cmd->add_flag("--quiet", so->quiet, "no progress lines");
@@ -107,20 +118,31 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
         ->check(CLI::ExistingFile);
     stats->add_option("--out", to->out, "statistics file to write (NetCDF)")->capture_default_str();
     stats->add_option("--csv", to->csv, "also write CSV tables into this folder");
-    stats->add_option("--arrival-time", to->def.arrival_time, "region counts at this time [s]")->capture_default_str();
+    stats->add_option("--arrival-time", to->def.arrival_time, "region counts at this time [s]")
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("s")));
     stats
         ->add_option("--yaw-window", to->def.yaw_window,
                      "yaw statistics over this long after the run's start (paper Fig. 16) and after motion start [s]")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::positive("s")));
     stats->add_option("--yaw-min-speed", to->def.yaw_min_speed, "yaw against the motion only when faster than this [m/s]")
-        ->capture_default_str();
-    stats->add_option("--yaw-bin", to->def.yaw_bin_width, "yaw histogram bin width [degree]")->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("m/s")));
+    stats->add_option("--yaw-bin", to->def.yaw_bin_width, "yaw histogram bin width [degree]")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("degree").up_to(360.0)));
     stats
         ->add_option("--r-min-distance", to->def.r_min_distance,
                      "R(t) undefined where the control's mean distance is below this [m]")
-        ->capture_default_str();
-    stats->add_option("--kde-points", to->def.kde_points, "points on the speed axis of the densities")->capture_default_str();
-    stats->add_option("--map-coarsen", to->def.map_coarsen, "map cell = this many scene cells per side")->capture_default_str();
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("m")));
+    stats->add_option("--kde-points", to->def.kde_points, "points on the speed axis of the densities")
+        ->capture_default_str()
+        ->check(in_range(Range::count(2, 1e6)));
+    stats->add_option("--map-coarsen", to->def.map_coarsen, "map cell = this many scene cells per side")
+        ->capture_default_str()
+        ->check(in_range(Range::count(1, 1e4)));
     stats->callback([to, command_line] { run_stats_command(*to, command_line); });
 }
 

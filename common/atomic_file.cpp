@@ -10,7 +10,7 @@
 
 namespace flotsam {
 
-AtomicOutput::AtomicOutput(std::string final_path) : final_(std::move(final_path)), temp_(final_ + ".part") {
+AtomicOutput::AtomicOutput(std::string final_path) : final_(std::move(final_path)), temp_(final_ + ".part"), lock_(final_) {
     ensure_parent_dir(final_);
     std::error_code ec;
     temp_existed_ = std::filesystem::exists(temp_, ec) || std::filesystem::is_symlink(temp_, ec);
@@ -29,11 +29,12 @@ void AtomicOutput::commit() {
 void write_text_atomic(const std::string& path, const std::string& text) {
     AtomicOutput out(path);
     {
+        errno = 0;
         std::ofstream f(out.temp_path(), std::ios::binary);
-        if (!f) fail(out.temp_path(), "", "cannot open for writing");
+        if (!f) fail(out.temp_path(), "", std::string("cannot open for writing: ") + std::strerror(errno));
         f << text;
-        f.flush();
-        if (!f) fail(out.temp_path(), "", "write failed");
+        f.close();  // the data reach the file system here: a full disk shows now
+        if (f.fail()) fail(out.temp_path(), "", std::string("write failed: ") + std::strerror(errno ? errno : EIO));
     }
     out.commit();
 }

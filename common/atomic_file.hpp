@@ -5,9 +5,12 @@
 // A failed run removes only a ".part" it can prove is its own: one that was not there
 // when it started. A ".part" found at the start (an interrupted run's, perhaps one that
 // --restart can continue) is never removed by a failure; a successful run renames its
-// own over the final name as usual.
+// own over the final name as usual. It holds the output's OutputLock while it lives, so
+// two runs never write one output.
 #pragma once
 #include <string>
+
+#include "common/output_lock.hpp"
 
 namespace flotsam {
 
@@ -26,6 +29,7 @@ public:
 private:
     std::string final_;
     std::string temp_;
+    OutputLock lock_;
     bool done_ = false;
     bool keep_ = false;
     bool temp_existed_ = false;  // a ".part" was there before: not ours to remove

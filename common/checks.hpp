@@ -1,10 +1,15 @@
-// Finite numbers in range, or a named error: one check for every numeric option,
-// settings key and spec value. A check is data (a name, a value and a Range), so a table
-// of parameters (common/settings.hpp) drives it:
+// Finite numbers in range, or a named error: the one check every numeric option,
+// settings key and spec value goes through (issue 18). A check is data — a name, a value
+// and a Range — so a table of parameters can drive it:
 //
 //     check_range("--cfl", s.cfl, Range::open_closed(0, 0.5));
+//     // --cfl: nan is not a finite number (allowed: (0, 0.5])
 //     // --cfl: 0.7 is outside the allowed range (0, 0.5]
+//
+// And sizes before allocation: check_allocation() compares what an option would make a
+// run allocate with the machine's memory and names the option when it cannot fit.
 #pragma once
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -15,7 +20,7 @@ struct Range {
     double max = std::numeric_limits<double>::infinity();
     bool min_open = false, max_open = false;  // (min, ... and ..., max)
     bool whole = false;                       // whole numbers only
-    std::string unit;                         // for messages: "s", "m"
+    std::string unit;                         // for messages: "s", "m", "s m^-1/3"
 
     static Range closed(double a, double b, std::string unit = "") { return {a, b, false, false, false, std::move(unit)}; }
     static Range open_closed(double a, double b, std::string unit = "") { return {a, b, true, false, false, std::move(unit)}; }
@@ -27,7 +32,7 @@ struct Range {
     Range& up_to(double b) {
         max = b;
         return *this;
-    }
+    }  // then at most b
     Range& below(double b) {
         max = b;
         max_open = true;
@@ -47,5 +52,15 @@ std::string range_problem(double value, const Range& r);
 
 // Throws flotsam::Error "<file>: <name>: <problem>" (an empty file is left out).
 void check_range(const std::string& name, double value, const Range& r, const std::string& file = "");
+
+// The memory the process may use [bytes]: the physical memory, or the cgroup's limit
+// when lower, or FLOTSAM_MEMORY_LIMIT_MB when that is lower still.
+double memory_limit_bytes();
+
+// Throws naming `name` (and the file, if any) when `count` items of `bytes_each` bytes
+// would exceed memory_limit_bytes() (or overflow): "--output-interval: 1e-09 s would make
+// 4.2e+11 frame times (3.3e+03 GB), more than this machine's 24 GB".
+void check_allocation(const std::string& name, const std::string& value_text, double count, double bytes_each,
+                      const std::string& what, const std::string& file = "");
 
 }  // namespace flotsam

@@ -9,7 +9,8 @@ std::string where(const std::string& file, const std::string& what) {
 }
 
 void fail(const std::string& file, const std::string& what, const std::string& problem) {
-    throw Error(where(file, what) + ": " + problem);
+    const std::string w = where(file, what);
+    throw Error(w.empty() ? problem : w + ": " + problem);
 }
 
 }  // namespace flotsam

@@ -1,13 +1,108 @@
 #include "common/netcdf.hpp"
 
+#include <sys/statvfs.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <utility>
 
 #include "common/error.hpp"
 
 namespace flotsam::nc {
 
+namespace {
+
+// NetCDF reports a full disk as "HDF error": say what it is, with the file system's free
+// space, when the file's file system is (nearly) full.
+std::string disk_full_hint(const std::string& path) {
+    std::error_code ec;
+    auto dir = std::filesystem::absolute(path, ec).parent_path();
+    struct statvfs st {};
+    if (ec || ::statvfs(dir.c_str(), &st) != 0) return "";
+    const double free_bytes = double(st.f_bavail) * double(st.f_frsize);
+    const double total = double(st.f_blocks) * double(st.f_frsize);
+    if (free_bytes > 4.0 * 1024 * 1024 && free_bytes > 0.001 * total) return "";
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " (No space left on device: %.0f bytes free of %.0f on the file system of %s)", free_bytes,
+                  total, dir.c_str());
+    return buf;
+}
+
+}  // namespace
+
+namespace {
+
+// Opens `path` and walks every group's dimensions, variables and attributes: what
+// libhdf5 parses when a reader inquires.
+int walk_structure(const char* path) {
+    int id = -1;
+    if (nc_open(path, NC_NOWRITE, &id) != NC_NOERR) return 1;  // the parent reports it
+    int nvars = 0, ndims = 0, natts = 0, unlimited = 0;
+    if (nc_inq(id, &ndims, &nvars, &natts, &unlimited) != NC_NOERR) return 1;
+    for (int v = -1; v < nvars; ++v) {
+        int vatts = natts;
+        if (v >= 0) {
+            char name[NC_MAX_NAME + 1];
+            nc_type t{};
+            int nd = 0, dims[NC_MAX_VAR_DIMS];
+            if (nc_inq_var(id, v, name, &t, &nd, dims, &vatts) != NC_NOERR) return 1;
+            std::size_t chunks[NC_MAX_VAR_DIMS];
+            int storage = 0;
+            nc_inq_var_chunking(id, v, &storage, chunks);
+        }
+        for (int a = 0; a < vatts; ++a) {
+            char name[NC_MAX_NAME + 1];
+            nc_type t{};
+            std::size_t len = 0;
+            if (nc_inq_attname(id, v < 0 ? NC_GLOBAL : v, a, name) != NC_NOERR) return 1;
+            nc_inq_att(id, v < 0 ? NC_GLOBAL : v, name, &t, &len);
+        }
+    }
+    nc_close(id);
+    return 0;
+}
+
+}  // namespace
+
+// libhdf5 can crash or hang on a corrupted file (docs/reliability.md). Its structure is
+// therefore walked first in a child process: a crash or a hang there is reported as a
+// corrupted file, never takes flotsam down. FLOTSAM_NO_PROBE=1 skips it.
+void probe_structure(const std::string& path) {
+    static const bool off = [] {
+        const char* e = std::getenv("FLOTSAM_NO_PROBE");
+        return e && *e && std::string(e) != "0";
+    }();
+    if (off) return;
+    std::fflush(nullptr);
+    const pid_t child = ::fork();
+    if (child < 0) return;  // cannot probe: read as usual
+    if (child == 0) ::_exit(walk_structure(path.c_str()));
+    int status = 0;
+    for (int waited_ms = 0;; waited_ms += 5) {
+        const pid_t r = ::waitpid(child, &status, WNOHANG);
+        if (r == child) break;
+        if (r < 0) return;
+        if (waited_ms > 60000) {
+            ::kill(child, SIGKILL);
+            ::waitpid(child, &status, 0);
+            fail(path, "", "corrupted: libhdf5 did not finish reading the file's structure in 60 s");
+        }
+        ::usleep(waited_ms < 100 ? 200 : 5000);
+    }
+    if (WIFSIGNALED(status))
+        fail(path, "",
+             std::string("corrupted: libhdf5 crashed reading the file's structure (") + ::strsignal(WTERMSIG(status)) +
+                 "); the file cannot be read");
+}
+
 File File::open_read(const std::string& path) {
+    probe_structure(path);
     int id = -1;
     const int st = nc_open(path.c_str(), NC_NOWRITE, &id);
     if (st != NC_NOERR) fail(path, "", std::string("cannot open as NetCDF: ") + nc_strerror(st));
@@ -17,14 +112,14 @@ File File::open_read(const std::string& path) {
 File File::open_write(const std::string& path) {
     int id = -1;
     const int st = nc_open(path.c_str(), NC_WRITE, &id);
-    if (st != NC_NOERR) fail(path, "", std::string("cannot open for writing: ") + nc_strerror(st));
+    if (st != NC_NOERR) fail(path, "", std::string("cannot open for writing: ") + nc_strerror(st) + disk_full_hint(path));
     return File(id, path);
 }
 
 File File::create(const std::string& path) {
     int id = -1;
     const int st = nc_create(path.c_str(), NC_CLOBBER | NC_NETCDF4, &id);
-    if (st != NC_NOERR) fail(path, "", std::string("cannot create: ") + nc_strerror(st));
+    if (st != NC_NOERR) fail(path, "", std::string("cannot create: ") + nc_strerror(st) + disk_full_hint(path));
     return File(id, path);
 }
 
@@ -51,7 +146,7 @@ void File::close() {
 }
 
 void File::check(int status, const std::string& what) const {
-    if (status != NC_NOERR) fail(path_, what, nc_strerror(status));
+    if (status != NC_NOERR) fail(path_, what, nc_strerror(status) + disk_full_hint(path_));
 }
 
 std::string File::var_label(int var) const {

@@ -12,9 +12,13 @@
 
 namespace flotsam::nc {
 
+// Walks the structure of a NetCDF file in a child process and throws naming the file
+// when libhdf5 crashes or hangs on it (a corrupted file); File::open_read calls it.
+void probe_structure(const std::string& path);
+
 class File {
 public:
-    static File open_read(const std::string& path);
+    static File open_read(const std::string& path);   // probe_structure() first
     static File open_write(const std::string& path);  // an existing file, for appending data
     static File create(const std::string& path);      // NetCDF-4 (HDF5), replacing any file there
     File(File&& other) noexcept;

@@ -49,8 +49,13 @@ template <class Def>
 void get_setting_vars(const nc::File& f, const Settings<Def>& table, std::vector<Def>& defs, const std::string& prefix = "",
                       bool required = true) {
     for (const auto& s : table) {
-        if (!required && !f.has_var(prefix + s.variable())) continue;
-        const int id = f.var(prefix + s.variable());
+        const std::string name = prefix + s.variable();
+        if (!required && !f.has_var(name)) continue;
+        const int id = f.var(name);
+        // One value per row, or a named error (never a read past the column's end).
+        const std::vector<std::size_t> shape = f.shape(id);
+        if (shape.empty() || shape[0] != defs.size())
+            fail(f.path(), "variable '" + name + "'", "must have one value per row (" + std::to_string(defs.size()) + ")");
         if (s.is_choice()) {
             const std::vector<std::string> names = f.get_strings(id);
             for (std::size_t k = 0; k < defs.size() && k < names.size(); ++k)
@@ -63,7 +68,10 @@ void get_setting_vars(const nc::File& f, const Settings<Def>& table, std::vector
             for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) s.set_number(defs[k], v[k]);
         } else {
             const std::vector<double> v = f.get_double(id);
-            for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) s.set_number(defs[k], v[k]);
+            for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) {
+                check_range("variable '" + name + "'", v[k], s.range, f.path());
+                s.set_number(defs[k], v[k]);
+            }
         }
     }
 }

@@ -137,17 +137,22 @@ BoundarySummary summarise_boundary(const std::vector<TimeSeries>& recs, double s
     return s;
 }
 
+std::vector<std::string> boundary_record_paths(const std::string& dir, int count) {
+    std::vector<std::string> paths;
+    for (int r = 0; r < count; ++r) {
+        char name[32];
+        std::snprintf(name, sizeof name, "wg1_r%02d.csv", r);
+        paths.push_back((std::filesystem::path(dir) / name).string());
+    }
+    return paths;
+}
+
 std::vector<std::string> write_boundary_records(const std::string& dir, const std::vector<TimeSeries>& records) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) fail(dir, "", "cannot create directory: " + ec.message());
-    std::vector<std::string> paths;
-    for (std::size_t r = 0; r < records.size(); ++r) {
-        char name[32];
-        std::snprintf(name, sizeof name, "wg1_r%02zu.csv", r);
-        paths.push_back((std::filesystem::path(dir) / name).string());
-        write_time_series_csv(paths.back(), records[r], "eta");
-    }
+    const std::vector<std::string> paths = boundary_record_paths(dir, int(records.size()));
+    for (std::size_t r = 0; r < records.size(); ++r) write_time_series_csv(paths[r], records[r], "eta");
     return paths;
 }
 

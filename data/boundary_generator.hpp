@@ -46,6 +46,9 @@ struct BoundarySummary {
 // Records must share their sample times.
 BoundarySummary summarise_boundary(const std::vector<TimeSeries>& records, double std_from = 30.0);
 
+// The paths of `count` records in `dir`: wg1_r00.csv, wg1_r01.csv, ...
+std::vector<std::string> boundary_record_paths(const std::string& dir, int count);
+
 // File names wg1_r00.csv, wg1_r01.csv, ... in `dir` (created when missing).
 std::vector<std::string> write_boundary_records(const std::string& dir, const std::vector<TimeSeries>& records);
 

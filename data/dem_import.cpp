@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/toml_lite.hpp"
@@ -34,11 +35,33 @@ Dem read_netcdf_dem(const std::string& path) {
     Dem d;
     d.path = path;
     std::vector<double> x = nc::read_finite(f, "x"), y = nc::read_finite(f, "y");
+    const auto xdims = f.dim_names(f.var("x")), ydims = f.dim_names(f.var("y"));
+    if (xdims.size() != 1) fail(path, "variable 'x'", "must be one-dimensional");
+    if (ydims.size() != 1) fail(path, "variable 'y'", "must be one-dimensional");
     const int vz = f.var("z");
-    const auto shape = f.shape(vz);
-    if (shape.size() != 2 || shape[0] != y.size() || shape[1] != x.size())
-        fail(path, "variable 'z'", "must have shape (y, x) = (" + std::to_string(y.size()) + ", " + std::to_string(x.size()) + ")");
+    // Matched by dimension name, not by shape: a square z(x, y) would pass a shape test and
+    // be imported transposed. z(x, y) is read and transposed to (y, x).
+    const auto zdims = f.dim_names(vz);
+    const bool yx = zdims == std::vector<std::string>{ydims[0], xdims[0]};
+    const bool xy = zdims == std::vector<std::string>{xdims[0], ydims[0]};
+    if (!yx && !xy)
+        fail(
+            path, "variable 'z'",
+            "must have the dimensions of y and x, (" + ydims[0] + ", " + xdims[0] + ") or (" + xdims[0] + ", " + ydims[0] +
+                "), found (" +
+                [&] {
+                    std::string t;
+                    for (std::size_t k = 0; k < zdims.size(); ++k) t += (k ? ", " : "") + zdims[k];
+                    return t;
+                }() +
+                ")");
     d.z = nc::read_finite(f, "z");
+    if (xy) {
+        std::vector<double> t(d.z.size());
+        for (std::size_t i = 0; i < x.size(); ++i)
+            for (std::size_t j = 0; j < y.size(); ++j) t[j * x.size() + i] = d.z[i * y.size() + j];
+        d.z = std::move(t);
+    }
     const bool north_first = y.size() > 1 && y[1] < y[0];
     if (north_first) {
         std::reverse(y.begin(), y.end());
@@ -87,7 +110,10 @@ Dem read_ascii_grid(const std::string& path) {
     const double cell = header_value(h, path, "cellsize");
     if (ncols < 1 || nrows < 1 || ncols != std::floor(ncols) || nrows != std::floor(nrows))
         fail(path, "header 'ncols'/'nrows'", "must be positive whole numbers");
-    if (!(cell > 0.0)) fail(path, "header 'cellsize'", "must be positive");
+    if (!(cell > 0.0) || !std::isfinite(cell)) fail(path, "header 'cellsize'", "must be a positive number");
+    check_allocation("header 'ncols' x 'nrows'", number_text(ncols) + " x " + number_text(nrows), ncols * nrows, sizeof(double) * 4,
+                     "cells", path);
+    if (ncols > 2e9 || nrows > 2e9) fail(path, "header 'ncols'/'nrows'", "more than 2e9 cells along one side");
     const bool x_corner = h.count("xllcorner"), y_corner = h.count("yllcorner");
     if (!x_corner && !h.count("xllcenter")) fail(path, "header 'xllcorner'", "missing (or give 'xllcenter')");
     if (!y_corner && !h.count("yllcenter")) fail(path, "header 'yllcorner'", "missing (or give 'yllcenter')");

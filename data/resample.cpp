@@ -2,10 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "common/checks.hpp"
+#include "common/error.hpp"
 
 namespace flotsam {
 
 Grid grid_covering(double x_min, double x_max, double y_min, double y_max, double spacing) {
+    check_range("--resolution", spacing, Range::positive("m"));
+    const double nx = std::ceil((x_max - x_min) / spacing - 1e-6), ny = std::ceil((y_max - y_min) / spacing - 1e-6);
+    // A scene holds some ten double fields per cell while it is built and written.
+    check_allocation("--resolution", number_text(spacing) + " m", std::max(nx, 1.0) * std::max(ny, 1.0), 80.0, "cells");
+    if (nx > 2e9 || ny > 2e9) fail("", "--resolution", std::to_string(spacing) + " m makes more than 2e9 cells along one side");
     Grid g;
     g.dx = g.dy = spacing;
     // The small slack keeps an extent that is a whole number of cells from gaining a sliver cell.

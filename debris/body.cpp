@@ -1,6 +1,8 @@
 #include "debris/body.hpp"
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "common/error.hpp"
 
@@ -70,6 +72,8 @@ BodyParams make_body_params(const BodyDef& def, double water_density) {
     for (const auto* table : {&body_shape_settings(), &body_coefficient_settings(), &body_model_settings()})
         for (const auto& s : *table)
             if (s.is_number()) check_range(s.key, s.number(def), s.range, "body '" + def.name + "'");
+    for (const auto& [name, value] : {std::pair<const char*, double>{"x", def.x}, {"y", def.y}, {"heading", def.heading}})
+        check_range(name, value, Range::any(), "body '" + def.name + "'");
     BodyParams p;
     p.def = def;
     p.plan_area = def.length * def.width;

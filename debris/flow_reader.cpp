@@ -68,14 +68,24 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
     times_ = nc::read_finite(file_, "time");
     grid_ = grid_from_coordinates(nc::read_finite(file_, "x"), nc::read_finite(file_, "y"), path);
     if (grid_.nx < 2 || grid_.ny < 2) fail(path, "x, y", "a flow needs at least 2 x 2 cells");
-    if (times_.empty()) fail(path, "variable 'time'", "no frames");
+    if (times_.size() < 2)
+        fail(path, "variable 'time'",
+             std::to_string(times_.size()) +
+                 " frame(s): a flow to replay needs at least two (store frames with --output-interval "
+                 "shorter than --duration)");
     for (std::size_t k = 1; k < times_.size(); ++k)
         if (!(times_[k] > times_[k - 1]))
             fail(path, "variable 'time'", "frame times must increase (frame " + std::to_string(k) + ")");
     const int vz = file_.var("z");
-    if (file_.shape(vz) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)})
-        fail(path, "variable 'z'", "shape is not (y, x)");
-    z_ = file_.get_float(vz);
+    if (file_.shape(vz) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)} ||
+        file_.dim_names(vz) != std::vector<std::string>{"y", "x"})
+        fail(path, "variable 'z'", "must have dimensions (y, x) of the flow's grid");
+    const std::vector<double> z = nc::read_finite(file_, "z");
+    z_.assign(z.begin(), z.end());
+    // The fields themselves must be (time, y, x) on this grid and time axis.
+    for (int v : {var_h_, var_u_, var_v_})
+        if (file_.shape(v) != std::vector<std::size_t>{times_.size(), std::size_t(grid_.ny), std::size_t(grid_.nx)})
+            fail(path, "variable '" + file_.var_name(v) + "'", "shape does not match (time, y, x) of the coordinates");
     dry_depth_ = read_dry_depth(file_);
     window_ = CellWindow{0, grid_.nx, 0, grid_.ny};
 }
@@ -97,9 +107,16 @@ void FlowReader::load(Frame& f, std::size_t frame) {
     file_.get_slab(var_u_, start, count, f.qx.data());
     file_.get_slab(var_v_, start, count, f.qy.data());
     for (std::size_t k = 0; k < n; ++k) {
-        const float h = f.h[k];
-        if (!std::isfinite(h) || !std::isfinite(f.qx[k]) || !std::isfinite(f.qy[k]))
-            fail(path(), "frame " + std::to_string(frame), "h, u or v is not finite (a flow file stores 0, never NaN)");
+        const float h = f.h[k], u = f.qx[k], v = f.qy[k];
+        // A stored flow has 0 where dry, never NaN, a fill value or a negative depth.
+        if (!(h >= 0.0f && h < 1.1e4f && std::fabs(u) < 1e3f && std::fabs(v) < 1e3f)) {
+            const std::size_t i = std::size_t(window_.i0) + k % ni, j = std::size_t(window_.j0) + k / ni;
+            const char* what = !(h >= 0.0f && h < 1.1e4f) ? "h" : !(std::fabs(u) < 1e3f) ? "u" : "v";
+            const float value = what[0] == 'h' ? h : what[0] == 'u' ? u : v;
+            fail(path(), "frame " + std::to_string(frame) + ", cell (i " + std::to_string(i) + ", j " + std::to_string(j) + ")",
+                 std::string(what) + " = " + std::to_string(value) +
+                     " is not a depth or velocity (NaN, a fill value, negative or absurd); a flow file stores 0 where dry");
+        }
         f.qx[k] *= h;  // u → hu
         f.qy[k] *= h;
     }

@@ -77,6 +77,9 @@ public:
     double end_time() const { return times_.back(); }
     const std::vector<float>& bed() const { return z_; }  // z on the whole grid [m]
     const std::string& path() const { return file_.path(); }
+    // SHA-256 of the scene file the flow was computed on (attribute scene_sha256; empty
+    // for flows written before it existed).
+    std::string scene_sha256() const { return file_.att_text(NC_GLOBAL, "scene_sha256").value_or(""); }
 
     const FlowReaderDef& def() const { return def_; }
     // The flow's dry tolerance [m]: the file's dry_depth_m, else flow_names::fallback_dry_depth.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "debris/scene_match.hpp"
 
 namespace flotsam::debris {
 
@@ -52,19 +53,18 @@ World::World(const std::string& flow_path, std::vector<std::uint8_t> building, c
     time_ = flow_.start_time();
 }
 
-World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
-                 const std::string& source) {
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def) {
     std::vector<std::uint8_t> building;
-    if (scene) {
+    {
         const FlowReader probe(flow_path, def.flow);  // only for its grid
-        building = buildings_on_grid(*scene, probe.grid());
+        if (scene) {
+            check_flow_matches_scene(probe, *scene);
+            building = buildings_on_grid(*scene, probe.grid());
+        }
+        for (const BodyDef& b : bodies) check_body_start(b, probe, scene);
     }
     World world(flow_path, std::move(building), def);
-    for (const BodyDef& b : bodies) {
-        if (!world.flow().grid().contains(b.x, b.y))
-            fail(source, "body '" + b.name + "'", "starts outside the grid of flow " + flow_path);
-        world.add_body(b);
-    }
+    for (const BodyDef& b : bodies) world.add_body(b);
     return world;
 }
 

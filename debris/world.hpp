@@ -67,10 +67,9 @@ private:
 };
 
 // The world of one flow: the scene's building mask on the flow's grid (scene null: no
-// buildings), and the bodies, each of which must start on that grid (else an error that
-// names `source`, the body and the flow). Used by `flotsam debris` and by every flow of a
-// sweep.
-World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
-                 const std::string& source);
+// buildings), and the bodies. The flow must have been computed on the scene, and each
+// body must start on the grid and off the buildings (debris/scene_match.hpp: the errors
+// name the files or the body). Used by `flotsam debris` and by every flow of a sweep.
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def);
 
 }  // namespace flotsam::debris

@@ -46,7 +46,48 @@ std::vector<double> read_field(const nc::File& f, const std::string& name, const
     return nc::read_finite(f, name);
 }
 
-std::vector<std::string> read_names(const nc::File& f, const std::string& var) { return f.get_strings(f.var(var)); }
+// A feature table column: one-dimensional, on dimension `dim` of length n. Checked before
+// it is read, so a short column is a named error, never a read past its end.
+void check_column(const nc::File& f, const std::string& var, const std::string& dim, std::size_t n) {
+    const int v = f.var(var);
+    const auto dims = f.dim_names(v);
+    const auto shape = f.shape(v);
+    if (dims.size() == 1 && dims[0] == dim && shape[0] == n) return;
+    // (Appended piecewise: GCC 12 warns -Wrestrict on one long a + b + c chain.)
+    std::string found;
+    for (std::size_t k = 0; k < dims.size(); ++k) {
+        found += k ? ", " : "(";
+        found += dims[k];
+        found += " = ";
+        found += std::to_string(shape[k]);
+    }
+    found += dims.empty() ? "a scalar" : ")";
+    std::string problem = "must be one-dimensional on dimension '";
+    problem += dim;
+    problem += "' of length ";
+    problem += std::to_string(n);
+    problem += " (the length of the table's names), found ";
+    problem += found;
+    fail(f.path(), "variable '" + var + "'", problem);
+}
+
+std::vector<std::string> read_names(const nc::File& f, const std::string& var) {
+    const int v = f.var(var);
+    if (f.shape(v).size() != 1) fail(f.path(), "variable '" + var + "'", "must be one-dimensional");
+    return f.get_strings(v);
+}
+
+// The columns of table `table` ("point", "section", "region"), all checked against the
+// length of its name column.
+std::vector<std::string> read_table_names(const nc::File& f, const std::string& table, const std::vector<std::string>& columns) {
+    const std::string name_var = table + "_name";
+    const int v = f.var(name_var);
+    const auto dims = f.dim_names(v);
+    if (dims.size() != 1) fail(f.path(), "variable '" + name_var + "'", "must be one-dimensional");
+    const std::vector<std::string> names = f.get_strings(v);
+    for (const auto& c : columns) check_column(f, c, dims[0], names.size());
+    return names;
+}
 
 }  // namespace
 
@@ -87,24 +128,27 @@ Scene read_scene(const std::string& path) {
     }
 
     if (f.has_var("point_name")) {
-        const auto names = read_names(f, "point_name");
+        const auto names = read_table_names(f, "point", {"point_kind", "point_x", "point_y", "point_heading"});
         const auto kinds = read_names(f, "point_kind");
         const auto px = nc::read_finite(f, "point_x"), py = nc::read_finite(f, "point_y"), ph = nc::read_finite(f, "point_heading");
         for (std::size_t k = 0; k < names.size(); ++k) s.points.push_back({names[k], kinds[k], px[k], py[k], ph[k]});
     }
     if (f.has_var("section_name")) {
-        const auto names = read_names(f, "section_name");
+        const auto names = read_table_names(f, "section", {"section_x", "section_y_min", "section_y_max"});
         const auto sx = nc::read_finite(f, "section_x"), s0 = nc::read_finite(f, "section_y_min"),
                    s1 = nc::read_finite(f, "section_y_max");
         for (std::size_t k = 0; k < names.size(); ++k) s.sections.push_back({names[k], sx[k], s0[k], s1[k]});
     }
     if (f.has_var("region_name")) {
-        const auto names = read_names(f, "region_name");
+        const auto names = read_table_names(f, "region", {"region_vertex_start", "region_vertex_count"});
         const auto start = f.get_int(f.var("region_vertex_start")), count = f.get_int(f.var("region_vertex_count"));
         const auto vx = nc::read_finite(f, "region_vertex_x"), vy = nc::read_finite(f, "region_vertex_y");
+        if (vy.size() != vx.size())
+            fail(path, "variable 'region_vertex_y'",
+                 "has " + std::to_string(vy.size()) + " values, region_vertex_x " + std::to_string(vx.size()));
         for (std::size_t k = 0; k < names.size(); ++k) {
             Region r{names[k], {}};
-            if (start[k] < 0 || count[k] < 3 || std::size_t(start[k] + count[k]) > vx.size())
+            if (start[k] < 0 || count[k] < 3 || std::size_t(start[k]) + std::size_t(count[k]) > vx.size())
                 fail(path, "variable 'region_vertex_start'", "region '" + names[k] + "' has an invalid vertex range");
             for (int v = start[k]; v < start[k] + count[k]; ++v) r.polygon.push_back({vx[v], vy[v]});
             s.regions.push_back(std::move(r));

@@ -7,12 +7,15 @@
 #include <filesystem>
 
 #include "common/atomic_file.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
+#include "common/output_lock.hpp"
 #include "common/progress.hpp"
 #include "common/sha256.hpp"
 #include "common/version.hpp"
 #include "hydro/restart_key.hpp"
+#include "hydro/state_checks.hpp"
 
 namespace flotsam::hydro {
 
@@ -35,6 +38,13 @@ Window make_window(const Grid& g, const std::optional<std::array<double, 4>>& w)
     } else {
         const auto& b = *w;
         if (!(b[0] < b[1] && b[2] < b[3])) fail("", "--output-window", "needs x_min < x_max and y_min < y_max");
+        // At least two cells each way inside the grid (a replayed flow interpolates).
+        if (!(b[0] < g.x(g.nx - 2) && b[1] > g.x(1) && b[2] < g.y(g.ny - 2) && b[3] > g.y(1)))
+            fail("", "--output-window",
+                 "x " + number_text(b[0]) + " to " + number_text(b[1]) + ", y " + number_text(b[2]) + " to " + number_text(b[3]) +
+                     " m does not cover two cells of the scene's grid (x " + number_text(g.x_min_edge()) + " to " +
+                     number_text(g.x_max_edge()) + ", y " + number_text(g.y_min_edge()) + " to " + number_text(g.y_max_edge()) +
+                     " m)");
         out.i0 = g.cell_i(b[0]);
         out.i1 = g.cell_i(b[1]);
         out.j0 = g.cell_j(b[2]);
@@ -45,7 +55,9 @@ Window make_window(const Grid& g, const std::optional<std::array<double, 4>>& w)
 }
 
 std::vector<double> frame_times(double duration, double interval) {
-    if (!(interval > 0.0)) fail("", "--output-interval", "must be positive");
+    check_range("--output-interval", interval, Range::positive("s"));
+    check_allocation("--output-interval", number_text(interval) + " s over " + number_text(duration) + " s",
+                     duration / interval + 2, sizeof(double), "frame times");
     std::vector<double> t;
     const long n = long(std::floor(duration / interval + 1e-9));
     for (long k = 0; k <= n; ++k) t.push_back(double(k) * interval);
@@ -74,6 +86,11 @@ public:
             }
             cells_.push_back({g.cell_i(p.x), g.cell_j(p.y)});
         }
+        check_range("--gauge-interval", interval, Range::positive("s"));
+        if (!gauges.empty())
+            check_allocation("--gauge-interval", number_text(interval) + " s over " + number_text(duration) + " s",
+                             (duration / interval + 1) * double(gauges.size()), 4 * sizeof(float) + sizeof(double),
+                             "gauge samples");
         samples_ = gauges.empty() ? 0 : std::size_t(std::floor(duration / interval + 1e-9)) + 1;
     }
     std::size_t samples() const { return samples_; }
@@ -343,6 +360,7 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const SolverDef
     fd.attributes["history"] = run.command_line;
     fd.attributes["flotsam_config"] = run.config_text;
     fd.attributes["scene_file"] = run.scene_file;
+    fd.attributes["scene_sha256"] = sha256_file(run.scene_file);  // debris replays check it (debris/scene_match.hpp)
     fd.attributes["scene_title"] = scene.title;
     fd.attributes["realisation"] = std::to_string(run.realisation);
     fd.attributes["boundary_file"] = boundary_files(def);
@@ -414,6 +432,7 @@ long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& 
         const double t0 = solver.time();
         const double target = o.times[o.state.next_frame];
         double dt = solver.stable_dt();
+        check_step(solver, solver.grid(), run.out_file, t0, dt, o.state.volume_start);
         // A step that would stop within a millionth of itself short of the frame goes to
         // it (a fixed step that divides the interval lands there despite round-off in t).
         const bool reaches = t0 + dt >= target - 1e-6 * dt;
@@ -427,10 +446,16 @@ long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& 
         before = std::move(after);
         accumulate(o.sum, solver, o.win, t1, run.arrival_depth);
         if (reaches) {
-            write_frame(*o.writer, o.state.next_frame, solver, o.win);
+            check_state(solver, solver.grid(), run.out_file, t1, o.state.volume_start);  // never write NaN
+            try {
+                write_frame(*o.writer, o.state.next_frame, solver, o.win);
+                o.gauges.flush(*o.writer);
+                o.writer->sync();  // a full disk shows here, at this frame, not at the end
+            } catch (const Error& e) {
+                throw Error(std::string(e.what()) + "; while writing frame " + std::to_string(o.state.next_frame) +
+                            " (t = " + number_text(t1) + " s)");
+            }
             ++o.state.next_frame;
-            o.gauges.flush(*o.writer);
-            o.writer->sync();
         }
         // Checkpoints and stops fall on stored frames, and every frame ends with a sync:
         // the file then has the same bytes (HDF5's layout included) whether the run was
@@ -498,6 +523,7 @@ static_assert(RunnableSolver<Solver> && RunnableSolver<NestedSolver> && Runnable
 
 RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");
+    const OutputLock lock(run.out_file);  // one writer per output: a second run stops here
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
     // Boundary series must cover the whole run before any work starts.

@@ -5,8 +5,10 @@
 #include <memory>
 #include <numbers>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 #include "formats/scene.hpp"
@@ -29,6 +31,10 @@ std::vector<double> sweep_output_times(const SweepSpec& spec) {
     }
     const double t_end = spec.end_time > 0 ? spec.end_time : last;
     if (t_end < t0) fail(spec.path, "end_time", "before the flows' first frame");
+    // Sized before it is built: the trajectories hold 7 series of this length per member.
+    check_allocation("output_interval", number_text(spec.output_interval) + " s", (t_end - t0) / spec.output_interval + 2,
+                     7.0 * sizeof(double) * double(std::max<std::size_t>(1, enumerate_members(spec).size())),
+                     "output times (for every member)", spec.path);
     // t0 + k Δ from k (no accumulated round-off), the last one at t_end.
     std::vector<double> times{t0};
     for (long k = 1; times.back() < t_end; ++k) times.push_back(std::min(t0 + double(k) * spec.output_interval, t_end));
@@ -69,7 +75,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         const std::string& path = spec.flows[std::size_t(f)];
         std::vector<debris::BodyDef> bodies;
         for (const Member* m : on_flow) bodies.push_back(m->def);
-        debris::World world = debris::make_world(path, scene.get(), bodies, wdef, spec.path);
+        debris::World world = debris::make_world(path, scene.get(), bodies, wdef);
         debris::TrajectorySeries series;
         debris::record(world, series);
         Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +

@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/cf.hpp"
+#include "common/checks.hpp"
 #include "common/columns.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
@@ -169,35 +170,52 @@ SweepResult read_sweep_file(const std::string& path) {
         if (!a) fail(path, std::string("attribute '") + name + "'", "missing");
         return *a;
     };
-    auto number = [&](const char* name) {
+    auto number = [&](const char* name, const Range& range) {
         const auto a = f.att_double(NC_GLOBAL, name);
         if (!a) fail(path, std::string("attribute '") + name + "'", "missing");
+        check_range(std::string("attribute '") + name + "'", *a, range, path);
         return *a;
     };
     r.spec_file = text("spec_file");
     r.spec_sha256 = text("spec_sha256");
     r.scene_file = text("scene_file");
     r.design = text("design");
-    r.member_count = int(number("member_count"));
+    r.member_count = int(number("member_count", Range::count(0, 2e9)));
     r.shard = parse_shard(text("shard"));
-    r.output_interval = number("output_interval_s");
+    r.output_interval = number("output_interval_s", Range::positive("s"));
     r.world = debris::get_world_attributes(f);
-    r.perturbation.count = int(number("perturbation_count"));
-    r.perturbation.position_std = number("perturbation_position_std_m");
-    r.perturbation.heading_std = number("perturbation_heading_std_deg");
-    r.perturbation.seed = std::uint64_t(number("perturbation_seed"));
-    r.time = f.get_double(f.var("time"));
-    r.flows = f.get_strings(f.var("flow_path"));
-    r.bodies = f.get_strings(f.var("body_name"));
-    r.variants = f.get_strings(f.var("variant_name"));
-    const auto labels = f.get_strings(f.var("param_set_label"));
-    const auto ctrl = f.get_int(f.var("param_set_is_control"));
+    r.perturbation.count = int(number("perturbation_count", Range::count(0, 2e9)));
+    r.perturbation.position_std = number("perturbation_position_std_m", Range::non_negative("m"));
+    r.perturbation.heading_std = number("perturbation_heading_std_deg", Range::non_negative("degree"));
+    r.perturbation.seed = std::uint64_t(number("perturbation_seed", Range::count(0, 1.8e19)));
+    // Every table is checked against its dimension before it is read: a short column is
+    // a named error, never a read past its end.
+    auto column_var = [&](const std::string& name, const std::string& dim) {
+        const int v = f.var(name);
+        const auto dims = f.dim_names(v);
+        if (dims != std::vector<std::string>{dim})
+            fail(path, "variable '" + name + "'", "must be one-dimensional on dimension '" + dim + "'");
+        return v;
+    };
+    r.time = nc::read_finite(f, "time");
+    column_var("time", "time");
+    for (std::size_t k = 1; k < r.time.size(); ++k)
+        if (!(r.time[k] > r.time[k - 1])) fail(path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
+    r.flows = f.get_strings(column_var("flow_path", "flow"));
+    r.bodies = f.get_strings(column_var("body_name", "body"));
+    r.variants = f.get_strings(column_var("variant_name", "variant"));
+    const auto labels = f.get_strings(column_var("param_set_label", "param_set"));
+    const auto ctrl = f.get_int(column_var("param_set_is_control", "param_set"));
     std::vector<std::vector<double>> set_values;
     for (const auto& p : design_parameters()) {
         const std::string name = "param_set_" + p.variable();
         // A parameter added since the file was written (the drag factor): its control value.
-        set_values.push_back(f.has_var(name) ? f.get_double(f.var(name))
-                                             : std::vector<double>(labels.size(), p.number(debris::default_body_def())));
+        if (!f.has_var(name)) {
+            set_values.push_back(std::vector<double>(labels.size(), p.number(debris::default_body_def())));
+            continue;
+        }
+        column_var(name, "param_set");
+        set_values.push_back(nc::read_finite(f, name));
     }
     for (std::size_t s = 0; s < labels.size(); ++s) {
         ParameterSet ps{labels[s], {}, ctrl[s] != 0};
@@ -206,9 +224,12 @@ SweepResult read_sweep_file(const std::string& path) {
     }
 
     const std::size_t nm = f.dim_length("trajectory"), nt = r.time.size();
-    const auto ints = [&](const char* n) { return f.get_int(f.var(n)); };
-    const auto doubles = [&](const char* n) { return f.get_double(f.var(n)); };
-    const auto strings = [&](const char* n) { return f.get_strings(f.var(n)); };
+    const auto ints = [&](const char* n) { return f.get_int(column_var(n, "trajectory")); };
+    const auto doubles = [&](const char* n) {
+        column_var(n, "trajectory");
+        return nc::read_finite(f, n);
+    };
+    const auto strings = [&](const char* n) { return f.get_strings(column_var(n, "trajectory")); };
     const auto id = ints("member_id"), flow = ints("flow_index"), pert = ints("perturbation"), set = ints("param_set");
     const auto nc_ = ints("collision_steps"), nu = ints("unresolved_collisions"), ns = ints("axis_shift_steps");
     const auto body = strings("body"), start = strings("start_name"), variant = strings("variant"),
@@ -218,8 +239,15 @@ SweepResult read_sweep_file(const std::string& path) {
     get_setting_vars(f, debris::body_coefficient_settings(), defs);
     get_setting_vars(f, debris::body_shape_settings(), defs);
     get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
-    const int vx = f.var("x"), vy = f.var("y"), vyaw = f.var("yaw"), vu = f.var("u"), vv = f.var("v"), vom = f.var("omega"),
-              vst = f.var("status");
+    auto track_var = [&](const char* name) {
+        const int v = f.var(name);
+        if (f.dim_names(v) != std::vector<std::string>{"trajectory", "time"} || f.shape(v) != std::vector<std::size_t>{nm, nt})
+            fail(path, std::string("variable '") + name + "'",
+                 "must have dimensions (trajectory, time) = (" + std::to_string(nm) + ", " + std::to_string(nt) + ")");
+        return v;
+    };
+    const int vx = track_var("x"), vy = track_var("y"), vyaw = track_var("yaw"), vu = track_var("u"), vv = track_var("v"),
+              vom = track_var("omega"), vst = track_var("status");
     std::vector<double> statusd(nt);
     for (std::size_t b = 0; b < nm; ++b) {
         MemberRecord m;
@@ -259,6 +287,11 @@ SweepResult read_sweep_file(const std::string& path) {
             f.get_slab(vv, st, count, t.v.data());
             f.get_slab(vom, st, count, t.omega.data());
             f.get_slab(vst, st, count, statusd.data());
+            for (const auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega})
+                for (std::size_t k = 0; k < nt; ++k)
+                    if (!std::isfinite((*series)[k]) || std::fabs((*series)[k]) > 1e12)
+                        fail(path, "trajectory " + std::to_string(b) + ", time index " + std::to_string(k),
+                             "a track value is not finite (or is a fill value)");
         }
         for (double s : statusd) t.status.push_back(std::int8_t(s));
         r.members.push_back(std::move(m));

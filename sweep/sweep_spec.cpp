@@ -7,6 +7,7 @@
 #include <memory>
 #include <numbers>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/sha256.hpp"
 #include "common/toml_lite.hpp"
@@ -417,6 +418,13 @@ std::array<double, 3> perturbed_start(const SweepSpec& spec, int body, int k) {
 std::vector<Member> enumerate_members(const SweepSpec& spec) {
     std::vector<Member> out;
     const int np = spec.perturbation.count + 1;
+    // Sized before anything is allocated: flows x bodies x starts x variants x sets.
+    const double members = double(spec.flows.size()) * double(spec.bodies.size()) * double(np) * double(spec.variants.size()) *
+                           double(spec.params.size());
+    if (members > 2e9)
+        fail(spec.path, "sweep size",
+             number_text(members) + " members (flows x bodies x starts x variants x parameter sets), more than 2e9");
+    check_allocation("sweep size", number_text(members) + " members", members, double(sizeof(Member)), "members", spec.path);
     for (int f = 0; f < int(spec.flows.size()); ++f)
         for (int b = 0; b < int(spec.bodies.size()); ++b)
             for (int k = 0; k < np; ++k) {

@@ -2,11 +2,18 @@
 // per output, finite numbers or a named error, inputs never outputs, readers that do
 // not crash, a full disk. Each test runs the built `flotsam` binary.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "common/netcdf.hpp"
+#include "common/output_lock.hpp"
 #include "common/sha256.hpp"
+#include "formats/scene.hpp"
+#include "fuzz/targets.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -36,6 +43,25 @@ std::string hydro_args(const SmallCase& c, const std::string& out) {
            " --duration 6 --output-interval 0.5 --quiet --out " + out;
 }
 
+// A flow and a sweep (with the spec) on the small case.
+struct Outputs {
+    std::string flow, sweep, spec;
+};
+Outputs flow_and_sweep(const SmallCase& c) {
+    Outputs o{c.dir + "/flow.nc", c.dir + "/sweep.nc", c.dir + "/spec.toml"};
+    std::string out;
+    EXPECT_EQ(
+        test::run_cli(
+            "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --duration 4 --quiet --out " + o.flow, &out),
+        0)
+        << out;
+    const std::string spec = test::write_file(c.dir, "spec.toml",
+                                              "[sweep]\nscene = \"" + c.scene + "\"\n[flows]\npaths = [\"" + o.flow +
+                                                  "\"]\n[[body]]\nstart = \"FD\"\n[[body]]\nstart = \"LD\"\n"
+                                                  "[variants]\nnames = [\"CC+SC\", \"LC+MC\"]\n");
+    EXPECT_EQ(test::run_cli("sweep --spec " + spec + " --quiet --out " + o.sweep, &out), 0) << out;
+    return o;
+}
 }  // namespace
 
 // Stop, restart (on another thread count), and the same bytes as a run never stopped.
@@ -75,4 +101,365 @@ TEST(ReliabilityCli, RefusedRestartNamesTheSettingsAndKeepsThePartialWork) {
     EXPECT_EQ(sha256_file(f + ".part"), part_sha);
     EXPECT_EQ(sha256_file(f + ".checkpoint.nc"), ckpt_sha);
     EXPECT_FALSE(fs::exists(f));
+}
+
+// ---- one writer per output ----
+
+namespace {
+
+bool wait_for(const std::string& path, double seconds) {
+    for (int k = 0; k < int(seconds * 100); ++k) {
+        if (fs::exists(path)) return true;
+        ::usleep(10000);
+    }
+    return false;
+}
+
+}  // namespace
+
+// Two runs with one --out: the second stops at once naming the first, which finishes
+// with the same bytes as if it had been alone; with and without HDF5's own locking.
+TEST(ReliabilityCli, SecondWriterStopsAtOnceAndTheFirstFinishesIntact) {
+    const SmallCase c = small_case("cli_two_writers");
+    std::string out;
+    const std::string args = "hydro --scene " + c.scene + " --west level --west-series " + c.series +
+                             " --duration 30 --output-interval 0.5 --threads 1 --quiet --out ";
+    ASSERT_EQ(test::run_cli(args + c.dir + "/ref.nc", &out), 0) << out;
+    const std::string ref = sha256_file(c.dir + "/ref.nc");
+    for (const std::string env : {"", "HDF5_USE_FILE_LOCKING=FALSE"}) {
+        SCOPED_TRACE(env.empty() ? "HDF5 file locking on" : env);
+        const std::string f = c.dir + "/f" + std::to_string(env.size()) + ".nc";
+        FILE* first = test::start_cli(args + f, env);
+        ASSERT_TRUE(wait_for(f + ".part", 20.0));
+        const int rc = test::run_cli(args + f, &out);  // a second writer, HDF5 locking as the test's environment has it
+        std::string out2;
+        const int rc2 = test::finish_cli(test::start_cli(args + f, env), &out2);
+        EXPECT_NE(rc, 0);
+        EXPECT_NE(out.find("another run is writing " + f + " (pid "), std::string::npos) << out;
+        EXPECT_NE(rc2, 0);
+        EXPECT_NE(out2.find("another run is writing"), std::string::npos) << out2;
+        ASSERT_EQ(test::finish_cli(first, &out), 0) << out;
+        EXPECT_EQ(sha256_file(f), ref);
+        EXPECT_FALSE(fs::exists(f + ".part"));
+        EXPECT_FALSE(fs::exists(f + ".lock"));
+    }
+}
+
+// Every command that writes an output takes its lock: with the lock held here (as a run
+// would hold it), each stops at once and leaves the existing file alone.
+TEST(ReliabilityCli, EveryWritingCommandTakesTheOutputLock) {
+    const SmallCase c = small_case("cli_lock_all");
+    std::string out;
+    const std::string spec = flow_and_sweep(c).spec;
+    const std::string target = c.dir + "/taken.nc";
+    test::write_file(c.dir, "taken.nc", "precious");
+    const OutputLock held(target);
+    const std::vector<std::string> commands = {
+        "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --duration 4 --quiet --out " + target,
+        "debris --flow " + c.dir + "/flow.nc --scene " + c.scene + " --start FD --quiet --out " + target,
+        "sweep --spec " + spec + " --quiet --out " + target,
+        "sweep merge " + c.dir + "/sweep.nc --out " + target,
+        "stats --sweep " + c.dir + "/sweep.nc --out " + target,
+        "scene generate --resolution 0.16 --out " + target,
+        "scene import --dem " + c.scene + " --resolution 0.32 --out " + target,
+    };
+    for (const auto& cmd : commands) {
+        EXPECT_NE(test::run_cli(cmd, &out), 0) << cmd;
+        EXPECT_NE(out.find("another run is writing " + target + " (pid " + std::to_string(::getpid())), std::string::npos)
+            << cmd << "\n"
+            << out;
+    }
+    {
+        const OutputLock records(c.dir + "/bc2/wg1_r01.csv");
+        EXPECT_NE(test::run_cli("boundary generate --count 2 --duration 30 --out-dir " + c.dir + "/bc2", &out), 0);
+        EXPECT_NE(out.find("another run is writing"), std::string::npos) << out;
+        EXPECT_FALSE(fs::exists(c.dir + "/bc2/wg1_r00.csv"));  // stopped before writing anything
+    }
+    std::ifstream f(target);
+    std::string text;
+    std::getline(f, text);
+    EXPECT_EQ(text, "precious");
+}
+
+// ---- inputs are never outputs ----
+
+TEST(ReliabilityCli, AnOutputThatIsAnInputIsRefused) {
+    const SmallCase c = small_case("cli_in_out");
+    std::string out;
+    const std::string spec = flow_and_sweep(c).spec;
+    fs::create_symlink(c.scene, c.dir + "/link.nc");
+    fs::create_directories(c.dir + "/sub");
+    const std::string hydro = "hydro --west level --duration 4 --quiet ";
+    struct Case {
+        std::string args, input;
+    };
+    const std::vector<Case> cases = {
+        {hydro + "--scene " + c.scene + " --west-series " + c.series + " --out " + c.scene, c.scene},
+        {hydro + "--scene " + c.scene + " --west-series " + c.series + " --out " + c.dir + "/link.nc", c.scene},
+        {hydro + "--scene " + c.scene + " --west-series " + c.series + " --out " + c.dir + "/sub/../scene.nc", c.scene},
+        {hydro + "--scene " + c.scene + " --west-series " + c.series + " --out " + c.series, c.series},
+        {"debris --flow " + c.dir + "/flow.nc --at 0.5,-1,0 --quiet --out " + c.dir + "/flow.nc", c.dir + "/flow.nc"},
+        {"stats --sweep " + c.dir + "/sweep.nc --out " + c.dir + "/sweep.nc", c.dir + "/sweep.nc"},
+        {"scene import --dem " + c.scene + " --resolution 0.32 --out " + c.scene, c.scene},
+        {"sweep merge " + c.dir + "/sweep.nc --out " + c.dir + "/sweep.nc", c.dir + "/sweep.nc"},
+    };
+    for (const auto& k : cases) {
+        const std::string before = sha256_file(k.input);
+        EXPECT_NE(test::run_cli(k.args, &out), 0) << k.args;
+        EXPECT_NE(out.find("is the input given as"), std::string::npos) << k.args << "\n" << out;
+        EXPECT_EQ(sha256_file(k.input), before) << k.args;
+    }
+    // The summary of a sweep is an output too: never the main output.
+    EXPECT_NE(test::run_cli("sweep --spec " + spec + " --quiet --out " + c.dir + "/o.nc --summary " + c.dir + "/o.nc", &out), 0);
+    EXPECT_NE(out.find("is also the output given as --out"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(c.dir + "/o.nc"));
+}
+
+// ---- finite numbers in range, or a named error ----
+
+TEST(ReliabilityCli, NonFiniteAndAbsurdOptionsAreNamedWithValueAndRange) {
+    const SmallCase c = small_case("cli_ranges");
+    std::string out;
+    const std::string hydro =
+        "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --duration 4 --quiet --out " + c.dir + "/f.nc ";
+    const std::string flow = flow_and_sweep(c).flow;
+    const std::string debris = "debris --flow " + flow + " --scene " + c.scene + " --start FD --quiet --out " + c.dir + "/d.nc ";
+    const std::string stats = "stats --sweep " + c.dir + "/sweep.nc --out " + c.dir + "/s.nc ";
+    struct Case {
+        std::string args, expect;
+    };
+    const std::vector<Case> cases = {
+        {hydro + "--max-dt 0", "--max-dt: 0 is outside the allowed range (0, inf) s"},
+        {hydro + "--manning-n nan", "--manning-n: nan is not a finite number (allowed: [0, 1) s m^-1/3)"},
+        {hydro + "--manning-n -1", "--manning-n: -1 is outside the allowed range [0, 1)"},
+        {hydro + "--gauge-interval 0", "--gauge-interval: 0 is outside the allowed range (0, inf) s"},
+        {hydro + "--cfl inf", "--cfl: inf is not a finite number"},
+        {hydro + "--output-interval 1e-9", "--output-interval: 1e-09 s over 4"},
+        {hydro + "--output-window 20,30,20,30", "--output-window: x 20"},
+        {hydro + "--gauge G,1,nan", "--gauge 'G,1,nan': y: nan is not a finite number"},
+        {debris + "--cm nan", "--cm: nan is not a finite number (allowed: [1, 100])"},
+        {debris + "--cd1 nan", "--cd1: nan is not a finite number"},
+        {debris + "--restitution nan", "--restitution: nan is not a finite number (allowed: [0, 1])"},
+        {debris + "--length 1e6", "--length: 1e+06 is outside the allowed range (0, 10000] m"},
+        {debris + "--length 50", "body 'FD': size: a 50 x 0.1 m body does not fit in the domain"},
+        {"debris --flow " + flow + " --at 1.37,-2.15,nan --quiet --out " + c.dir + "/d.nc",
+         "--at: 1.37,-2.15,nan: expected x,y,heading_deg (finite numbers)"},
+        {stats + "--arrival-time nan", "--arrival-time: nan is not a finite number"},
+        {stats + "--yaw-window -1", "--yaw-window: -1 is outside the allowed range (0, inf) s"},
+        {stats + "--kde-points 2e9", "--kde-points"},
+        {"scene import --dem " + c.scene + " --resolution 1e-5 --out " + c.dir + "/i.nc", "--resolution: 1e-05 m would make"},
+        {"scene generate --resolution 0 --out " + c.dir + "/g.nc", "--resolution: 0 is outside the allowed range (0, 100] m"},
+        {"boundary generate --dt 0 --out-dir " + c.dir + "/bc3", "--dt: 0 is outside the allowed range (0, inf) s"},
+    };
+    for (const auto& k : cases) {
+        EXPECT_EQ(test::run_cli(k.args, &out) == 0, false) << k.args;
+        EXPECT_NE(out.find(k.expect), std::string::npos) << k.args << "\n" << out;
+        EXPECT_EQ(out.find("internal error"), std::string::npos) << out;
+    }
+    // Sweep spec values go through the same ranges, naming file, line and key.
+    const std::string bad_spec = test::write_file(c.dir, "bad.toml",
+                                                  "[sweep]\nscene = \"" + c.scene + "\"\n[flows]\npaths = [\"" + flow +
+                                                      "\"]\n[[body]]\nstart = \"FD\"\n[parameters]\ncd1 = 1e300\n");
+    EXPECT_NE(test::run_cli("sweep --spec " + bad_spec + " --quiet --out " + c.dir + "/w.nc", &out), 0);
+    EXPECT_NE(out.find("bad.toml: line 8: [parameters] key 'cd1': parameter set 'control' gets cd1 = 1e+300 is outside"),
+              std::string::npos)
+        << out;
+    const std::string huge =
+        test::write_file(c.dir, "huge.toml",
+                         "[sweep]\nscene = \"" + c.scene + "\"\n[flows]\npaths = [\"" + flow +
+                             "\"]\n[[body]]\nstart = \"FD\"\n[perturbation]\ncount = 1e6\nposition-std = 0.01\n"
+                             "[parameters]\ndesign = \"random\"\nsamples = 1000000\n");
+    EXPECT_NE(test::run_cli("sweep --spec " + huge + " --quiet --out " + c.dir + "/w.nc", &out), 0);
+    EXPECT_NE(out.find("huge.toml: sweep size: "), std::string::npos) << out;
+}
+
+// Settings files: the same checks, naming the file and key; a misspelled section, a key
+// given twice and an array for a one-value setting are named errors too.
+TEST(ReliabilityCli, SettingsFileErrorsNameFileAndKey) {
+    const SmallCase c = small_case("cli_settings");
+    std::string out;
+    const std::string hydro =
+        "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --quiet --out " + c.dir + "/f.nc --config ";
+    struct Case {
+        std::string text, expect;
+    };
+    const std::vector<Case> cases = {
+        {"[hydor]\nduration = 5\n", "settings.toml: section [hydor]: 'hydor' is not a flotsam command"},
+        {"duration = 5\nduration = 6\n", "settings.toml: line 2: key 'duration' given twice in the same table"},
+        {"duration = [5, 6]\n", "settings.toml: line 1: key 'duration': takes one value, the file gives an array of 2"},
+        {"[hydro]\nmax-dt = 0\n", "settings.toml: key 'max-dt': 0 is outside the allowed range (0, inf) s"},
+        {"manning-n = -0.5\n", "settings.toml: key 'manning-n': -0.5 is outside the allowed range"},
+        {"durtion = 5\n", "settings.toml: line 1: key 'durtion': is not a setting of 'flotsam hydro'"},
+    };
+    for (const auto& k : cases) {
+        const std::string file = test::write_file(c.dir, "settings.toml", k.text);
+        EXPECT_NE(test::run_cli(hydro + file, &out), 0) << k.text;
+        EXPECT_NE(out.find(k.expect), std::string::npos) << k.text << "\n" << out;
+    }
+}
+
+// A state that is no longer finite (a level series of 1e300 after 1 s) stops hydro with
+// the time, the cell and the variable, a non-zero exit, and no flow file.
+TEST(ReliabilityCli, HydroStopsAtTheFirstNonFiniteStateAndLeavesNoFile) {
+    const SmallCase c = small_case("cli_nan_state");
+    std::string csv = "time,eta\n0,0\n1,0.01\n";
+    for (int t = 2; t <= 30; t += 2) csv += std::to_string(t) + ",1e300\n";
+    const std::string series = test::write_file(c.dir, "bad.csv", csv);
+    std::string out;
+    const std::string f = c.dir + "/f.nc";
+    EXPECT_NE(
+        test::run_cli("hydro --scene " + c.scene + " --west level --west-series " + series + " --duration 6 --out " + f, &out), 0);
+    EXPECT_NE(out.find("the run stopped: at t = "), std::string::npos) << out;
+    EXPECT_NE(out.find("cell (i "), std::string::npos) << out;
+    EXPECT_NE(out.find("no flow file was written"), std::string::npos) << out;
+    EXPECT_EQ(out.find("complete after"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(f));
+    EXPECT_FALSE(fs::exists(f + ".part"));
+}
+
+// ---- readers that cannot be made to crash ----
+
+TEST(ReliabilityCli, TablesWhoseLengthsDisagreeAreNamedErrors) {
+    const SmallCase c = small_case("cli_tables");
+    const Outputs o = flow_and_sweep(c);
+    std::string out;
+    // A scene with 3 point names and a 1-entry point_kind (hydro and debris crashed on it).
+    fuzz::copy_with_short_column(c.scene, c.dir + "/short_points.nc", "point_kind", 1);
+    EXPECT_NE(test::run_cli("hydro --scene " + c.dir + "/short_points.nc --west wall --duration 1 --quiet --out " + c.dir + "/x.nc",
+                            &out),
+              0);
+    EXPECT_NE(out.find("short_points.nc: variable 'point_kind': must be one-dimensional on dimension 'point' of length"),
+              std::string::npos)
+        << out;
+    // A short section table (read out of bounds before).
+    fuzz::copy_with_short_column(c.scene, c.dir + "/short_sections.nc", "section_y_max", 1);
+    EXPECT_NE(test::run_cli("stats --sweep " + o.sweep + " --scene " + c.dir + "/short_sections.nc --out " + c.dir + "/s.nc", &out),
+              0);
+    EXPECT_NE(out.find("variable 'section_y_max': must be one-dimensional on dimension 'section'"), std::string::npos) << out;
+    // A sweep file whose `body` column has 1 entry for every trajectory (stats crashed).
+    fuzz::copy_with_short_column(o.sweep, c.dir + "/short_body.nc", "body", 1);
+    EXPECT_NE(test::run_cli("stats --sweep " + c.dir + "/short_body.nc --out " + c.dir + "/s.nc", &out), 0);
+    EXPECT_NE(out.find("short_body.nc: variable 'body': must be one-dimensional on dimension 'trajectory'"), std::string::npos)
+        << out;
+    fuzz::copy_with_short_column(o.sweep, c.dir + "/short_variant.nc", "variant", 1);
+    EXPECT_NE(test::run_cli("stats --sweep " + c.dir + "/short_variant.nc --out " + c.dir + "/s.nc", &out), 0);
+    EXPECT_NE(out.find("variable 'variant'"), std::string::npos) << out;
+    EXPECT_EQ(out.find("internal error"), std::string::npos) << out;
+}
+
+TEST(ReliabilityCli, FlowsAreCheckedAgainstTheirSceneAndTheirValues) {
+    const SmallCase c = small_case("cli_flow_checks");
+    const Outputs o = flow_and_sweep(c);
+    std::string out;
+    const std::string debris = " --start FD --quiet --out " + c.dir + "/d.nc";
+    // A flow from another scene (another building layout) with this scene's buildings.
+    const std::string other = c.dir + "/other.nc";
+    ASSERT_EQ(test::run_cli("scene generate --resolution 0.16 --seed 7 --out " + other, &out), 0) << out;
+    EXPECT_NE(test::run_cli("debris --flow " + o.flow + " --scene " + other + debris, &out), 0);
+    EXPECT_NE(out.find("was not computed on scene " + other + ": the bed differs at"), std::string::npos) << out;
+    EXPECT_NE(out.find("sha256"), std::string::npos) << out;
+    // A body inside a building, and one outside the domain.
+    const Scene scene = read_scene(c.scene);
+    std::size_t k = 0;
+    while (k < scene.building.size() && !scene.building[k]) ++k;
+    ASSERT_LT(k, scene.building.size());
+    const double bx = scene.grid.x(int(k % std::size_t(scene.grid.nx))), by = scene.grid.y(int(k / std::size_t(scene.grid.nx)));
+    EXPECT_NE(test::run_cli("debris --flow " + o.flow + " --scene " + c.scene + " --at " + std::to_string(bx) + "," +
+                                std::to_string(by) + ",0 --quiet --out " + c.dir + "/d.nc",
+                            &out),
+              0);
+    EXPECT_NE(out.find("body 'body0': start: at x = "), std::string::npos) << out;
+    EXPECT_NE(out.find("its centre is inside a building"), std::string::npos) << out;
+    EXPECT_NE(test::run_cli("debris --flow " + o.flow + " --at 100,100,0 --quiet --out " + c.dir + "/d.nc", &out), 0);
+    EXPECT_NE(out.find("body 'body0': start: at x = 100 m, y = 100 m is outside the domain"), std::string::npos) << out;
+    // A one-frame flow, a negative depth, a fill value in v.
+    fuzz::copy_with_dimension(o.flow, c.dir + "/one_frame.nc", "time", 1);
+    EXPECT_NE(test::run_cli("debris --flow " + c.dir + "/one_frame.nc --scene " + c.scene + debris, &out), 0);
+    EXPECT_NE(out.find("one_frame.nc: variable 'time': 1 frame(s): a flow to replay needs at least two"), std::string::npos) << out;
+    // Under the FD start, so that the frames the replay loads hold it.
+    const std::size_t cells = std::size_t(scene.grid.nx) * std::size_t(scene.grid.ny);
+    const ScenePoint* fd = scene.find_point("FD");
+    ASSERT_NE(fd, nullptr);
+    const int fi = scene.grid.cell_i(fd->x), fj = scene.grid.cell_j(fd->y);
+    const std::string cell = "cell (i " + std::to_string(fi) + ", j " + std::to_string(fj) + ")";
+    fuzz::copy_with_value(o.flow, c.dir + "/negative.nc", "h", cells + scene.grid.index(fi, fj), -0.1);
+    EXPECT_NE(test::run_cli("debris --flow " + c.dir + "/negative.nc --scene " + c.scene + debris, &out), 0);
+    EXPECT_NE(out.find("negative.nc: frame 1, " + cell + ": h = -0.1"), std::string::npos) << out;
+    fuzz::copy_with_value(o.flow, c.dir + "/fill.nc", "v", scene.grid.index(fi, fj), 9.969209968386869e36);
+    EXPECT_NE(test::run_cli("debris --flow " + c.dir + "/fill.nc --scene " + c.scene + debris, &out), 0);
+    EXPECT_NE(out.find("fill.nc: frame 0, " + cell + ": v = "), std::string::npos) << out;
+    EXPECT_EQ(out.find("internal error"), std::string::npos) << out;
+}
+
+// A square DEM stored as z(x, y) is read by its dimension names, not transposed.
+TEST(ReliabilityCli, ATransposedDemIsReadByDimensionName) {
+    const auto dir = test::scratch_dir("cli_dem_xy");
+    auto write_dem = [&](const std::string& path, bool x_first) {
+        nc::File f = nc::File::create(path);
+        const int dx = f.def_dim("x", 4), dy = f.def_dim("y", 4);
+        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy});
+        const int vz = f.def_var("z", NC_DOUBLE, x_first ? std::vector<int>{dx, dy} : std::vector<int>{dy, dx});
+        f.enddef();
+        f.put(vx, std::vector<double>{0.5, 1.5, 2.5, 3.5});
+        f.put(vy, std::vector<double>{0.5, 1.5, 2.5, 3.5});
+        std::vector<double> z(16);
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) z[x_first ? std::size_t(i * 4 + j) : std::size_t(j * 4 + i)] = 0.1 * i - 0.01 * j;
+        f.put(vz, z);
+        f.close();
+    };
+    write_dem(dir + "/yx.nc", false);
+    write_dem(dir + "/xy.nc", true);
+    std::string out;
+    ASSERT_EQ(test::run_cli("scene import --dem " + dir + "/yx.nc --resolution 1 --out " + dir + "/a.nc", &out), 0) << out;
+    ASSERT_EQ(test::run_cli("scene import --dem " + dir + "/xy.nc --resolution 1 --out " + dir + "/b.nc", &out), 0) << out;
+    const Scene a = read_scene(dir + "/a.nc"), b = read_scene(dir + "/b.nc");
+    EXPECT_EQ(a.z, b.z);
+    EXPECT_NEAR(a.z[a.grid.index(3, 0)], 0.3, 1e-6);  // east is +x in both
+}
+
+// ---- a full disk ----
+
+// A 200 kB file system (tmpfs, mounted here when permitted): hydro fails at the first
+// frame it cannot write, names the path and "No space left on device", exits 1 (not a
+// crash), and leaves no file that looks finished.
+TEST(ReliabilityCli, AFullDiskIsANamedErrorNotACrash) {
+    const SmallCase c = small_case("cli_full_disk");
+    const std::string mnt = c.dir + "/tiny";
+    fs::create_directories(mnt);
+    if (std::system(("mount -t tmpfs -o size=200k tmpfs " + mnt + " 2>/dev/null").c_str()) != 0) {
+        std::printf("skipped: cannot mount a 200 kB tmpfs here (needs root)\n");
+        GTEST_SKIP() << "mounting a tmpfs is not permitted";
+    }
+    struct Unmount {
+        std::string dir;
+        ~Unmount() { (void)std::system(("umount " + dir).c_str()); }
+    } unmount{mnt};
+    std::string out;
+    const std::string f = mnt + "/f.nc";
+    const int rc = test::run_cli("hydro --scene " + c.scene + " --west level --west-series " + c.series +
+                                     " --duration 30 --output-interval 0.1 --deflate 0 --quiet --out " + f,
+                                 &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("No space left on device"), std::string::npos) << out;
+    EXPECT_NE(out.find(f + ".part"), std::string::npos) << out;
+    EXPECT_NE(out.find("while writing frame "), std::string::npos) << out;  // at a frame, not at the end
+    EXPECT_FALSE(fs::exists(f));
+    // Another writer on the (nearly) full file system: a scene.
+    EXPECT_EQ(std::system(("dd if=/dev/zero of=" + mnt + "/filler bs=1k count=190 2>/dev/null").c_str()), 0);
+    EXPECT_EQ(test::run_cli("scene generate --resolution 0.04 --out " + mnt + "/scene.nc", &out), 1) << out;
+    EXPECT_NE(out.find("No space left on device"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(mnt + "/scene.nc"));
+}
+
+// A flow whose structure was corrupted (two bytes in its first 16 kB) so that libhdf5
+// itself segfaults parsing it (ncdump does too): flotsam names the file instead of
+// crashing (nc::probe_structure).
+TEST(ReliabilityCli, AFileThatCrashesLibhdf5IsANamedError) {
+    const std::string corrupt = std::string(FLOTSAM_SOURCE_DIR) + "/tests/data/corrupt/flow_libhdf5_segfault.nc";
+    const auto dir = test::scratch_dir("cli_corrupt");
+    std::string out;
+    EXPECT_EQ(test::run_cli("debris --flow " + corrupt + " --at 0.5,-1,0 --quiet --out " + dir + "/d.nc", &out), 1) << out;
+    EXPECT_NE(out.find("flow_libhdf5_segfault.nc: corrupted: libhdf5 crashed reading the file's structure"), std::string::npos)
+        << out;
 }

@@ -27,9 +27,13 @@ std::string shared_data(const std::string& file) {
     return std::filesystem::exists(p) ? p.string() : std::string();
 }
 
-int run_cli(const std::string& args, std::string* output) {
-    const std::string cmd = std::string(FLOTSAM_BINARY) + " " + args + " 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
+int run_cli(const std::string& args, std::string* output) { return finish_cli(start_cli(args), output); }
+
+FILE* start_cli(const std::string& args, const std::string& env) {
+    return ::popen((env + " " + std::string(FLOTSAM_BINARY) + " " + args + " 2>&1").c_str(), "r");
+}
+
+int finish_cli(FILE* p, std::string* output) {
     if (!p) return -1;
     std::string out;
     char buf[4096];

@@ -1,5 +1,6 @@
 // Helpers shared by the tests: scratch directories, the shared data folder, the CLI.
 #pragma once
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -12,6 +13,10 @@ std::string scratch_dir(const std::string& name);
 std::string shared_data(const std::string& file);
 // Runs the flotsam binary with `args`; returns its exit status; stdout+stderr in *output.
 int run_cli(const std::string& args, std::string* output = nullptr);
+// The same in two halves: starts it in the background (with `env`, "NAME=value ...",
+// before the command), then waits for it.
+FILE* start_cli(const std::string& args, const std::string& env = "");
+int finish_cli(FILE* running, std::string* output = nullptr);
 // The message of the flotsam::Error that f throws, or "(no error)".
 std::string error_of(const std::function<void()>& f);
 // Writes `text` to dir/name and returns the path.

@@ -1,0 +1,51 @@
+// Fuzz targets, one per reader (docs/reliability.md, "Fuzzing"). Each takes one input
+// of arbitrary bytes, turns it into a file the reader reads, runs the reader and what
+// consumes its result, and returns normally: a flotsam::Error (a named error) is the
+// expected answer to bad input. Anything else — a crash, a sanitizer report, another
+// exception escaping, a hang, unbounded memory — is a defect.
+//
+// The NetCDF targets (scene, flow, sweep) are structure-aware: the bytes are a list of
+// edits (resize a dimension, move a variable onto a dimension of another length, set a
+// value to NaN, infinity, a fill value or an absurd number, transpose, drop a variable
+// or attribute, ...) applied to a small valid file, so the readers see files that HDF5
+// parses but whose contents are wrong. Random bytes would mostly exercise libhdf5's own
+// parser (docs/reliability.md says what that does with corrupted files).
+//
+// Built two ways: as libFuzzer executables (fuzz/fuzz_main.cpp, `make -f
+// Makefile.pipeline fuzz`) and into tests/fuzz_regression_test.cpp, which replays every
+// input under tests/data/fuzz/<target>/.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace flotsam::fuzz {
+
+void csv(const std::uint8_t* data, std::size_t size);       // time series CSV and ESRI ASCII DEM
+void toml(const std::uint8_t* data, std::size_t size);      // sweep spec and scene-import features
+void settings(const std::uint8_t* data, std::size_t size);  // --config settings of every command
+void scene(const std::uint8_t* data, std::size_t size);     // scene NetCDF
+void flow(const std::uint8_t* data, std::size_t size);      // flow NetCDF, replayed
+void sweep(const std::uint8_t* data, std::size_t size);     // sweep NetCDF, with statistics
+
+struct Target {
+    const char* name;
+    void (*run)(const std::uint8_t*, std::size_t);
+};
+const std::vector<Target>& targets();
+
+// Copies of a NetCDF file with one thing wrong, for the command-line tests of bad input
+// (tests/reliability_cli_test.cpp); the same edits the NetCDF targets make.
+// Variable `var` moved onto a new dimension of `length` (its table no longer matches).
+void copy_with_short_column(const std::string& in, const std::string& out, const std::string& var, std::size_t length);
+// Dimension `dim` resized to `length`; every variable on it follows.
+void copy_with_dimension(const std::string& in, const std::string& out, const std::string& dim, std::size_t length);
+// Value `index` (flat) of variable `var` set to `value`.
+void copy_with_value(const std::string& in, const std::string& out, const std::string& var, std::size_t index, double value);
+
+// The working directory of the targets (created once per process): base files live
+// there, and specs may name them relatively (scene.nc, flow.nc).
+const std::string& work_dir();
+
+}  // namespace flotsam::fuzz
