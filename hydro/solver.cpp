@@ -60,7 +60,7 @@ Solver::Solver(const Scene& scene, const SolverDef& def)
             const double eta0 = scene.eta0.empty() ? 0.0 : scene.eta0[k];
             const double h = std::max(0.0, eta0 - z_[p]);
             h_[p] = h;
-            if (!scene.u0.empty() && h > def.dry_depth) {
+            if (!scene.u0.empty() && h > 0.0) {
                 hu_[p] = h * scene.u0[k];
                 hv_[p] = h * scene.v0[k];
             }
@@ -304,7 +304,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 #pragma omp simd
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         eta[c] = h[c] + z[c];
-        const double inv = h[c] > s.dry ? 1.0 / h[c] : 0.0;
+        const double inv = inverse_depth(h[c], s.dry);
         u[c] = hu[c] * inv;
         v[c] = hv[c] * inv;
     }
@@ -354,7 +354,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         FaceFlux f;
         face_flux(em[c] + 0.5 * sem[c], hm[c] + 0.5 * shm[c], vm[c] + 0.5 * svm[c], um[c] + 0.5 * sum[c], e0[c] - 0.5 * se0[c],
-                  h0[c] - 0.5 * sh0[c], v0[c] - 0.5 * sv0[c], u0[c] - 0.5 * su0[c], s.g, f);
+                  h0[c] - 0.5 * sh0[c], v0[c] - 0.5 * sv0[c], u0[c] - 0.5 * su0[c], s.g, s.dry, f);
         mass[c] = f.mass;
         lo[c] = f.normal_L;
         hi[c] = f.normal_R;
@@ -398,7 +398,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     for (int c = c0 - 1; c < c1; ++c) {
         FaceFlux f;
         face_flux(e[c] + 0.5 * se[c], h[c] + 0.5 * sh[c], u[c] + 0.5 * su[c], v[c] + 0.5 * sv[c], e[c + 1] - 0.5 * se[c + 1],
-                  h[c + 1] - 0.5 * sh[c + 1], u[c + 1] - 0.5 * su[c + 1], v[c + 1] - 0.5 * sv[c + 1], s.g, f);
+                  h[c + 1] - 0.5 * sh[c + 1], u[c + 1] - 0.5 * su[c + 1], v[c + 1] - 0.5 * sv[c + 1], s.g, s.dry, f);
         fm[c] = f.mass;
         fl[c] = f.normal_L;
         fr[c] = f.normal_R;
@@ -461,10 +461,12 @@ template <bool kWithBase, Friction kFriction>
             hn = a * h0[c] + (1.0 - a) * hn;
             qx = a * hu0[c] + (1.0 - a) * qx;
             qy = a * hv0[c] + (1.0 - a) * qy;
-            const bool dry = hn <= dry_depth;
-            qx = dry ? 0.0 : qx;
-            qy = dry ? 0.0 : qy;
         }
+        // Thin layers keep their momentum (their velocity is desingularised where it is
+        // used, inverse_depth); a cell that holds no water holds none (+0, so that
+        // exactly dry land stays skippable).
+        qx = hn > 0.0 ? qx : 0.0;
+        qy = hn > 0.0 ? qy : 0.0;
         h_out[c] = hn;
         hu_out[c] = qx;
         hv_out[c] = qy;
