@@ -183,6 +183,37 @@ RitterFront ritter_front(int nx, double h0, double t0, double t_end, double fron
     return r;
 }
 
+// Thacker's planar surface in a paraboloid (Thacker 1981, J. Fluid Mech. 107:499): bed
+// z = -h0 (1 - r^2 / a^2), a tilted plane of water sloshing around the bowl without
+// friction, u = -eta omega sin(omega t), v = eta omega cos(omega t), omega =
+// sqrt(2 g h0) / a, level eta h0 / a^2 (2 x cos(omega t) + 2 y sin(omega t) - eta).
+// n x n cells over [-2, 2]^2, a = 1 m, h0 = 0.1 m, eta = 0.5 m: at t = 0 every wet cell
+// moves north at 0.70 m/s (the scene's u0, v0), a scene that starts moving.
+struct Thacker {
+    double a = 1.0, h0 = 0.1, eta = 0.5, g = 9.81;
+    double omega() const { return std::sqrt(2.0 * g * h0) / a; }
+    double bed(double x, double y) const { return -h0 * (1.0 - (x * x + y * y) / (a * a)); }
+    double level(double x, double y, double t) const {
+        return eta * h0 / (a * a) * (2.0 * x * std::cos(omega() * t) + 2.0 * y * std::sin(omega() * t) - eta);
+    }
+};
+inline Scene thacker_planar(int n, const Thacker& th = Thacker{}) {
+    Scene s = flat_scene(n, n, 4.0 / n, -2.0, 0.0);
+    s.grid.y0 = -2.0 + 0.5 * s.grid.dy;
+    s.eta0.assign(s.grid.size(), 0.0);
+    s.u0.assign(s.grid.size(), 0.0);
+    s.v0.assign(s.grid.size(), 0.0);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const std::size_t k = s.grid.index(i, j);
+            const double x = s.grid.x(i), y = s.grid.y(j);
+            s.z[k] = th.bed(x, y);
+            s.eta0[k] = std::max(th.level(x, y, 0.0), s.z[k]);
+            if (s.eta0[k] > s.z[k]) s.v0[k] = th.eta * th.omega();
+        }
+    return s;
+}
+
 // A square basin of n x n cells of 2.5 cm, 0.5 m deep, with a Gaussian hump of 1 cm
 // (width 0.1 m) at its centre: a linear wave for the Courant limit.
 inline Scene basin_wave(int n) {

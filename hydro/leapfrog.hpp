@@ -42,8 +42,9 @@
 //        h^(n+1) = h^n - dt [(M_(i+1/2) - M_(i-1/2)) / dx + (N_(j+1/2) - N_(j-1/2)) / dy]
 //
 // Linear stability (the forward-backward C-grid at rest): c dt sqrt(1/dx^2 + 1/dy^2) <= 1
-// with c = sqrt(g h). The step is fixed: from `courant` and the deepest water at the
-// start, shortened to divide the output interval so frames land on steps. Every step
+// with c = sqrt(g h). The step is fixed: from `courant` and the initial state's largest
+// Courant rate (the deepest water, and |u| + c per direction where the scene starts
+// moving), shortened to divide the output interval so frames land on steps. Every step
 // checks the Courant number of the new state, which adds the flow speed to c per
 // direction (leapfrog_kernels.hpp: courant_number), and fails naming --courant if it
 // passes 1: a changing step would break the leap-frog's half-step stagger.
@@ -75,8 +76,9 @@
 namespace flotsam::hydro {
 
 struct LeapfrogDef {
-    // Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), with
-    // h_max the deepest water at the start (and of a level boundary). Linear limit: 1.
+    // Courant number of the fixed step: dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), with h_max
+    // the deepest water at the start (and of a level boundary), or where the scene starts
+    // moving, dt sqrt(((|u| + c)/dx)^2 + ((|v| + c)/dy)^2) if larger. Linear limit: 1.
     double courant = 0.7;       // [-]
     double step_divides = 0.0;  // [s] shorten the step to divide this (the output interval); 0: no
 };
