@@ -104,16 +104,18 @@ inline double face_flux(double etaL, double hL, double unL, double utL, double e
     // h c^2 + g h^2 / 2 = 1.5 h c^2; the wet side's flux when it is supercritical away
     // from the face; nothing when it moves away faster than 2 c. HLL there carries the
     // mass in at u + c/2 instead of the fan's mean speed u + c, and the front lags.
+    // One fan, from whichever side is wet (s = +1: the right side is dry); 1/g, not a
+    // division per face: these loops are bound by their divisions and roots.
     const bool dryL = hsL <= dry_depth, dryR = hsR <= dry_depth;
-    const double cr = std::max(0.0, (unL + 2.0 * cL) * (1.0 / 3.0)), hr = cr * cr / g;  // right side dry
-    const double cl = std::max(0.0, (2.0 * cR - unR) * (1.0 / 3.0)), hl = cl * cl / g;  // left side dry
-    const double into_right_mass = unL >= cL ? qL : hr * cr;
-    const double into_right_normal = unL >= cL ? qL * unL + pL : 1.5 * hr * cr * cr;
-    const double into_left_mass = unR <= -cR ? qR : -hl * cl;
-    const double into_left_normal = unR <= -cR ? qR * unR + pR : 1.5 * hl * cl * cl;
-    const bool wet_dry = dryR & !dryL, dry_wet = dryL & !dryR;
-    const double mass = wet_dry ? into_right_mass : (dry_wet ? into_left_mass : hll_mass);
-    const double normal = wet_dry ? into_right_normal : (dry_wet ? into_left_normal : hll_normal);
+    const double s = dryR ? 1.0 : -1.0;
+    const double un_wet = dryR ? unL : unR, c_wet = dryR ? cL : cR, q_wet = dryR ? qL : qR, p_wet = dryR ? pL : pR;
+    const double cs = std::max(0.0, (s * un_wet + 2.0 * c_wet) * (1.0 / 3.0)), hs = cs * cs * (1.0 / g);
+    const bool away = s * un_wet >= c_wet;  // supercritical toward the dry side: the wet side's own flux
+    const double dry_mass = away ? q_wet : s * hs * cs;
+    const double dry_normal = away ? q_wet * un_wet + p_wet : 1.5 * hs * cs * cs;
+    const bool one_dry = dryL != dryR;
+    const double mass = one_dry ? dry_mass : hll_mass;
+    const double normal = one_dry ? dry_normal : hll_normal;
     f.mass = mass;
     f.normal_L = normal + 0.5 * g * (hL * hL - hsL * hsL);
     f.normal_R = normal + 0.5 * g * (hR * hR - hsR * hsR);
