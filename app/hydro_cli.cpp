@@ -14,7 +14,7 @@ namespace {
 
 struct HydroOptions {
     hydro::RunDef run;
-    hydro::SolverDef solver = hydro::default_solver_def();
+    hydro::PhysicsDef physics = hydro::default_physics_def();
     std::vector<double> window;
     std::vector<std::string> gauges;
     std::string west = "level", east = "transmissive", south = "wall", north = "wall";
@@ -26,21 +26,15 @@ struct HydroOptions {
 
 void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line) {
     using namespace hydro;
-    SolverDef& s = o.solver;
+    PhysicsDef& s = o.physics;
     o.run.scheme = parse_scheme(o.scheme, "--scheme");
-    s.friction = parse_friction(o.friction, "--friction");
+    o.run.finite_volume.friction = parse_friction(o.friction, "--friction");
     s.west.kind = parse_boundary_kind(o.west, "--west");
     s.east.kind = parse_boundary_kind(o.east, "--east");
     s.south.kind = parse_boundary_kind(o.south, "--south");
     s.north.kind = parse_boundary_kind(o.north, "--north");
     const LevelMode mode = parse_level_mode(o.level_mode, "--level-mode");
-    for (BoundaryDef* b : {&s.west, &s.east, &s.south, &s.north}) {
-        b->level_mode = mode;
-        b->pump_discharge = s.west.pump_discharge;
-        b->pump_stop = s.west.pump_stop;
-        b->pump_relax_time = s.west.pump_relax_time;
-        b->pump_length = s.west.pump_length;
-    }
+    for (BoundaryDef* b : {&s.west, &s.east, &s.south, &s.north}) b->level_mode = mode;
     if (!o.window.empty()) o.run.window = std::array<double, 4>{o.window[0], o.window[1], o.window[2], o.window[3]};
     for (const auto& g : o.gauges) {
         const auto a = g.find(','), b = g.rfind(',');
@@ -72,7 +66,8 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     CLI::App* sub = app.add_subcommand("hydro", "Run the shallow-water solver on a scene and write a CF NetCDF flow file");
     add_config_option(sub);
     auto& r = o->run;
-    auto& s = o->solver;
+    auto& s = o->physics;
+    auto& fv = o->run.finite_volume;
     sub->add_option("--scene", r.scene_file, "Scene NetCDF (x, y, z; optional manning_n, building, eta0/u0/v0)")
         ->required()
         ->check(CLI::ExistingFile);
@@ -103,15 +98,17 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--courant", r.leapfrog.courant,
                     "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1")
         ->capture_default_str();
-    sub->add_option("--order", s.order, "1: first order; 2: MUSCL + Heun (default)")
+    sub->add_option("--order", fv.order, "1: first order; 2: MUSCL + Heun (default)")
         ->check(CLI::IsMember({1, 2}))
         ->capture_default_str();
-    sub->add_option("--cfl", s.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")->capture_default_str();
+    sub->add_option("--cfl", fv.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")->capture_default_str();
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")->capture_default_str();
-    sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")
+    sub->add_option("--limiter-theta", fv.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")
         ->check(CLI::Range(1.0, 2.0))
         ->capture_default_str();
-    sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")->capture_default_str();
+    sub->add_option("--dry-depth", s.dry_depth,
+                    "Dry tolerance [m]: velocities desingularised and reconstruction first order below it")
+        ->capture_default_str();
     sub->add_option("--friction", o->friction,
                     "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
         ->capture_default_str();
@@ -139,12 +136,11 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
                     "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the "
                     "'incident' wave (reflections leave)")
         ->capture_default_str();
-    sub->add_option("--pump-discharge", s.west.pump_discharge, "Pump boundary: mass source [m^3/s]")->capture_default_str();
-    sub->add_option("--pump-stop", s.west.pump_stop, "Pump boundary: end of pumping [s]")->capture_default_str();
-    sub->add_option("--pump-relax", s.west.pump_relax_time, "Pump boundary: relaxation time of the level after pumping [s]")
+    sub->add_option("--pump-discharge", s.pump.discharge, "Pump boundary: mass source [m^3/s]")->capture_default_str();
+    sub->add_option("--pump-stop", s.pump.stop, "Pump boundary: end of pumping [s]")->capture_default_str();
+    sub->add_option("--pump-relax", s.pump.relax_time, "Pump boundary: relaxation time of the level after pumping [s]")
         ->capture_default_str();
-    sub->add_option("--pump-length", s.west.pump_length, "Pump boundary: width of the source strip along x [m]")
-        ->capture_default_str();
+    sub->add_option("--pump-length", s.pump.length, "Pump boundary: width of the source strip along x [m]")->capture_default_str();
     sub->callback([o, sub, command_line] { run_command(*o, sub, command_line); });
 }
 

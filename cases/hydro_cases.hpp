@@ -20,8 +20,8 @@ inline Scene flat_scene(int nx, int ny, double dx, double x0, double bed) {
 }
 
 // Walls on all sides, no friction.
-inline hydro::SolverDef closed_def() {
-    hydro::SolverDef d;
+inline hydro::PhysicsDef closed_def() {
+    hydro::PhysicsDef d;
     d.west.kind = d.east.kind = d.south.kind = d.north.kind = hydro::BoundaryKind::wall;
     d.default_manning_n = 0.0;
     return d;
@@ -115,7 +115,7 @@ inline Scene dam_break_scene(int nx, double hl, double hr) {
 template <class Make, class Tune>
 double dam_break_error(int nx, double hl, double hr, double t_end, Make&& make, Tune&& tune) {
     const Scene s = dam_break_scene(nx, hl, hr);
-    hydro::SolverDef d = closed_def();
+    hydro::PhysicsDef d = closed_def();
     d.west.kind = d.east.kind = hydro::BoundaryKind::transmissive;
     d.dry_depth = 1e-8;
     tune(d);
@@ -164,7 +164,7 @@ struct RitterFront {
 template <class Make>
 RitterFront ritter_front(int nx, double h0, double t0, double t_end, double front_depth, Make&& make) {
     const Scene s = ritter_box(nx, h0, t0);
-    const hydro::SolverDef d = closed_def();
+    const hydro::PhysicsDef d = closed_def();
     auto solver = make(s, d);
     solver.set_time(t0);
     const double v0 = solver.volume();

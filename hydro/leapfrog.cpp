@@ -20,8 +20,11 @@ std::size_t LeapfrogSolver::edge_cell(Side s, int k) const {
     return at(k, s == Side::south ? 0 : grid_.ny - 1);
 }
 
-LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const LeapfrogDef& leapfrog)
-    : grid_(scene.grid), def_(def), lf_(leapfrog), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
+LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const LeapfrogDef& leapfrog)
+    : grid_(scene.grid),
+      def_(def),
+      lf_(leapfrog),
+      forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
     for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north})
         if (b->kind == BoundaryKind::nested)
             fail("", "--scheme leapfrog",

@@ -61,7 +61,7 @@
 // reflect waves, so transmissive here is the classic codes' radiation condition
 // (M = c eta) in its nonlinear form. The pump is the same source strip and level.
 //
-// The one dry tolerance is SolverDef::dry_depth: a cell with h <= dry_depth sends no
+// The one dry tolerance is PhysicsDef::dry_depth: a cell with h <= dry_depth sends no
 // flux, a face opens only where the higher level stands more than dry_depth above the
 // higher ground, and a face whose mean depth is below it has no velocity.
 #pragma once
@@ -71,7 +71,7 @@
 
 #include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
-#include "hydro/solver.hpp"
+#include "hydro/physics.hpp"
 
 namespace flotsam::hydro {
 
@@ -86,10 +86,8 @@ LeapfrogDef default_leapfrog_def();
 
 class LeapfrogSolver {
 public:
-    // `def` gives gravity, dry_depth, max_dt, default_manning_n, the boundaries and
-    // study_past_stability_limit (its finite-volume settings cfl, order, limiter_theta
-    // and friction are not used). Nested boundaries are refused.
-    LeapfrogSolver(const Scene& scene, const SolverDef& def, const LeapfrogDef& leapfrog);
+    // Nested boundaries are refused.
+    LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const LeapfrogDef& leapfrog);
 
     // The fixed step [s].
     double stable_dt() const { return dt_; }
@@ -99,7 +97,7 @@ public:
     double time() const { return time_; }
     void set_time(double t) { time_ = t; }
     const Grid& grid() const { return grid_; }
-    const SolverDef& def() const { return def_; }
+    const PhysicsDef& def() const { return def_; }
     const LeapfrogDef& leapfrog_def() const { return lf_; }
     const SolverStats& stats() const { return stats_; }
     // Largest Courant number (courant_number) of any cell after any step so far.
@@ -143,7 +141,7 @@ private:
     void continuity(double dt);
 
     Grid grid_;
-    SolverDef def_;
+    PhysicsDef def_;
     LeapfrogDef lf_;
     Forcing forcing_;
     std::size_t stride_ = 0;

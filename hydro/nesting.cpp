@@ -79,20 +79,20 @@ Scene fine_scene(const Scene& s, int i_nest) {
     return f;
 }
 
-SolverDef side_def(SolverDef d, Side nested_side) {
+PhysicsDef side_def(PhysicsDef d, Side nested_side) {
     (nested_side == Side::east ? d.east : d.west).kind = BoundaryKind::nested;
     return d;
 }
 }  // namespace
 
-NestedSolver::NestedSolver(const Scene& scene, const SolverDef& def, const NestDef& nest)
+NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest)
     : grid_(scene.grid),
       def_(def),
       ratio_(nest.ratio),
       i_nest_(snapped_interface(scene, nest)),
       z_(scene.z),
-      coarse_(coarse_scene(scene, nest.ratio, i_nest_), side_def(def, Side::east)),
-      fine_(fine_scene(scene, i_nest_), side_def(def, Side::west)) {
+      coarse_(coarse_scene(scene, nest.ratio, i_nest_), side_def(def, Side::east), fv),
+      fine_(fine_scene(scene, i_nest_), side_def(def, Side::west), fv) {
     const int r = ratio_, ny = grid_.ny, ncy = ny / r;
     // Ghost ground: the fine grid's west ghosts stand on the scene's own cells west of
     // the interface; the coarse grid's east ghosts on block averages east of it.

@@ -41,7 +41,7 @@ public:
     // ones to the fine grid. Errors (naming the option) when the scene's rows are not a
     // multiple of the ratio or the interface leaves fewer than 2 coarse or 2 × ratio fine
     // columns.
-    NestedSolver(const Scene& scene, const SolverDef& def, const NestDef& nest);
+    NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest);
 
     // The coarse step (the fine grid sub-cycles inside it) [s].
     double stable_dt() const { return coarse_.stable_dt(); }
@@ -50,7 +50,7 @@ public:
     double time() const { return time_; }
     void set_time(double t);
     const Grid& grid() const { return grid_; }  // the scene's grid (output, gauges)
-    const SolverDef& def() const { return def_; }
+    const PhysicsDef& def() const { return def_; }
     SolverStats stats() const;
     double volume() const { return coarse_.volume() + fine_.volume(); }
     // Cell updates done so far (coarse cells × coarse steps + fine cells × fine steps).
@@ -87,7 +87,7 @@ private:
     void reflux();
 
     Grid grid_;
-    SolverDef def_;
+    PhysicsDef def_;
     int ratio_ = 1, i_nest_ = 0;
     std::vector<double> z_;  // scene bed [m]
     Solver coarse_, fine_;

@@ -258,7 +258,7 @@ Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     return c;
 }
 
-std::string boundary_files(const SolverDef& d) {
+std::string boundary_files(const PhysicsDef& d) {
     std::string s;
     const BoundaryDef* sides[4] = {&d.west, &d.east, &d.south, &d.north};
     const char* names[4] = {"west", "east", "south", "north"};
@@ -267,7 +267,7 @@ std::string boundary_files(const SolverDef& d) {
     return s;
 }
 
-std::string boundary_checksums(const SolverDef& d) {
+std::string boundary_checksums(const PhysicsDef& d) {
     std::string s;
     for (const BoundaryDef* b : {&d.west, &d.east, &d.south, &d.north})
         if (!b->series_file.empty()) s += std::string(s.empty() ? "" : "; ") + "sha256:" + sha256_file(b->series_file);
@@ -295,7 +295,7 @@ std::vector<FlowGauge> gauge_points_of(const Scene& scene, const RunDef& run) {
 // times, the gauges and the maxima, the file being written and the checkpoint's
 // bookkeeping.
 struct RunOutput {
-    RunOutput(const Scene& scene, const RunDef& run, const SolverDef& def)
+    RunOutput(const Scene& scene, const RunDef& run, const PhysicsDef& def)
         : win(make_window(scene.grid, run.window)),
           times(frame_times(run.duration, run.output_interval)),
           gauge_points(gauge_points_of(scene, run)),
@@ -321,7 +321,7 @@ struct RunOutput {
 
 // The flow file's definition: the window's bed, the axes, the gauges and the global
 // attributes that say how the flow was made.
-FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const SolverDef& def, const RunOutput& o,
+FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDef& def, const RunOutput& o,
                           const std::string& scheme) {
     const Window& win = o.win;
     FlowFileDef fd;
@@ -352,7 +352,7 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const SolverDef
 // A fresh run: creates the file and stores the initial state (frame 0, the maxima and
 // the gauges at t = 0).
 template <RunnableSolver S>
-void start(S& solver, const Scene& scene, const RunDef& run, const SolverDef& def, RunOutput& o) {
+void start(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& def, RunOutput& o) {
     o.writer.emplace(o.file.temp_path(), flow_file_def(scene, run, def, o, solver.description()));
     o.state.volume_start = solver.volume();
     write_frame(*o.writer, 0, solver, o.win);
@@ -380,13 +380,13 @@ void resume(S& solver, RunOutput& o) {
 // Saves the exact state at time t after `steps` steps, so that --restart continues to
 // the same result.
 template <RunnableSolver S>
-void save_checkpoint(S& solver, const SolverDef& def, RunOutput& o, double t, long steps) {
+void save_checkpoint(S& solver, const PhysicsDef& def, RunOutput& o, double t, long steps) {
     o.gauges.flush(*o.writer);
     o.writer->sync();
     o.state.time = t;
     o.state.steps = steps;
     o.state.next_gauge = o.gauges.next();
-    o.state.pump_stopped = def.west.kind == BoundaryKind::pump && t >= def.west.pump_stop;
+    o.state.pump_stopped = def.west.kind == BoundaryKind::pump && t >= def.pump.stop;
     o.state.pump_level = solver.pump_level_at_stop();
     o.state.config_sha = o.config_sha;
     write_checkpoint(o.checkpoint, solver, o.sum, o.state);
@@ -396,7 +396,7 @@ void save_checkpoint(S& solver, const SolverDef& def, RunOutput& o, double t, lo
 // Returns the step count since the start of the run (restarts included), negated when
 // the run stopped early at run.stop_after.
 template <RunnableSolver S>
-long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& o, Progress& progress) {
+long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput& o, Progress& progress) {
     double next_checkpoint = run.checkpoint_interval > 0.0
                                  ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval
                                  : 1e300;
@@ -435,7 +435,7 @@ long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& 
 }
 
 template <RunnableSolver S>
-RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const SolverDef& def) {
+RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& def) {
     RunOutput o(scene, run, def);
     if (run.restart)
         resume(solver, o);
@@ -478,12 +478,12 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
 
 static_assert(RunnableSolver<Solver> && RunnableSolver<NestedSolver> && RunnableSolver<LeapfrogSolver>);
 
-RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
+RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
     // Boundary series must cover the whole run before any work starts.
-    for (const BoundaryDef* b : {&solver_def.west, &solver_def.east, &solver_def.south, &solver_def.north})
+    for (const BoundaryDef* b : {&physics.west, &physics.east, &physics.south, &physics.north})
         if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
     if (run.scheme == Scheme::leapfrog) {
         if (run.nest.ratio > 1)
@@ -492,15 +492,15 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
                      std::to_string(run.nest.ratio) + ", or --scheme leapfrog with --nest-ratio 1");
         LeapfrogDef lf = run.leapfrog;
         lf.step_divides = run.output_interval;
-        LeapfrogSolver solver(scene, solver_def, lf);
-        return run_with(solver, scene, run, solver_def);
+        LeapfrogSolver solver(scene, physics, lf);
+        return run_with(solver, scene, run, physics);
     }
     if (run.nest.ratio > 1) {
-        NestedSolver solver(scene, solver_def, run.nest);
-        return run_with(solver, scene, run, solver_def);
+        NestedSolver solver(scene, physics, run.finite_volume, run.nest);
+        return run_with(solver, scene, run, physics);
     }
-    Solver solver(scene, solver_def);
-    return run_with(solver, scene, run, solver_def);
+    Solver solver(scene, physics, run.finite_volume);
+    return run_with(solver, scene, run, physics);
 }
 
 }  // namespace flotsam::hydro

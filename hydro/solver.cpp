@@ -19,15 +19,6 @@ Friction parse_friction(const std::string& s, const std::string& option) {
     fail("", option, "unknown friction treatment '" + s + "' (implicit, explicit)");
 }
 
-SolverDef default_solver_def() {
-    SolverDef d;
-    d.west.kind = BoundaryKind::level;
-    d.east.kind = BoundaryKind::transmissive;
-    d.south.kind = BoundaryKind::wall;
-    d.north.kind = BoundaryKind::wall;
-    return d;
-}
-
 namespace {
 constexpr int kGhost = 2;
 
@@ -38,10 +29,10 @@ inline void flush_subnormals() { _mm_setcsr(_mm_getcsr() | 0x8040); }
 bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
 }  // namespace
 
-Solver::Solver(const Scene& scene, const SolverDef& def)
-    : grid_(scene.grid), def_(def), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
-    if (def.order != 1 && def.order != 2) fail("", "--order", "must be 1 or 2");
-    if (!(def.cfl > 0.0 && (def.cfl <= 0.5 || def.study_past_stability_limit)))
+Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv)
+    : grid_(scene.grid), def_(def), fv_(fv), forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
+    if (fv.order != 1 && fv.order != 2) fail("", "--order", "must be 1 or 2");
+    if (!(fv.cfl > 0.0 && (fv.cfl <= 0.5 || def.study_past_stability_limit)))
         fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
@@ -118,7 +109,7 @@ double Solver::volume() const {
 
 std::string Solver::description() const {
     return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
-           (def_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
+           (fv_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
 }
 
 void Solver::state_row(int j, int i0, int i1, double* __restrict h, double* __restrict u, double* __restrict v) const {
@@ -152,7 +143,7 @@ double Solver::stable_dt() const {
         }
         max_wave_rate_ = amax;
     }
-    return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, def_.cfl / max_wave_rate_) : def_.max_dt;
+    return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, fv_.cfl / max_wave_rate_) : def_.max_dt;
 }
 
 void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
@@ -539,7 +530,7 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
     if (which == Stage::predictor) base_nonzero_ = state_nonzero_;
     for (int j = 0; j < ny; ++j) {
         ColumnRange a{0, nx};
-        if (def_.skip_dry_land) {
+        if (fv_.skip_dry_land) {
             a = {};
             for (int k = j - 2; k <= j + 2; ++k) a = hull(a, depth_nonzero_[std::size_t(k + kGhost)]);
             a = hull(clip(widen(a, 2), 0, nx), state_nonzero_[std::size_t(j)]);
@@ -569,10 +560,9 @@ void Solver::stage(Stage which, double dt, double t) {
     const double pump_rate = forcing_.pump_rate(t);  // [m/s] over the source strip
     const bool pumping = pump_rate != 0.0;
     find_active_columns(which, h, hu, hv, pumping);
-    const bool last = corrector || def_.order == 1;  // the step's result: remember its CFL rate
+    const bool last = corrector || fv_.order == 1;  // the step's result: remember its CFL rate
     const int nx = grid_.nx, ny = grid_.ny;
-    const Sweep s{
-        def_.gravity, def_.dry_depth, def_.limiter_theta, def_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
+    const Sweep s{def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
     auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
     auto row = [&](const std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     auto row_out = [&](std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
@@ -637,13 +627,12 @@ void Solver::stage(Stage which, double dt, double t) {
             for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
                 dh[pump_cells_[k] % stride_] += pump_rate;
             if (corrector)
-                update_row_with<true>(def_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                update_row_with<true>(fv_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
                                       row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
                                       row_out(hv_out, j), fixes, worst);
             else
-                update_row_with<false>(def_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
-                                       nullptr, nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes,
-                                       worst);
+                update_row_with<false>(fv_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), nullptr,
+                                       nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
             if (last) amax = std::max(amax, max_wave_rate_row(s, cols, row(h_out, j), row(hu_out, j), row(hv_out, j)));
         }
     }
@@ -682,7 +671,7 @@ void Solver::reset_side_transfer() {
 
 void Solver::step(double dt) {
     // Boundary mass transfer with the stepper's weights: Heun's U^{n+1} = U^n + dt/2 (L(U^n) + L(U^1)).
-    if (def_.order == 1) {
+    if (fv_.order == 1) {
         stage(Stage::predictor, dt, time_);
         if (track_transfer_)
             for (std::size_t j = 0; j < west_transfer_.size(); ++j) {

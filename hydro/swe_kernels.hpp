@@ -25,7 +25,7 @@
 // dry-bed Riemann solution's at the face instead: HLL carries water onto dry land at
 // half the fan's speed, and the front lags.
 //
-// Wet and dry: one tolerance eps (SolverDef::dry_depth, 1e-5 m). It desingularises the
+// Wet and dry: one tolerance eps (PhysicsDef::dry_depth, 1e-5 m). It desingularises the
 // velocity, u = 2 h q / (h^2 + max(h^2, eps^2)) (q/h above eps, bounded by q/eps and
 // vanishing with h below it), and switches the reconstruction to first order next to a
 // cell below it. It does not remove water or momentum: a thin layer keeps its discharge,

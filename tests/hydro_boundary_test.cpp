@@ -28,7 +28,7 @@ double east_wall_level(LevelMode mode, const std::string& dir) {
     Scene scene;
     scene.grid = Grid{40, 2, 0.25, 0.25, 0.5, 0.5};
     scene.z.assign(scene.grid.size(), -0.8);
-    SolverDef d = default_solver_def();
+    PhysicsDef d = default_physics_def();
     d.default_manning_n = 0.0;
     d.east.kind = BoundaryKind::wall;
     d.west.kind = BoundaryKind::level;
@@ -55,7 +55,7 @@ double east_wall_level(LevelMode mode, const std::string& dir) {
 // WG2 at 0.117 m instead of the paper's 0.063 m (docs/hydro.md).
 TEST(LevelBoundary, TotalRecordFillsTheFlumeToItsLevelIncidentDoublesIt) {
     const std::string dir = test::scratch_dir("LevelBoundary");
-    EXPECT_EQ(default_solver_def().west.level_mode, LevelMode::total);
+    EXPECT_EQ(default_physics_def().west.level_mode, LevelMode::total);
     const double total = east_wall_level(LevelMode::total, dir);
     const double incident = east_wall_level(LevelMode::incident, dir);
     std::printf("east-wall level over 120-150 s: total %.5f m, incident %.5f m (record 0.01 m)\n", total, incident);

@@ -16,7 +16,7 @@ using namespace flotsam::hydro;
 namespace {
 
 test::RitterFront ritter(int nx, double h0, double t0, double t_end) {
-    return test::ritter_front(nx, h0, t0, t_end, 5e-7, [](const Scene& s, const SolverDef& d) { return Solver(s, d); });
+    return test::ritter_front(nx, h0, t0, t_end, 5e-7, [](const Scene& s, const PhysicsDef& d) { return Solver(s, d); });
 }
 
 }  // namespace
@@ -92,8 +92,8 @@ TEST(Fronts, RitterDryBedConvergesAtTheDefaults) {
                 EXPECT_GE(order, 0.95) << c.h0 << " m, " << nx << " cells";  // measured 1.07-1.13
             }
             EXPECT_LE(lag, 0.36) << c.h0 << " m, " << nx << " cells";
-            EXPECT_GE(r.min_depth_seen, -1e-12);              // the update itself keeps h >= 0
-            EXPECT_NEAR(r.volume_change, 0.0, 1e-13);         // walls: mass to round-off
+            EXPECT_GE(r.min_depth_seen, -1e-12);       // the update itself keeps h >= 0
+            EXPECT_NEAR(r.volume_change, 0.0, 1e-13);  // walls: mass to round-off
             previous = r.l1;
         }
         EXPECT_NEAR(previous, c.l1_400, 0.02 * c.l1_400) << c.h0;
@@ -120,7 +120,7 @@ TEST(Fronts, ResolvedRitterFrontStaysWithinTwoCells) {
 TEST(Fronts, FilmFarBelowTheDryToleranceDrainsWithoutBlowingUp) {
     Scene s = test::film_on_slope();
     for (std::size_t k = 0; k < s.z.size(); ++k) s.eta0[k] = s.z[k] + 1e-7;
-    SolverDef d = test::closed_def();
+    PhysicsDef d = test::closed_def();
     d.default_manning_n = 0.025;
     Solver solver(s, d);
     const double v0 = solver.volume();

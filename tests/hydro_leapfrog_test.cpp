@@ -26,8 +26,8 @@ LeapfrogDef leapfrog_def(double courant) {
 
 double dam_break_error(int nx, double hl, double hr, double courant) {
     return test::dam_break_error(
-        nx, hl, hr, 0.5, [&](const Scene& s, const SolverDef& d) { return LeapfrogSolver(s, d, leapfrog_def(courant)); },
-        [](SolverDef&) {});
+        nx, hl, hr, 0.5, [&](const Scene& s, const PhysicsDef& d) { return LeapfrogSolver(s, d, leapfrog_def(courant)); },
+        [](PhysicsDef&) {});
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ TEST(LeapfrogKernels, WetDryRulesAndFriction) {
 
 TEST(Leapfrog, LakeAtRestAroundBuildingsStaysAtRest) {
     Scene s = city_basin(80, 50, 3);
-    SolverDef d = closed_def();
+    PhysicsDef d = closed_def();
     d.default_manning_n = 0.013;
     LeapfrogSolver solver(s, d, default_leapfrog_def());
     for (int n = 0; n < 2000; ++n) solver.step(solver.stable_dt());
@@ -72,7 +72,7 @@ TEST(Leapfrog, LakeAtRestAroundBuildingsStaysAtRest) {
 
 TEST(Leapfrog, MassConservedWithClosedWallsAndDepthNeverNegative) {
     const Scene s = test::flooded_basin(5);
-    SolverDef d = closed_def();
+    PhysicsDef d = closed_def();
     d.default_manning_n = 0.013;
     // The step comes from the deepest water at rest; a dam break onto dry ground runs at
     // up to 2 sqrt(g h), so it needs a smaller Courant number than the default 0.7.
@@ -122,7 +122,7 @@ TEST(Leapfrog, DryDamBreakConvergesToRitter) {
 TEST(Leapfrog, StepFromTheInitialVelocityLetsAMovingSceneRun) {
     const test::Thacker th;
     const Scene s = test::thacker_planar(100, th);
-    SolverDef d = closed_def();
+    PhysicsDef d = closed_def();
     LeapfrogSolver solver(s, d, default_leapfrog_def());
     // Hand-computed: the deepest water 0.1 m at x = 0.5 m moves at 0.70 m/s.
     const double c = std::sqrt(9.81 * 0.1), v = th.eta * th.omega(), dx = 0.04;

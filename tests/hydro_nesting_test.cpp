@@ -42,7 +42,7 @@ void run_to(S& s, double t_end) {
 
 TEST(Nesting, LakeAtRestStaysAtRestAcrossTheInterface) {
     const Scene scene = mini_flume(0.0);
-    NestedSolver s(scene, test::closed_def(), NestDef{4.0, 4});
+    NestedSolver s(scene, test::closed_def(), {}, NestDef{4.0, 4});
     run_to(s, 1.0);
     double drift = 0.0, speed = 0.0;
     for (int j = 0; j < scene.grid.ny; ++j)
@@ -57,7 +57,7 @@ TEST(Nesting, LakeAtRestStaysAtRestAcrossTheInterface) {
 
 TEST(Nesting, VolumeIsConservedToRoundOff) {
     const Scene scene = mini_flume(0.05);
-    NestedSolver s(scene, test::closed_def(), NestDef{4.0, 4});
+    NestedSolver s(scene, test::closed_def(), {}, NestDef{4.0, 4});
     const double v0 = s.volume();
     run_to(s, 4.0);  // the wave crosses the interface, reflects on the shelf, comes back
     EXPECT_LT(std::abs(s.volume() - v0) / v0, 1e-12);
@@ -67,7 +67,7 @@ TEST(Nesting, VolumeIsConservedToRoundOff) {
 TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
     const Scene scene = mini_flume(0.05);
     Solver fine(scene, test::closed_def());
-    NestedSolver nested(scene, test::closed_def(), NestDef{4.0, 4});
+    NestedSolver nested(scene, test::closed_def(), {}, NestDef{4.0, 4});
     // The first crest on the shelf (x = 7.2 m), within 6 s.
     const int gi = scene.grid.cell_i(7.2), gj = 3;
     double peak_fine = 0.0, peak_nested = 0.0, peak_coarse_time = 0.0, peak_fine_time = 0.0;
@@ -96,11 +96,11 @@ TEST(Nesting, WaveArrivesOnTheShelfAsOnTheUniformFineGrid) {
 TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
     const Scene scene = mini_flume(0.0);
     EXPECT_NE(test::error_of([&] {
-                  NestedSolver(scene, test::closed_def(), NestDef{4.0, 3});
+                  NestedSolver(scene, test::closed_def(), {}, NestDef{4.0, 3});
               }).find("--nest-ratio"),
               std::string::npos);
     EXPECT_NE(test::error_of([&] {
-                  NestedSolver(scene, test::closed_def(), NestDef{7.95, 4});
+                  NestedSolver(scene, test::closed_def(), {}, NestDef{7.95, 4});
               }).find("--nest-x"),
               std::string::npos);
 }

@@ -62,15 +62,15 @@ RunDef base_run(const std::string& scene, const std::string& out) {
     return r;
 }
 
-SolverDef level_def(const std::string& series) {
-    SolverDef d = default_solver_def();
+PhysicsDef level_def(const std::string& series) {
+    PhysicsDef d = default_physics_def();
     d.west.series_file = series;
     return d;
 }
 
 // Runs `r` to a checkpoint at 1 s intervals, stops it after 2.7 s as if interrupted,
 // and continues it with --restart; returns whether the continued run completed.
-bool interrupted_and_restarted(RunDef r, const SolverDef& d) {
+bool interrupted_and_restarted(RunDef r, const PhysicsDef& d) {
     r.checkpoint_interval = 1.0;
     r.stop_after = 2.7;
     EXPECT_FALSE(run_hydro(r, d).completed);
@@ -129,7 +129,7 @@ TEST(HydroRun, RestartContinuesToTheSameResultAndSameInputsGiveSameBytes) {
     const auto dir = test::scratch_dir("hydro_restart");
     const auto scene = make_scene(dir);
     const auto series = make_series(dir);
-    const SolverDef d = level_def(series);
+    const PhysicsDef d = level_def(series);
     run_hydro(base_run(scene, dir + "/a.nc"), d);
     run_hydro(base_run(scene, dir + "/b.nc"), d);
     EXPECT_EQ(sha256_file(dir + "/a.nc"), sha256_file(dir + "/b.nc"));
@@ -156,7 +156,7 @@ TEST(HydroRun, RestartContinuesToTheSameResultAndSameInputsGiveSameBytes) {
 TEST(HydroRun, SameBytesOnOneAndTwoThreads) {
     const auto dir = test::scratch_dir("hydro_threads");
     const auto scene = make_scene(dir);
-    const SolverDef d = level_def(make_series(dir));
+    const PhysicsDef d = level_def(make_series(dir));
     for (int ratio : {1, 2}) {
         std::string sha[2];
         for (int threads : {1, 2}) {
@@ -174,7 +174,7 @@ TEST(HydroRun, SameBytesOnOneAndTwoThreads) {
 TEST(HydroRun, NestedRunRestartsToTheSameResult) {
     const auto dir = test::scratch_dir("hydro_nested_restart");
     const auto scene = make_scene(dir);
-    const SolverDef d = level_def(make_series(dir));
+    const PhysicsDef d = level_def(make_series(dir));
     RunDef a = base_run(scene, dir + "/a.nc");
     a.nest = NestDef{0.3, 2};
     const RunResult full = run_hydro(a, d);
@@ -199,7 +199,7 @@ TEST(HydroRun, NestedRunRestartsToTheSameResult) {
 TEST(HydroRun, LeapfrogRunRestartsToTheSameResultAndRecordsItsScheme) {
     const auto dir = test::scratch_dir("hydro_leapfrog_restart");
     const auto scene = make_scene(dir);
-    const SolverDef d = level_def(make_series(dir));
+    const PhysicsDef d = level_def(make_series(dir));
     RunDef a = base_run(scene, dir + "/a.nc");
     a.scheme = Scheme::leapfrog;
     const RunResult full = run_hydro(a, d);
@@ -272,8 +272,8 @@ TEST(HydroRun, XarrayDecodesTimeAndFindsStandardNames) {
     const auto dir = test::scratch_dir("hydro_xr");
     const auto scene = make_scene(dir);
     run_hydro(base_run(scene, dir + "/flow.nc"), level_def(make_series(dir)));
-    const std::string cmd =
-        "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.inspect_flow " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
+    const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.inspect_flow " + dir +
+                            "/flow.nc --check > " + dir + "/out.txt 2>&1";
     const int rc = std::system(cmd.c_str());
     std::ifstream f(dir + "/out.txt");
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());

@@ -20,7 +20,13 @@ using test::closed_def;
 
 double dam_break_error(int nx, double hl, double hr, int order, double t_end) {
     return test::dam_break_error(
-        nx, hl, hr, t_end, [](const Scene& s, const SolverDef& d) { return Solver(s, d); }, [&](SolverDef& d) { d.order = order; });
+        nx, hl, hr, t_end,
+        [&](const Scene& s, const PhysicsDef& d) {
+            FiniteVolumeDef fv;
+            fv.order = order;
+            return Solver(s, d, fv);
+        },
+        [](PhysicsDef&) {});
 }
 
 }  // namespace
@@ -53,10 +59,11 @@ TEST(Kernels, FrictionNeverReverses) {
 TEST(Solver, LakeAtRestAroundBuildingsStaysAtRest) {
     for (int order : {1, 2}) {
         Scene s = city_basin(80, 50, 3);
-        SolverDef d = closed_def();
-        d.order = order;
+        PhysicsDef d = closed_def();
         d.default_manning_n = 0.013;
-        Solver solver(s, d);
+        FiniteVolumeDef fv;
+        fv.order = order;
+        Solver solver(s, d, fv);
         for (int n = 0; n < 2000; ++n) solver.step(solver.stable_dt());
         const test::RestDrift drift = test::rest_drift(solver, s);
         EXPECT_LE(drift.level, 1e-6) << "order " << order;
@@ -67,7 +74,7 @@ TEST(Solver, LakeAtRestAroundBuildingsStaysAtRest) {
 
 TEST(Solver, MassConservedWithClosedWallsAndDepthNeverNegative) {
     const Scene s = test::flooded_basin(5);
-    SolverDef d = closed_def();
+    PhysicsDef d = closed_def();
     d.default_manning_n = 0.013;
     Solver solver(s, d);
     const double v0 = solver.volume();
@@ -95,17 +102,18 @@ TEST(Solver, SkippingDryLandChangesNoBit) {
         int order, threads;
     };
     for (const Case c : {Case{false, 2, 1}, Case{true, 2, 2}, Case{false, 1, 2}}) {
-        SolverDef d = closed_def();
+        PhysicsDef d = closed_def();
         d.default_manning_n = 0.013;
-        d.order = c.order;
+        FiniteVolumeDef fv;
+        fv.order = c.order;
         if (c.pump) {
             d.west.kind = BoundaryKind::pump;
-            d.west.pump_discharge = 0.002;
+            d.pump.discharge = 0.002;
         }
         omp_set_num_threads(c.threads);
-        SolverDef every_cell = d;
+        FiniteVolumeDef every_cell = fv;
         every_cell.skip_dry_land = false;
-        Solver skipping(s, d), computing(s, every_cell);
+        Solver skipping(s, d, fv), computing(s, d, every_cell);
         for (Solver* solver : {&skipping, &computing})  // a stray discharge on dry land, far from the water
             solver->x_discharge_data()[solver->at(60, 25)] = -1e-3;
         const std::string what = std::string(c.pump ? "pump" : "flood") + ", order " + std::to_string(c.order);
@@ -157,7 +165,7 @@ TEST(Solver, ThinFilmWithFrictionOnSlopeStaysFinite) {
     // A 0.1 mm film on a 1:10 slope with n = 0.025 at 1 cm cells: explicit friction
     // would blow up (dt g n^2 |u| / h^(4/3) >> 1); the implicit one must stay bounded.
     const Scene s = test::film_on_slope();
-    SolverDef d = closed_def();
+    PhysicsDef d = closed_def();
     d.default_manning_n = 0.025;
     Solver solver(s, d);
     double vmax = 0.0;
