@@ -33,14 +33,19 @@ struct NestDef {
     double x = -2.0;  // interface [m]; moved west to the nearest multiple of `ratio` cells
     int ratio = 1;    // coarse spacing / scene spacing (2, 3, 4 ...); 1: one uniform grid, no nesting
 };
+// The coarse grid's ratio along y: `ratio`, or where the scene's rows are not a multiple
+// of it, the largest number below it that divides them (50 rows, ratio 4: 2), so that
+// nesting works at any resolution with the flume's exact width (the coarse cells are
+// then ratio x that times the scene's; 1 for a prime number of rows).
+int rows_ratio(int rows, int ratio);
 NestDef default_nest_def();
 
 class NestedSolver {
 public:
     // `def`'s west/south/north boundaries apply to the coarse grid, its east/south/north
-    // ones to the fine grid. Errors (naming the option) when the scene's rows are not a
-    // multiple of the ratio or the interface leaves fewer than 2 coarse or 2 × ratio fine
-    // columns.
+    // ones to the fine grid. The coarse cells are nest.ratio x rows_ratio(rows, ratio)
+    // scene cells. Errors (naming the option) when the interface leaves fewer than 2
+    // coarse or 2 × ratio fine columns.
     NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest);
 
     // The coarse step (the fine grid sub-cycles inside it) [s].
@@ -88,8 +93,8 @@ private:
 
     Grid grid_;
     PhysicsDef def_;
-    int ratio_ = 1, i_nest_ = 0;
-    std::vector<double> z_;  // scene bed [m]
+    int rx_ = 1, ry_ = 1, i_nest_ = 0;  // coarse cells along x and y per scene cell; first fine column
+    std::vector<double> z_;             // scene bed [m]
     Solver coarse_, fine_;
     double time_ = 0.0;
     double cell_updates_ = 0.0;
