@@ -1,6 +1,6 @@
 // The staggered leap-frog shallow-water solver (`--scheme leapfrog`): the scheme family
 // of the paper's STOC-ML and of the classic tsunami codes (TUNAMI, COMCOT), beside the
-// finite-volume one (solver.hpp). Same equations (MODEL.md), with h depth, z bed,
+// finite-volume one (solver.hpp). Same equations (docs/hydro.md, "Equations"), with h depth, z bed,
 // eta = h + z, (u, v) velocity:
 //
 //   h_t + (hu)_x + (hv)_y = 0

@@ -1,7 +1,8 @@
 // Point-wise kernels of the shallow-water scheme: no loops, no storage, so each can be
 // read and tested alone. The loops that drive them live in solver.cpp.
 //
-// Equations (MODEL.md), with h depth, q = (hu, hv) discharge, z bed, eta = h + z:
+// Equations (docs/hydro.md, "Equations"), with h depth, q = (hu, hv) discharge, z bed,
+// eta = h + z:
 //
 //   h_t + (hu)_x + (hv)_y = 0
 //   (hu)_t + (hu^2 + g h^2/2)_x + (huv)_y = -g h z_x - g n^2 u |u| / h^(1/3)
