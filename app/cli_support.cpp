@@ -8,15 +8,32 @@
 
 namespace flotsam {
 
-std::string join_command_line(int argc, char** argv) {
+std::string join_command_line(int argc, char** argv, const std::vector<DroppedOption>& drop) {
     std::string s;
     for (int k = 0; k < argc; ++k) {
-        if (k) s += ' ';
         std::string a = argv[k];
+        bool dropped = false;
+        for (const auto& d : drop) {
+            if (a == "--" + d.name) {
+                dropped = true;
+                if (d.takes_value) ++k;
+            } else if (a.rfind("--" + d.name + "=", 0) == 0) {
+                dropped = true;
+            }
+        }
+        if (dropped) continue;
+        if (!s.empty()) s += ' ';
         const bool quote = a.empty() || a.find_first_of(" \t\"'$") != std::string::npos;
         s += quote ? "'" + a + "'" : a;
     }
     return s;
+}
+
+const std::vector<DroppedOption>& hydro_run_control_options() {
+    static const std::vector<DroppedOption> options = {
+        {"out", true},        {"restart", false},           {"threads", true}, {"quiet", false}, {"label", true},
+        {"stop-after", true}, {"checkpoint-interval", true}};
+    return options;
 }
 
 void add_config_option(CLI::App* sub) {

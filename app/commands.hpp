@@ -8,8 +8,22 @@
 
 namespace flotsam {
 
-// The command line as typed, for the `history` attribute of outputs.
-std::string join_command_line(int argc, char** argv);
+// An option left out of a recorded command line: its name without "--", and whether it
+// takes a value.
+struct DroppedOption {
+    std::string name;
+    bool takes_value = true;
+};
+
+// The command line as typed, for the `history` attribute of outputs, without the
+// options in `drop` (and their values).
+std::string join_command_line(int argc, char** argv, const std::vector<DroppedOption>& drop = {});
+
+// hydro's run-control options: how a run goes (restart, threads, progress, where the
+// output goes, when to stop and checkpoint), not what it computes. They are left out of
+// the restart key, of `flotsam_config` and of `history`, so a run that was stopped and
+// restarted, or run on another thread count, writes the same bytes.
+const std::vector<DroppedOption>& hydro_run_control_options();
 
 // Adds --config FILE (TOML, keys are the long option names, unknown keys rejected) to a
 // subcommand.

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <sstream>
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
@@ -23,6 +24,19 @@ struct HydroOptions {
     std::string friction = "implicit";
     int threads = 0;
 };
+
+// The settings dump (TOML, one name=value per line) without the run-control options.
+std::string result_settings(const std::string& dump) {
+    std::string out, line;
+    std::istringstream in(dump);
+    while (std::getline(in, line)) {
+        const std::string name = line.substr(0, line.find('='));
+        bool control = name == "config";
+        for (const auto& d : hydro_run_control_options()) control = control || name == d.name;
+        if (!control) out += line + "\n";
+    }
+    return out;
+}
 
 void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line) {
     using namespace hydro;
@@ -47,7 +61,7 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     }
     if (o.threads > 0) omp_set_num_threads(o.threads);
     o.run.command_line = command_line;
-    o.run.config_text = sub->config_to_str(true, false);
+    o.run.config_text = result_settings(sub->config_to_str(true, false));
     const RunResult r = run_hydro(o.run, s);
     if (!o.run.quiet)
         std::fprintf(stderr,

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", flotsam::version_string());
     app.require_subcommand(1);
     const std::string command_line = flotsam::join_command_line(argc, argv);
-    flotsam::register_hydro_commands(app, command_line);
+    flotsam::register_hydro_commands(app, flotsam::join_command_line(argc, argv, flotsam::hydro_run_control_options()));
     flotsam::register_data_commands(app, command_line);
     flotsam::register_debris_commands(app, command_line);
     flotsam::register_pipeline_commands(app, command_line);

@@ -12,10 +12,12 @@ namespace flotsam {
 
 AtomicOutput::AtomicOutput(std::string final_path) : final_(std::move(final_path)), temp_(final_ + ".part") {
     ensure_parent_dir(final_);
+    std::error_code ec;
+    temp_existed_ = std::filesystem::exists(temp_, ec) || std::filesystem::is_symlink(temp_, ec);
 }
 
 AtomicOutput::~AtomicOutput() {
-    if (!done_ && !keep_) std::remove(temp_.c_str());
+    if (!done_ && !keep_ && !temp_existed_) std::remove(temp_.c_str());
 }
 
 void AtomicOutput::commit() {

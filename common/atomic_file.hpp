@@ -1,6 +1,11 @@
 // Output that only appears when complete: write to "<path>.part", then rename over
 // <path>. An interrupted or failed run leaves at most a ".part" file, never a file with
 // the final name that looks finished. rename() within one directory is atomic on POSIX.
+//
+// A failed run removes only a ".part" it can prove is its own: one that was not there
+// when it started. A ".part" found at the start (an interrupted run's, perhaps one that
+// --restart can continue) is never removed by a failure; a successful run renames its
+// own over the final name as usual.
 #pragma once
 #include <string>
 
@@ -9,7 +14,7 @@ namespace flotsam {
 class AtomicOutput {
 public:
     explicit AtomicOutput(std::string final_path);
-    ~AtomicOutput();  // removes the partial file unless commit() was called
+    ~AtomicOutput();  // removes the partial file unless commit() or keep_partial() was called, or it predates this object
     AtomicOutput(const AtomicOutput&) = delete;
     AtomicOutput& operator=(const AtomicOutput&) = delete;
 
@@ -23,6 +28,7 @@ private:
     std::string temp_;
     bool done_ = false;
     bool keep_ = false;
+    bool temp_existed_ = false;  // a ".part" was there before: not ours to remove
 };
 
 // Writes `text` to `path` atomically.

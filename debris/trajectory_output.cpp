@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "common/atomic_file.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 
@@ -35,25 +36,18 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const std::size_t nb = world.size(), nt = series.time.size();
         const int dtraj = f.def_dim("trajectory", nb), dtime = f.def_dim("time", nt);
         const TrackVariables track_vars = define_track_variables(f, dtraj, dtime);
-        const int vid = f.def_var("trajectory_id", NC_STRING, {dtraj});
+        const int vid = cf::def_var(f, {.name = "trajectory_id", .type = NC_STRING, .dims = {dtraj}});
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         f.put_att(vid, "long_name", std::string("body name"));
 
         auto per_double = [&](const char* name, const char* units, const char* long_name) {
-            const int v = f.def_var(name, NC_DOUBLE, {dtraj});
-            f.put_att(v, "units", std::string(units));
-            f.put_att(v, "long_name", std::string(long_name));
-            return v;
+            return cf::def_var(f, {.name = name, .dims = {dtraj}, .units = units, .long_name = long_name});
         };
         auto per_string = [&](const char* name, const char* long_name) {
-            const int v = f.def_var(name, NC_STRING, {dtraj});
-            f.put_att(v, "long_name", std::string(long_name));
-            return v;
+            return cf::def_var(f, {.name = name, .type = NC_STRING, .dims = {dtraj}, .long_name = long_name});
         };
         auto per_int = [&](const char* name, const char* long_name) {
-            const int v = f.def_var(name, NC_INT, {dtraj});
-            f.put_att(v, "long_name", std::string(long_name));
-            return v;
+            return cf::def_var(f, {.name = name, .type = NC_INT, .dims = {dtraj}, .long_name = long_name});
         };
         const int vstart = per_string("start_name", "scene start point of the body (empty: given by coordinates)");
         const int vcontact = per_string("contact_model", "friction model: center (CC) or local (LC, with axis shift)");
@@ -71,8 +65,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
 
-        f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
-        f.put_att(NC_GLOBAL, "featureType", std::string("trajectory"));
+        cf::put_conventions(f, "trajectory");
         f.put_att(NC_GLOBAL, "title", std::string("flotsam debris trajectories"));
         f.put_att(NC_GLOBAL, "source", std::string("flotsam debris: rigid box replayed through a stored shallow-water flow"));
         f.put_att(NC_GLOBAL, "flow_file", def.flow_file);

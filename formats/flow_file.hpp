@@ -77,7 +77,6 @@ namespace flow_names {
 inline constexpr const char* depth = "sea_floor_depth_below_sea_surface";
 inline constexpr const char* x_velocity = "sea_water_x_velocity";
 inline constexpr const char* y_velocity = "sea_water_y_velocity";
-inline constexpr const char* time_units = "seconds since 2000-01-01 00:00:00";
 }  // namespace flow_names
 
 }  // namespace flotsam

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/atomic_file.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/version.hpp"
@@ -123,24 +124,17 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
     {
         nc::File f = nc::File::create(out.temp_path());
         const int dx = f.def_dim("x", g.nx), dy = f.def_dim("y", g.ny);
-        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy});
-        f.put_att(vx, "units", std::string("m"));
-        f.put_att(vx, "axis", std::string("X"));
-        f.put_att(vx, "standard_name", std::string("projection_x_coordinate"));
-        f.put_att(vx, "long_name", std::string("x of cell centre (east)"));
-        f.put_att(vy, "units", std::string("m"));
-        f.put_att(vy, "axis", std::string("Y"));
-        f.put_att(vy, "standard_name", std::string("projection_y_coordinate"));
-        f.put_att(vy, "long_name", std::string("y of cell centre (north)"));
+        const cf::XYAxes axes = cf::def_xy(f, dx, dy, "cell centre");
         const std::vector<std::size_t> chunk = {std::size_t(std::min(g.ny, 128)), std::size_t(std::min(g.nx, 128))};
-        auto field = [&](const char* name, nc_type t, const char* units, const char* sn, const char* ln) {
-            const int v = f.def_var(name, t, {dy, dx});
-            f.def_chunking(v, chunk);
-            f.def_deflate(v, 4, true);
-            if (units[0]) f.put_att(v, "units", std::string(units));
-            if (sn[0]) f.put_att(v, "standard_name", std::string(sn));
-            f.put_att(v, "long_name", std::string(ln));
-            return v;
+        auto field = [&](const char* name, nc_type t, const char* units, const char* standard_name, const char* long_name) {
+            return cf::def_var(f, {.name = name,
+                                   .type = t,
+                                   .dims = {dy, dx},
+                                   .units = units,
+                                   .standard_name = standard_name,
+                                   .long_name = long_name,
+                                   .chunks = chunk,
+                                   .deflate = 4});
         };
         const int vz = field("z", NC_FLOAT, "m", "", "bed and building elevation above still water level");
         f.put_att(vz, "positive", std::string("up"));
@@ -161,26 +155,24 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         if (!s.points.empty()) {
             const int d = f.def_dim("point", s.points.size());
             pn = f.def_var("point_name", NC_STRING, {d});
-            pk = f.def_var("point_kind", NC_STRING, {d});
-            f.put_att(pk, "long_name", std::string("gauge: record a time series; start: a debris start"));
-            px = f.def_var("point_x", NC_DOUBLE, {d});
-            f.put_att(px, "units", std::string("m"));
-            py = f.def_var("point_y", NC_DOUBLE, {d});
-            f.put_att(py, "units", std::string("m"));
-            ph = f.def_var("point_heading", NC_DOUBLE, {d});
-            f.put_att(ph, "units", std::string("degree"));
-            f.put_att(ph, "long_name", std::string("debris long axis from +x, counter-clockwise"));
+            pk = cf::def_var(f, {.name = "point_kind",
+                                 .type = NC_STRING,
+                                 .dims = {d},
+                                 .long_name = "gauge: record a time series; start: a debris start"});
+            px = cf::def_var(f, {.name = "point_x", .dims = {d}, .units = "m"});
+            py = cf::def_var(f, {.name = "point_y", .dims = {d}, .units = "m"});
+            ph = cf::def_var(f, {.name = "point_heading",
+                                 .dims = {d},
+                                 .units = "degree",
+                                 .long_name = "debris long axis from +x, counter-clockwise"});
         }
         int sn = -1, sx = -1, s0 = -1, s1 = -1;
         if (!s.sections.empty()) {
             const int d = f.def_dim("section", s.sections.size());
             sn = f.def_var("section_name", NC_STRING, {d});
-            sx = f.def_var("section_x", NC_DOUBLE, {d});
-            f.put_att(sx, "units", std::string("m"));
-            s0 = f.def_var("section_y_min", NC_DOUBLE, {d});
-            f.put_att(s0, "units", std::string("m"));
-            s1 = f.def_var("section_y_max", NC_DOUBLE, {d});
-            f.put_att(s1, "units", std::string("m"));
+            sx = cf::def_var(f, {.name = "section_x", .dims = {d}, .units = "m"});
+            s0 = cf::def_var(f, {.name = "section_y_min", .dims = {d}, .units = "m"});
+            s1 = cf::def_var(f, {.name = "section_y_max", .dims = {d}, .units = "m"});
         }
         int rn = -1, rs = -1, rc = -1, rx = -1, ry = -1;
         std::vector<int> start, count;
@@ -199,12 +191,10 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
             rn = f.def_var("region_name", NC_STRING, {d});
             rs = f.def_var("region_vertex_start", NC_INT, {d});
             rc = f.def_var("region_vertex_count", NC_INT, {d});
-            rx = f.def_var("region_vertex_x", NC_DOUBLE, {dv});
-            f.put_att(rx, "units", std::string("m"));
-            ry = f.def_var("region_vertex_y", NC_DOUBLE, {dv});
-            f.put_att(ry, "units", std::string("m"));
+            rx = cf::def_var(f, {.name = "region_vertex_x", .dims = {dv}, .units = "m"});
+            ry = cf::def_var(f, {.name = "region_vertex_y", .dims = {dv}, .units = "m"});
         }
-        f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
+        cf::put_conventions(f);
         f.put_att(NC_GLOBAL, "title", s.title);
         f.put_att(NC_GLOBAL, "source", s.source.empty() ? version_string() : s.source);
         f.put_att(NC_GLOBAL, "history", history);
@@ -212,8 +202,8 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         f.put_att(NC_GLOBAL, "flotsam_synthetic", std::string(s.synthetic ? "true" : "false"));
         f.enddef();
 
-        f.put(vx, g.xs());
-        f.put(vy, g.ys());
+        f.put(axes.x, g.xs());
+        f.put(axes.y, g.ys());
         auto as_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
         f.put(vz, as_float(s.z));
         if (vn >= 0) f.put(vn, as_float(s.manning_n));

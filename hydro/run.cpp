@@ -12,6 +12,7 @@
 #include "common/progress.hpp"
 #include "common/sha256.hpp"
 #include "common/version.hpp"
+#include "hydro/restart_key.hpp"
 
 namespace flotsam::hydro {
 
@@ -192,7 +193,7 @@ struct Checkpoint {
     double volume_start = 0.0;
     double pump_level = 0.0;
     bool pump_stopped = false;
-    std::string config_sha;
+    std::string key;  // restart_key() of the run that wrote it
 };
 
 template <class S>
@@ -216,7 +217,7 @@ void write_checkpoint(const std::string& path, S& s, const Summary& sum, const C
         f.put_att(NC_GLOBAL, "volume_start", c.volume_start);
         f.put_att(NC_GLOBAL, "pump_level", c.pump_level);
         f.put_att(NC_GLOBAL, "pump_stopped", c.pump_stopped ? 1 : 0);
-        f.put_att(NC_GLOBAL, "config_sha256", c.config_sha);
+        f.put_att(NC_GLOBAL, "restart_key", c.key);
         f.enddef();
         for (std::size_t k = 0; k < arrays.size(); ++k) f.put(vs[k], *arrays[k]);
         f.put(vmd, sum.max_depth);
@@ -225,6 +226,13 @@ void write_checkpoint(const std::string& path, S& s, const Summary& sum, const C
         f.close();
     }
     out.commit();
+}
+
+std::string read_checkpoint_key(const std::string& path) {
+    const nc::File f = nc::File::open_read(path);
+    const auto key = f.att_text(NC_GLOBAL, "restart_key");
+    if (!key) fail(path, "attribute 'restart_key'", "missing: written by an older flotsam, whose checkpoints cannot be continued");
+    return *key;
 }
 
 template <class S>
@@ -243,7 +251,7 @@ Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     c.volume_start = need("volume_start");
     c.pump_level = need("pump_level");
     c.pump_stopped = need("pump_stopped") != 0.0;
-    c.config_sha = f.att_text(NC_GLOBAL, "config_sha256").value_or("");
+    c.key = read_checkpoint_key(path);
     const auto arrays = s.state_arrays();
     for (std::size_t k = 0; k < arrays.size(); ++k) {
         const std::string name = "state_" + std::to_string(k);
@@ -300,7 +308,7 @@ struct RunOutput {
           times(frame_times(run.duration, run.output_interval)),
           gauge_points(gauge_points_of(scene, run)),
           gauges(gauge_points, scene.grid, run.gauge_interval, run.duration),
-          config_sha(sha256_hex(run.config_text + "\n" + sha256_file(run.scene_file) + "\n" + boundary_checksums(def))),
+          key(restart_key(run, def)),
           file(run.out_file),
           checkpoint(checkpoint_path(run.out_file)) {
         sum.max_depth.assign(win.grid.size(), 0.0f);
@@ -312,7 +320,7 @@ struct RunOutput {
     std::vector<FlowGauge> gauge_points;
     Gauges gauges;
     Summary sum;
-    std::string config_sha;
+    std::string key;  // restart_key() of this run
     AtomicOutput file;
     std::string checkpoint;
     std::optional<FlowWriter> writer;
@@ -365,12 +373,18 @@ void start(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& d
 // written with the same settings, scene and boundary files.
 template <RunnableSolver S>
 void resume(S& solver, RunOutput& o) {
+    o.file.keep_partial();  // the interrupted run's work: never removed, whatever happens next
     if (!std::filesystem::exists(o.checkpoint)) fail(o.checkpoint, "", "no checkpoint to restart from");
     if (!std::filesystem::exists(o.file.temp_path()))
         fail(o.file.temp_path(), "", "the partial output of the interrupted run is missing");
+    // The settings first (attributes only), so that a refusal touches no state.
+    const std::string written_with = read_checkpoint_key(o.checkpoint);
+    if (written_with != o.key)
+        fail(o.checkpoint, "",
+             "was written with other settings, scene or boundary files (" + differing_settings(written_with, o.key) +
+                 "): restart with the checkpoint's settings, or remove " + o.checkpoint + " and " + o.file.temp_path() +
+                 " to start afresh");
     o.state = read_checkpoint(o.checkpoint, solver, o.sum);
-    if (o.state.config_sha != o.config_sha)
-        fail(o.checkpoint, "", "was written with other settings, scene or boundary files; rerun without --restart");
     solver.set_time(o.state.time);
     if (o.state.pump_stopped) solver.set_pump_level_at_stop(o.state.pump_level);
     o.writer.emplace(FlowWriter::reopen(o.file.temp_path()));
@@ -388,7 +402,7 @@ void save_checkpoint(S& solver, const PhysicsDef& def, RunOutput& o, double t, l
     o.state.next_gauge = o.gauges.next();
     o.state.pump_stopped = def.west.kind == BoundaryKind::pump && t >= def.pump.stop;
     o.state.pump_level = solver.pump_level_at_stop();
-    o.state.config_sha = o.config_sha;
+    o.state.key = o.key;
     write_checkpoint(o.checkpoint, solver, o.sum, o.state);
 }
 
@@ -422,11 +436,16 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
             write_frame(*o.writer, o.state.next_frame, solver, o.win);
             ++o.state.next_frame;
             o.gauges.flush(*o.writer);
+            o.writer->sync();
         }
+        // Checkpoints and stops fall on stored frames, and every frame ends with a sync:
+        // the file then has the same bytes (HDF5's layout included) whether the run was
+        // checkpointed, stopped and restarted, or never interrupted.
         const bool stop = run.stop_after >= 0.0 && t1 >= run.stop_after;
-        if (t1 >= next_checkpoint - 1e-12 || stop) {
+        if (reaches && (t1 >= next_checkpoint - 1e-12 || stop)) {
             save_checkpoint(solver, def, o, t1, steps);
-            next_checkpoint += run.checkpoint_interval;
+            if (run.checkpoint_interval > 0.0)
+                next_checkpoint = (std::floor(t1 / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval;
             if (stop) return -steps;
         }
         progress.update(t1, dt, steps);
@@ -436,6 +455,11 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
 
 template <RunnableSolver S>
 RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& def) {
+    const std::string ckpt = checkpoint_path(run.out_file);
+    if (!run.restart && std::filesystem::exists(ckpt))
+        fail(ckpt, "",
+             "holds an interrupted run of " + run.out_file + ": continue it with --restart, or remove " + ckpt + " and " +
+                 run.out_file + ".part to start afresh");
     RunOutput o(scene, run, def);
     if (run.restart)
         resume(solver, o);

@@ -6,9 +6,9 @@
 #include <map>
 
 #include "common/atomic_file.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
-#include "formats/flow_file.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
@@ -47,10 +47,7 @@ std::string summary_path_for(const std::string& nc_path) {
 
 ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim) {
     auto var = [&](const std::string& name, nc_type type, const char* units, const char* long_name) {
-        const int v = f.def_var(name, type, {dim});
-        if (units[0]) f.put_att(v, "units", std::string(units));
-        f.put_att(v, "long_name", std::string(long_name));
-        return v;
+        return cf::def_var(f, {.name = name, .type = type, .dims = {dim}, .units = units, .long_name = long_name});
     };
     ParameterSetVariables vars{};
     vars.label = var("param_set_label", NC_STRING, "", "parameter set label");
@@ -88,10 +85,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
 
         const debris::TrackVariables track_vars = debris::define_track_variables(f, dtraj, dtime);
         auto var = [&](const char* name, nc_type type, std::vector<int> dims, const char* units, const char* long_name) {
-            const int v = f.def_var(name, type, dims);
-            if (units[0]) f.put_att(v, "units", std::string(units));
-            f.put_att(v, "long_name", std::string(long_name));
-            return v;
+            return cf::def_var(f, {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name});
         };
         const int vid = var("trajectory_id", NC_STRING, {dtraj}, "", "body/variant/parameter set/flow/perturbation");
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
@@ -125,8 +119,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vvarname = var("variant_name", NC_STRING, {dvar}, "", "model variants of the sweep, in order");
         const ParameterSetVariables set_vars = define_parameter_set_variables(f, dset);
 
-        f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
-        f.put_att(NC_GLOBAL, "featureType", std::string("trajectory"));
+        cf::put_conventions(f, "trajectory");
         f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep trajectories"));
         f.put_att(NC_GLOBAL, "source", std::string("flotsam sweep: rigid boxes replayed through stored shallow-water flows"));
         f.put_att(NC_GLOBAL, "spec_file", r.spec_file);

@@ -7,9 +7,9 @@
 #include <numbers>
 
 #include "common/atomic_file.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
-#include "formats/flow_file.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
@@ -275,23 +275,6 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
 // ---------------------------------------------------------------------------------------
 // Output
 
-namespace {
-
-const double fill_double = 9.969209968386869e36;
-
-std::vector<double> filled(std::vector<double> v) {
-    for (double& a : v)
-        if (std::isnan(a)) a = fill_double;
-    return v;
-}
-std::vector<float> filled(std::vector<float> v) {
-    for (float& a : v)
-        if (std::isnan(a)) a = float(fill_double);
-    return v;
-}
-
-}  // namespace
-
 void write_stats_file(const std::string& path, const SweepStats& s, const StatsDef& def, const std::string& sweep_file,
                       const std::string& scene_file, const std::string& history) {
     ensure_parent_dir(path);
@@ -306,11 +289,8 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                   dx = f.def_dim("x", std::size_t(s.map.nx)), dy = f.def_dim("y", std::size_t(s.map.ny));
         auto var = [&](const std::string& name, nc_type type, std::vector<int> dims, const char* units,
                        const std::string& long_name, bool fill = false) {
-            const int v = f.def_var(name, type, dims);
-            if (units[0]) f.put_att(v, "units", std::string(units));
-            f.put_att(v, "long_name", long_name);
-            if (fill) f.def_fill(v, fill_double);
-            return v;
+            return cf::def_var(
+                f, {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name, .fill = fill});
         };
         // Tables.
         const int vgb = var("group_body", NC_STRING, {dg}, "", "body of the group");
@@ -383,9 +363,7 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                              "members with this parameter set inside the region at arrival_time_s");
 
         // Distance and R(t).
-        const int vt = var("time", NC_DOUBLE, {dt}, flow_names::time_units, "time");
-        f.put_att(vt, "standard_name", std::string("time"));
-        f.put_att(vt, "calendar", std::string("standard"));
+        const int vt = cf::def_time(f, dt, "time", "time");
         const int vdm = var("distance_mean", NC_DOUBLE, {dg, dp, dt}, "m",
                             "mean distance of the centre from its start (over flows and perturbations)", true);
         const int vds = var("distance_std", NC_DOUBLE, {dg, dp, dt}, "m", "standard deviation (n-1) of that distance", true);
@@ -393,12 +371,7 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                             "R(t) = (distance_mean - distance_mean of the control set) / distance_mean of the control set", true);
 
         // Maps.
-        const int vx = var("x", NC_DOUBLE, {dx}, "m", "x of map cell centre (east)");
-        f.put_att(vx, "standard_name", std::string("projection_x_coordinate"));
-        f.put_att(vx, "axis", std::string("X"));
-        const int vy = var("y", NC_DOUBLE, {dy}, "m", "y of map cell centre (north)");
-        f.put_att(vy, "standard_name", std::string("projection_y_coordinate"));
-        f.put_att(vy, "axis", std::string("Y"));
+        const cf::XYAxes map_axes = cf::def_xy(f, dx, dy, "map cell centre");
         const int vpp = var("pass_probability", NC_FLOAT, {dg, dy, dx}, "1",
                             "fraction of the group's trajectories whose centre passes the cell");
         const int vmx =
@@ -408,7 +381,7 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         const int vmxa =
             var("max_debris_speed_all", NC_FLOAT, {dy, dx}, "m s-1", "largest body speed in the cell over all trajectories", true);
 
-        f.put_att(NC_GLOBAL, "Conventions", std::string("CF-1.11"));
+        cf::put_conventions(f);
         f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep statistics"));
         f.put_att(NC_GLOBAL, "source", std::string("flotsam stats"));
         f.put_att(NC_GLOBAL, "sweep_file", sweep_file);
@@ -470,13 +443,13 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                 kde.insert(kde.end(), q->kde.begin(), q->kde.end());
             }
             f.put(v.count, count);
-            f.put(v.ym, filled(ym));
-            f.put(v.ymed, filled(ymed));
-            f.put(v.ystd, filled(ystd));
-            f.put(v.sm, filled(sm));
-            f.put(v.smed, filled(smed));
-            f.put(v.sstd, filled(sstd));
-            f.put(v.bw, filled(bw));
+            f.put(v.ym, cf::filled(ym));
+            f.put(v.ymed, cf::filled(ymed));
+            f.put(v.ystd, cf::filled(ystd));
+            f.put(v.sm, cf::filled(sm));
+            f.put(v.smed, cf::filled(smed));
+            f.put(v.sstd, cf::filled(sstd));
+            f.put(v.bw, cf::filled(bw));
             f.put(v.kde, kde);
         };
         std::vector<const SectionSummary*> la, lb;
@@ -493,9 +466,9 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
             for (const auto& r : a) o.insert(o.end(), r.begin(), r.end());
             return o;
         };
-        f.put(vmt, filled(flat(s.passage_time)));
-        f.put(vmy, filled(flat(s.passage_y)));
-        f.put(vms, filled(flat(s.passage_speed)));
+        f.put(vmt, cf::filled(flat(s.passage_time)));
+        f.put(vmy, cf::filled(flat(s.passage_y)));
+        f.put(vms, cf::filled(flat(s.passage_speed)));
 
         std::vector<double> centres, bounds;
         for (std::size_t b = 0; b < nb; ++b) {
@@ -516,10 +489,10 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         f.put(vmg, s.member_group);
         f.put(vmp, s.member_param_set);
         f.put(vmf, s.member_flow);
-        f.put(vm0, filled(s.motion_start));
-        f.put(vmr, filled(s.max_rotation));
-        f.put(vmy2, filled(s.max_yaw_to_motion));
-        f.put(vmd, filled(s.motion_direction));
+        f.put(vm0, cf::filled(s.motion_start));
+        f.put(vmr, cf::filled(s.max_rotation));
+        f.put(vmy2, cf::filled(s.max_yaw_to_motion));
+        f.put(vmd, cf::filled(s.motion_direction));
         f.put(vmreg, s.region_at_arrival);
 
         std::vector<int> rc, rcp;
@@ -538,20 +511,20 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                 dsv.insert(dsv.end(), s.distance_std[g][p].begin(), s.distance_std[g][p].end());
                 rev.insert(rev.end(), s.relative_error[g][p].begin(), s.relative_error[g][p].end());
             }
-        f.put(vdm, filled(dmv));
-        f.put(vds, filled(dsv));
-        f.put(vre, filled(rev));
-        f.put(vx, s.map.xs());
-        f.put(vy, s.map.ys());
+        f.put(vdm, cf::filled(dmv));
+        f.put(vds, cf::filled(dsv));
+        f.put(vre, cf::filled(rev));
+        f.put(map_axes.x, s.map.xs());
+        f.put(map_axes.y, s.map.ys());
         std::vector<float> pp, mx;
         for (std::size_t g = 0; g < ng; ++g) {
             pp.insert(pp.end(), s.pass_probability[g].begin(), s.pass_probability[g].end());
             mx.insert(mx.end(), s.max_speed[g].begin(), s.max_speed[g].end());
         }
         f.put(vpp, pp);
-        f.put(vmx, filled(mx));
+        f.put(vmx, cf::filled(mx));
         f.put(vppa, s.pass_probability_all);
-        f.put(vmxa, filled(s.max_speed_all));
+        f.put(vmxa, cf::filled(s.max_speed_all));
         f.close();
     }
     out.commit();
