@@ -1,6 +1,7 @@
 // `flotsam hydro`: one shallow-water run of a scene, written as a CF flow file.
 #include <omp.h>
 
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -13,13 +14,17 @@ namespace flotsam {
 
 namespace {
 
+constexpr const char* kSideNames[4] = {"west", "east", "south", "north"};
+
 struct HydroOptions {
     hydro::RunDef run;
     hydro::PhysicsDef physics = hydro::default_physics_def();
     std::vector<double> window;
     std::vector<std::string> gauges;
     std::string west = "level", east = "transmissive", south = "wall", north = "wall";
-    std::string level_mode = "total";
+    std::array<std::string, 4> level_mode{"total", "total", "total", "total"};  // west, east, south, north
+    std::array<std::string, 4> series_end{"error", "error", "error", "error"};
+    std::string level_mode_all;  // --level-mode: every side at once (a side's own option wins)
     std::string scheme = "fv";
     std::string friction = "implicit";
     int threads = 0;
@@ -47,8 +52,15 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     s.east.kind = parse_boundary_kind(o.east, "--east");
     s.south.kind = parse_boundary_kind(o.south, "--south");
     s.north.kind = parse_boundary_kind(o.north, "--north");
-    const LevelMode mode = parse_level_mode(o.level_mode, "--level-mode");
-    for (BoundaryDef* b : {&s.west, &s.east, &s.south, &s.north}) b->level_mode = mode;
+    BoundaryDef* sides[4] = {&s.west, &s.east, &s.south, &s.north};
+    for (std::size_t k = 0; k < 4; ++k) {
+        const std::string side = kSideNames[k];
+        const bool own = sub->get_option("--" + side + "-level-mode")->count() > 0;
+        sides[k]->level_mode = own || o.level_mode_all.empty()
+                                   ? parse_level_mode(o.level_mode[k], "--" + side + "-level-mode")
+                                   : parse_level_mode(o.level_mode_all, "--level-mode");
+        sides[k]->series_end = parse_series_end(o.series_end[k], "--" + side + "-series-end");
+    }
     if (!o.window.empty()) o.run.window = std::array<double, 4>{o.window[0], o.window[1], o.window[2], o.window[3]};
     for (const auto& g : o.gauges) {
         const auto a = g.find(','), b = g.rfind(',');
@@ -92,6 +104,9 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--gauge-interval", r.gauge_interval, "Time between gauge samples [s]")->capture_default_str();
     sub->add_option("--gauge", o->gauges, "Extra gauge NAME,X,Y (repeatable); the scene's gauge points are always recorded");
     sub->add_option("--arrival-depth", r.arrival_depth, "Depth threshold of the arrival-time map [m] (the debris draft)")
+        ->capture_default_str();
+    sub->add_option("--flood-depth", r.flood_depth,
+                    "Depth a cell must exceed to count as flooded [m]: the flooded map, the inundation line and the runup")
         ->capture_default_str();
     sub->add_option("--checkpoint-interval", r.checkpoint_interval, "Simulated time between checkpoints [s]; 0: none")
         ->capture_default_str();
@@ -146,10 +161,23 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--east-series", s.east.series_file, "CSV for an east level/discharge boundary");
     sub->add_option("--south-series", s.south.series_file, "CSV for a south level/discharge boundary");
     sub->add_option("--north-series", s.north.series_file, "CSV for a north level/discharge boundary");
-    sub->add_option("--level-mode", o->level_mode,
-                    "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the "
-                    "'incident' wave (reflections leave)")
-        ->capture_default_str();
+    sub->add_option("--level-mode", o->level_mode_all, "The level mode of every side (total or incident); --<side>-level-mode wins")
+        ->check(CLI::IsMember({"total", "incident"}));
+    for (std::size_t k = 0; k < 4; ++k) {
+        const std::string side = kSideNames[k];
+        sub->add_option("--" + side + "-level-mode", o->level_mode[k],
+                        "A " + side +
+                            " level series is the 'total' measured level (velocity from the outgoing characteristic) or only "
+                            "the 'incident' wave (reflections leave)")
+            ->check(CLI::IsMember({"total", "incident"}))
+            ->capture_default_str();
+        sub->add_option("--" + side + "-series-end", o->series_end[k],
+                        "After the " + side +
+                            " series ends: 'error' (it must cover the run) or 'transmissive' (the side lets the water "
+                            "leave)")
+            ->check(CLI::IsMember({"error", "transmissive"}))
+            ->capture_default_str();
+    }
     sub->add_option("--pump-discharge", s.pump.discharge, "Pump boundary: mass source [m^3/s]")->capture_default_str();
     sub->add_option("--pump-stop", s.pump.stop, "Pump boundary: end of pumping [s]")->capture_default_str();
     sub->add_option("--pump-relax", s.pump.relax_time, "Pump boundary: relaxation time of the level after pumping [s]")

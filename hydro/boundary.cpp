@@ -22,6 +22,12 @@ LevelMode parse_level_mode(const std::string& s, const std::string& option) {
     fail("", option, "unknown level mode '" + s + "' (incident, total)");
 }
 
+SeriesEnd parse_series_end(const std::string& s, const std::string& option) {
+    if (s == "error") return SeriesEnd::error;
+    if (s == "transmissive") return SeriesEnd::transmissive;
+    fail("", option, "unknown end of series '" + s + "' (error, transmissive)");
+}
+
 const char* to_string(BoundaryKind k) {
     switch (k) {
         case BoundaryKind::wall:

@@ -35,10 +35,18 @@ enum class LevelMode {
                // imposed, the outgoing one comes from inside, so reflections leave
 };
 
+// What a level or discharge side becomes after its series ends.
+enum class SeriesEnd {
+    error,         // nothing: the series must cover the whole run (checked before it starts)
+    transmissive,  // a transmissive side (no incoming wave): what is still in the domain
+                   // leaves instead of reflecting off a level held at its last value
+};
+
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
     std::string series_file;  // CSV time,value for level / discharge
     LevelMode level_mode = LevelMode::total;
+    SeriesEnd series_end = SeriesEnd::error;
 };
 
 // The public benchmark's forcing on the west side (BoundaryKind::pump): a mass source in
@@ -59,6 +67,7 @@ struct GhostState {
 
 BoundaryKind parse_boundary_kind(const std::string& s, const std::string& option);
 LevelMode parse_level_mode(const std::string& s, const std::string& option);
+SeriesEnd parse_series_end(const std::string& s, const std::string& option);  // "error" | "transmissive"
 const char* to_string(BoundaryKind k);
 
 // Ghost state for an open side from Riemann invariants. `un` is the velocity into the
@@ -134,6 +143,9 @@ SideForcing Forcing::at(Side s, double t, StripLevel&& strip_level) {
             f.mode = LevelMode::total;
             f.given = pump_level_at_stop_ * std::exp(-(t - pump_.stop) / pump_.relax_time);
         }
+    } else if ((b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) && b.series_end == SeriesEnd::transmissive &&
+               t > series_[int(s)].end()) {
+        f.kind = BoundaryKind::transmissive;
     } else if (b.kind == BoundaryKind::level) {
         f.given = series_[int(s)].at(t);
     } else if (b.kind == BoundaryKind::discharge) {

@@ -68,6 +68,12 @@ struct Summary {
     std::vector<float> max_depth, max_speed, arrival;
 };
 
+// Gauges sample the state bilinearly between the four cell centres around each point
+// (at a cell centre: that cell alone), so a gauge reads the flow where it stands, not
+// at the nearest centre up to half a cell away. Depth and velocities are interpolated
+// over the four cells (a dry one counts as h = u = v = 0); the level over the wet ones
+// only (a dry cell's "level" is its ground), and where all four are dry it is the
+// interpolated ground.
 class Gauges {
 public:
     Gauges(const std::vector<FlowGauge>& gauges, const Grid& g, double interval, double duration) : interval_(interval) {
@@ -78,16 +84,36 @@ public:
                 at += std::to_string(p.y);
                 fail("", "gauge '" + p.name + "'", "position (" + at + ") is outside the grid");
             }
-            cells_.push_back({g.cell_i(p.x), g.cell_j(p.y)});
+            points_.push_back(Stencil{axis(p.x, g.x(0), g.dx, g.nx), axis(p.y, g.y(0), g.dy, g.ny)});
         }
         samples_ = gauges.empty() ? 0 : std::size_t(std::floor(duration / interval + 1e-9)) + 1;
     }
     std::size_t samples() const { return samples_; }
-    std::size_t count() const { return cells_.size(); }
+    std::size_t count() const { return points_.size(); }
     template <class S>
     std::vector<GaugeSample> read(const S& s) const {
         std::vector<GaugeSample> out;
-        for (auto [i, j] : cells_) out.push_back({s.level(i, j), s.depth(i, j), s.x_velocity(i, j), s.y_velocity(i, j)});
+        for (const Stencil& p : points_) {
+            GaugeSample g{0.0, 0.0, 0.0, 0.0};
+            double wet_weight = 0.0, wet_level = 0.0, ground = 0.0;
+            for (int b = 0; b < 2; ++b)
+                for (int a = 0; a < 2; ++a) {
+                    const double w = (a ? p.x.w : 1.0 - p.x.w) * (b ? p.y.w : 1.0 - p.y.w);
+                    if (w == 0.0) continue;
+                    const int i = p.x.i + a, j = p.y.i + b;
+                    const double h = s.depth(i, j);
+                    g.h += w * h;
+                    g.u += w * s.x_velocity(i, j);
+                    g.v += w * s.y_velocity(i, j);
+                    ground += w * (s.level(i, j) - h);
+                    if (h > 0.0) {
+                        wet_weight += w;
+                        wet_level += w * s.level(i, j);
+                    }
+                }
+            g.eta = wet_weight > 0.0 ? wet_level / wet_weight : ground;
+            out.push_back(g);
+        }
         return out;
     }
     // Records every sample time in (t0, t1] by linear interpolation between the states.
@@ -121,8 +147,23 @@ public:
     void resume_at(std::size_t next) { next_ = flushed_ = next; }
 
 private:
+    // Along one axis: the cell centre at or before the point (the last but one at the far
+    // edge) and the weight of the next one, in [0, 1].
+    struct Axis {
+        int i = 0;
+        double w = 0.0;
+    };
+    struct Stencil {
+        Axis x, y;
+    };
+    static Axis axis(double p, double first_centre, double spacing, int n) {
+        if (n < 2) return {0, 0.0};
+        const double f = (p - first_centre) / spacing;
+        const int i = std::clamp(int(std::floor(f)), 0, n - 2);
+        return {i, std::clamp(f - double(i), 0.0, 1.0)};
+    }
     double interval_;
-    std::vector<std::pair<int, int>> cells_;
+    std::vector<Stencil> points_;
     std::size_t samples_ = 0, next_ = 0, flushed_ = 0;
     std::vector<double> time_;
     std::vector<float> eta_, h_, u_, v_;
@@ -291,6 +332,14 @@ double cpu_seconds() {
 
 // ---- the run, step by step ----
 
+// The scene's bed on the output window [m].
+std::vector<float> window_bed(const Scene& scene, const Window& win) {
+    std::vector<float> z(win.grid.size());
+    for (int j = win.j0; j <= win.j1; ++j)
+        for (int i = win.i0; i <= win.i1; ++i) z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+    return z;
+}
+
 std::vector<FlowGauge> gauge_points_of(const Scene& scene, const RunDef& run) {
     std::vector<FlowGauge> points;
     for (const auto& p : scene.points)
@@ -331,18 +380,15 @@ struct RunOutput {
 // attributes that say how the flow was made.
 FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDef& def, const RunOutput& o,
                           const std::string& scheme) {
-    const Window& win = o.win;
     FlowFileDef fd;
-    fd.window = win.grid;
-    fd.z.resize(win.grid.size());
-    for (int j = win.j0; j <= win.j1; ++j)
-        for (int i = win.i0; i <= win.i1; ++i)
-            fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+    fd.window = o.win.grid;
+    fd.z = window_bed(scene, o.win);
     fd.frame_times = o.times;
     fd.gauges = o.gauge_points;
     fd.gauge_samples = o.gauges.samples();
     fd.gauge_interval = run.gauge_interval;
     fd.arrival_depth = run.arrival_depth;
+    fd.flood_depth = run.flood_depth;
     fd.deflate_level = run.deflate_level;
     fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
     fd.attributes["source"] = version_string() + "; " + scheme;
@@ -490,6 +536,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     }
     o.gauges.flush(*o.writer);
     o.writer->write_summary(o.sum.max_depth, o.sum.max_speed, o.sum.arrival);
+    o.writer->write_runup(runup_summary(o.win.grid, window_bed(scene, o.win), o.sum.max_depth, run.flood_depth));
     o.writer->close();
     o.file.commit();
     std::filesystem::remove(o.checkpoint);
@@ -506,9 +553,11 @@ RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
-    // Boundary series must cover the whole run before any work starts.
+    // Boundary series must cover the whole run (or its start, where the side hands over
+    // to a transmissive one when the series ends) before any work starts.
     for (const BoundaryDef* b : {&physics.west, &physics.east, &physics.south, &physics.north})
-        if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
+        if (!b->series_file.empty())
+            require_coverage(read_time_series_csv(b->series_file), 0.0, b->series_end == SeriesEnd::error ? run.duration : 0.0);
     if (run.scheme == Scheme::leapfrog) {
         if (run.nest.ratio > 1)
             fail("", "--nest-ratio",

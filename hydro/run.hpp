@@ -57,6 +57,7 @@ struct RunDef {
     LeapfrogDef leapfrog = default_leapfrog_def();  // --scheme leapfrog only; its step divides output_interval
     NestDef nest = default_nest_def();              // ratio > 1: coarse grid in the flume (hydro/nesting.hpp); fv only
     double arrival_depth = 0.025;                   // [m] threshold of the arrival-time map (the draft)
+    double flood_depth = 0.001;                     // [m] threshold of the flooded flag and the runup
     double checkpoint_interval = 0.0;               // [s] simulated time between checkpoints; 0: none
     bool restart = false;                           // continue from <out>.checkpoint.nc
     double stop_after = -1.0;                       // [s] stop (as if interrupted) once past this time; < 0: never
