@@ -1,6 +1,7 @@
 // `flotsam hydro`: one shallow-water run of a scene, written as a CF flow file.
 #include <omp.h>
 
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -14,13 +15,17 @@ namespace flotsam {
 
 namespace {
 
+constexpr const char* kSideNames[4] = {"west", "east", "south", "north"};
+
 struct HydroOptions {
     hydro::RunDef run;
-    hydro::SolverDef solver = hydro::default_solver_def();
+    hydro::PhysicsDef physics = hydro::default_physics_def();
     std::vector<double> window;
     std::vector<std::string> gauges;
     std::string west = "level", east = "transmissive", south = "wall", north = "wall";
-    std::string level_mode = "total";
+    std::array<std::string, 4> level_mode{"total", "total", "total", "total"};  // west, east, south, north
+    std::array<std::string, 4> series_end{"error", "error", "error", "error"};
+    std::string level_mode_all;  // --level-mode: every side at once (a side's own option wins)
     std::string scheme = "fv";
     std::string friction = "implicit";
     int threads = 0;
@@ -41,20 +46,21 @@ std::string result_settings(const std::string& dump) {
 
 void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line) {
     using namespace hydro;
-    SolverDef& s = o.solver;
+    PhysicsDef& s = o.physics;
     o.run.scheme = parse_enum<Scheme>(o.scheme, "--scheme");
-    s.friction = parse_enum<Friction>(o.friction, "--friction");
+    o.run.finite_volume.friction = parse_enum<Friction>(o.friction, "--friction");
     s.west.kind = parse_enum<BoundaryKind>(o.west, "--west");
     s.east.kind = parse_enum<BoundaryKind>(o.east, "--east");
     s.south.kind = parse_enum<BoundaryKind>(o.south, "--south");
     s.north.kind = parse_enum<BoundaryKind>(o.north, "--north");
-    const LevelMode mode = parse_enum<LevelMode>(o.level_mode, "--level-mode");
-    for (BoundaryDef* b : {&s.west, &s.east, &s.south, &s.north}) {
-        b->level_mode = mode;
-        b->pump_discharge = s.west.pump_discharge;
-        b->pump_stop = s.west.pump_stop;
-        b->pump_relax_time = s.west.pump_relax_time;
-        b->pump_length = s.west.pump_length;
+    BoundaryDef* sides[4] = {&s.west, &s.east, &s.south, &s.north};
+    for (std::size_t k = 0; k < 4; ++k) {
+        const std::string side = kSideNames[k];
+        const bool own = sub->get_option("--" + side + "-level-mode")->count() > 0;
+        sides[k]->level_mode = own || o.level_mode_all.empty()
+                                   ? parse_enum<LevelMode>(o.level_mode[k], "--" + side + "-level-mode")
+                                   : parse_enum<LevelMode>(o.level_mode_all, "--level-mode");
+        sides[k]->series_end = parse_enum<SeriesEnd>(o.series_end[k], "--" + side + "-series-end");
     }
     if (!o.window.empty()) o.run.window = std::array<double, 4>{o.window[0], o.window[1], o.window[2], o.window[3]};
     for (const auto& g : o.gauges) {
@@ -96,7 +102,8 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     CLI::App* sub = app.add_subcommand("hydro", "Run the shallow-water solver on a scene and write a CF NetCDF flow file");
     add_config_option(sub);
     auto& r = o->run;
-    auto& s = o->solver;
+    auto& s = o->physics;
+    auto& fv = o->run.finite_volume;
     sub->add_option("--scene", r.scene_file, "Scene NetCDF (x, y, z; optional manning_n, building, eta0/u0/v0)")
         ->required()
         ->check(CLI::ExistingFile);
@@ -114,6 +121,10 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->check(in_range(Range::positive("s")));
     sub->add_option("--gauge", o->gauges, "Extra gauge NAME,X,Y (repeatable); the scene's gauge points are always recorded");
     sub->add_option("--arrival-depth", r.arrival_depth, "Depth threshold of the arrival-time map [m] (the debris draft)")
+        ->capture_default_str()
+        ->check(in_range(Range::positive("m")));
+    sub->add_option("--flood-depth", r.flood_depth,
+                    "Depth a cell must exceed to count as flooded [m]: the flooded map, the inundation line and the runup")
         ->capture_default_str()
         ->check(in_range(Range::positive("m")));
     sub->add_option("--checkpoint-interval", r.checkpoint_interval, "Simulated time between checkpoints [s]; 0: none")
@@ -142,19 +153,20 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
                     "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1")
         ->capture_default_str()
         ->check(in_range(Range::positive().up_to(10.0)));
-    sub->add_option("--order", s.order, "1: first order; 2: MUSCL + Heun (default)")
+    sub->add_option("--order", fv.order, "1: first order; 2: MUSCL + Heun (default)")
         ->check(CLI::IsMember({1, 2}))
         ->capture_default_str();
-    sub->add_option("--cfl", s.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")
+    sub->add_option("--cfl", fv.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")
         ->capture_default_str()
         ->check(in_range(Range::positive().up_to(1.0)));
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")
         ->capture_default_str()
         ->check(in_range(Range::positive("s")));
-    sub->add_option("--limiter-theta", s.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")
+    sub->add_option("--limiter-theta", fv.limiter_theta, "Slope limiter: 1 minmod ... 2 monotonised central")
         ->capture_default_str()
         ->check(in_range(Range::closed(1.0, 2.0)));
-    sub->add_option("--dry-depth", s.dry_depth, "Dry tolerance [m]: no velocity or friction below it")
+    sub->add_option("--dry-depth", s.dry_depth,
+                    "Dry tolerance [m]: velocities desingularised and reconstruction first order below it")
         ->capture_default_str()
         ->check(in_range(Range::positive("m").up_to(1.0)));
     sub->add_option("--friction", o->friction,
@@ -183,20 +195,33 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--east-series", s.east.series_file, "CSV for an east level/discharge boundary");
     sub->add_option("--south-series", s.south.series_file, "CSV for a south level/discharge boundary");
     sub->add_option("--north-series", s.north.series_file, "CSV for a north level/discharge boundary");
-    sub->add_option("--level-mode", o->level_mode,
-                    "A level series is the 'total' measured level (velocity from the outgoing characteristic) or only the "
-                    "'incident' wave (reflections leave)")
-        ->capture_default_str();
-    sub->add_option("--pump-discharge", s.west.pump_discharge, "Pump boundary: mass source [m^3/s]")
+    sub->add_option("--level-mode", o->level_mode_all, "The level mode of every side (total or incident); --<side>-level-mode wins")
+        ->check(CLI::IsMember({"total", "incident"}));
+    for (std::size_t k = 0; k < 4; ++k) {
+        const std::string side = kSideNames[k];
+        sub->add_option("--" + side + "-level-mode", o->level_mode[k],
+                        "A " + side +
+                            " level series is the 'total' measured level (velocity from the outgoing characteristic) or only "
+                            "the 'incident' wave (reflections leave)")
+            ->check(CLI::IsMember({"total", "incident"}))
+            ->capture_default_str();
+        sub->add_option("--" + side + "-series-end", o->series_end[k],
+                        "After the " + side +
+                            " series ends: 'error' (it must cover the run) or 'transmissive' (the side lets the water "
+                            "leave)")
+            ->check(CLI::IsMember({"error", "transmissive"}))
+            ->capture_default_str();
+    }
+    sub->add_option("--pump-discharge", s.pump.discharge, "Pump boundary: mass source [m^3/s]")
         ->capture_default_str()
         ->check(in_range(Range::non_negative("m^3/s")));
-    sub->add_option("--pump-stop", s.west.pump_stop, "Pump boundary: end of pumping [s]")
+    sub->add_option("--pump-stop", s.pump.stop, "Pump boundary: end of pumping [s]")
         ->capture_default_str()
         ->check(in_range(Range::non_negative("s")));
-    sub->add_option("--pump-relax", s.west.pump_relax_time, "Pump boundary: relaxation time of the level after pumping [s]")
+    sub->add_option("--pump-relax", s.pump.relax_time, "Pump boundary: relaxation time of the level after pumping [s]")
         ->capture_default_str()
         ->check(in_range(Range::positive("s")));
-    sub->add_option("--pump-length", s.west.pump_length, "Pump boundary: width of the source strip along x [m]")
+    sub->add_option("--pump-length", s.pump.length, "Pump boundary: width of the source strip along x [m]")
         ->capture_default_str()
         ->check(in_range(Range::positive("m")));
     sub->callback([o, sub, command_line] { run_command(*o, sub, command_line); });

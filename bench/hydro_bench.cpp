@@ -43,7 +43,7 @@ struct Best {
     double dry_skipped = 0.0;
 };
 
-Best best_of(int repeat, int threads, hydro::RunDef rd, const hydro::SolverDef& sd) {
+Best best_of(int repeat, int threads, hydro::RunDef rd, const hydro::PhysicsDef& sd) {
     omp_set_num_threads(threads);
     Best b;
     for (int k = 0; k < repeat; ++k) {
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     write_scene(wet_path, scene, "hydro_bench");
 
     // The benchmark forcing: a pump source on the west wall (no boundary file needed).
-    hydro::SolverDef sd = hydro::default_solver_def();
+    hydro::PhysicsDef sd = hydro::default_physics_def();
     sd.west.kind = hydro::BoundaryKind::pump;
     hydro::RunDef rd;
     rd.scene_file = scene_path;

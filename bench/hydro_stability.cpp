@@ -29,24 +29,24 @@ namespace {
 struct Case {
     std::string name;
     Scene scene;
-    SolverDef def;
+    PhysicsDef def;
     double duration = 1.0;  // [s]
     bool film = false;      // a draining film: a reversing flow counts as a failure
 };
 
 std::vector<Case> cases() {
     std::vector<Case> out;
-    SolverDef walls = test::closed_def();
+    PhysicsDef walls = test::closed_def();
     walls.study_past_stability_limit = true;
     out.push_back({"wave in a basin", test::basin_wave(40), walls, 1.5, false});
-    SolverDef open = walls;
+    PhysicsDef open = walls;
     open.west.kind = open.east.kind = BoundaryKind::transmissive;
     open.dry_depth = 1e-8;
     out.push_back({"dry dam break", test::dam_break_scene(200, 1.0, 0.0), open, 0.5, false});
-    SolverDef city = walls;
+    PhysicsDef city = walls;
     city.default_manning_n = 0.013;
     out.push_back({"bore into buildings", test::bore_into_buildings(), city, 2.0, false});
-    SolverDef film = walls;
+    PhysicsDef film = walls;
     film.default_manning_n = 0.025;
     film.max_dt = 1.0;  // let the step follow the step setting
     out.push_back({"thin film on a slope", test::film_on_slope(), film, 20.0, true});
@@ -110,10 +110,10 @@ int main(int argc, char** argv) {
         for (Friction friction : {Friction::implicit, Friction::explicit_}) {
             if (friction == Friction::explicit_ && !c.film) continue;  // friction matters in thin films
             for (double cfl : fv_cfl) {
-                SolverDef d = c.def;
-                d.cfl = cfl;
-                d.friction = friction;
-                Solver solver(c.scene, d);
+                FiniteVolumeDef fv;
+                fv.cfl = cfl;
+                fv.friction = friction;
+                Solver solver(c.scene, c.def, fv);
                 Row r = watch(solver, c);
                 if (cfl > 0.5) r.guard = "refused";
                 emit("fv", friction == Friction::implicit ? "implicit" : "explicit", cfl, r);

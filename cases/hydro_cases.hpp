@@ -20,8 +20,8 @@ inline Scene flat_scene(int nx, int ny, double dx, double x0, double bed) {
 }
 
 // Walls on all sides, no friction.
-inline hydro::SolverDef closed_def() {
-    hydro::SolverDef d;
+inline hydro::PhysicsDef closed_def() {
+    hydro::PhysicsDef d;
     d.west.kind = d.east.kind = d.south.kind = d.north.kind = hydro::BoundaryKind::wall;
     d.default_manning_n = 0.0;
     return d;
@@ -115,7 +115,7 @@ inline Scene dam_break_scene(int nx, double hl, double hr) {
 template <class Make, class Tune>
 double dam_break_error(int nx, double hl, double hr, double t_end, Make&& make, Tune&& tune) {
     const Scene s = dam_break_scene(nx, hl, hr);
-    hydro::SolverDef d = closed_def();
+    hydro::PhysicsDef d = closed_def();
     d.west.kind = d.east.kind = hydro::BoundaryKind::transmissive;
     d.dry_depth = 1e-8;
     tune(d);
@@ -125,6 +125,93 @@ double dam_break_error(int nx, double hl, double hr, double t_end, Make&& make, 
     for (int i = 0; i < nx; ++i)
         err += std::abs(solver.depth(i, 0) - dam_break_depth(hl, hr, d.gravity, s.grid.x(i) / t_end)) * s.grid.dx;
     return err;
+}
+
+// Ritter's dam break in a box (issue 14): [0, 10] m, h0 [m] of still water west of the
+// dam at x = 5 m, dry flat ground east of it, nx x 4 cells, walls, no friction. At
+// t0 > 0 the scene holds the exact solution at that time instead (depth and velocity:
+// a resolved fan, for the transport of the front alone). The exact wet tip is at
+// x = 5 + 2 sqrt(g h0) t until it reaches the east wall.
+inline Scene ritter_box(int nx, double h0, double t0 = 0.0, double g = 9.81) {
+    Scene s = flat_scene(nx, 4, 10.0 / nx, 0.0, 0.0);
+    s.eta0.assign(s.grid.size(), 0.0);
+    if (t0 > 0.0) s.u0.assign(s.grid.size(), 0.0), s.v0.assign(s.grid.size(), 0.0);
+    const double c0 = std::sqrt(g * h0);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const std::size_t k = s.grid.index(i, j);
+            if (t0 <= 0.0) {
+                s.eta0[k] = s.grid.x(i) < 5.0 ? h0 : 0.0;
+                continue;
+            }
+            const double xi = (s.grid.x(i) - 5.0) / t0;
+            s.eta0[k] = dam_break_depth(h0, 0.0, g, xi);
+            s.u0[k] = s.eta0[k] > 0.0 && xi > -c0 ? 2.0 / 3.0 * (xi + c0) : 0.0;  // in the fan
+        }
+    return s;
+}
+
+// What a run of ritter_box gives at t_end: the wet front (the east edge of the last
+// cell with h > front_depth) [m], the exact tip and the exact position of front_depth
+// [m], the L1 error of the depth against Ritter's solution [m^2], the smallest depth
+// the solver saw before its round-off clamp [m] and the relative volume change.
+struct RitterFront {
+    double front = 0.0, tip = 0.0, exact_front = 0.0, l1 = 0.0, dx = 0.0, min_depth_seen = 0.0, volume_change = 0.0;
+};
+
+// ritter_box(nx, h0, t0) run from t0 to t_end by the solver that `make(scene, def)`
+// builds, with closed_def() (walls, no friction, every other setting at its default).
+template <class Make>
+RitterFront ritter_front(int nx, double h0, double t0, double t_end, double front_depth, Make&& make) {
+    const Scene s = ritter_box(nx, h0, t0);
+    const hydro::PhysicsDef d = closed_def();
+    auto solver = make(s, d);
+    solver.set_time(t0);
+    const double v0 = solver.volume();
+    while (solver.time() < t_end - 1e-12) solver.step(std::min(solver.stable_dt(), t_end - solver.time()));
+    RitterFront r;
+    r.dx = s.grid.dx;
+    r.tip = 5.0 + 2.0 * std::sqrt(d.gravity * h0) * t_end;
+    r.exact_front = r.tip - t_end * std::sqrt(9.0 * d.gravity * front_depth);  // h = (2 c0 - xi)^2 / (9 g)
+    for (int i = 0; i < nx; ++i) {
+        const double h = solver.depth(i, 0);
+        if (h > front_depth) r.front = s.grid.x(i) + 0.5 * s.grid.dx;
+        r.l1 += std::abs(h - dam_break_depth(h0, 0.0, d.gravity, (s.grid.x(i) - 5.0) / t_end)) * s.grid.dx;
+    }
+    r.min_depth_seen = solver.stats().min_depth_seen;
+    r.volume_change = solver.volume() / v0 - 1.0;
+    return r;
+}
+
+// Thacker's planar surface in a paraboloid (Thacker 1981, J. Fluid Mech. 107:499): bed
+// z = -h0 (1 - r^2 / a^2), a tilted plane of water sloshing around the bowl without
+// friction, u = -eta omega sin(omega t), v = eta omega cos(omega t), omega =
+// sqrt(2 g h0) / a, level eta h0 / a^2 (2 x cos(omega t) + 2 y sin(omega t) - eta).
+// n x n cells over [-2, 2]^2, a = 1 m, h0 = 0.1 m, eta = 0.5 m: at t = 0 every wet cell
+// moves north at 0.70 m/s (the scene's u0, v0), a scene that starts moving.
+struct Thacker {
+    double a = 1.0, h0 = 0.1, eta = 0.5, g = 9.81;
+    double omega() const { return std::sqrt(2.0 * g * h0) / a; }
+    double bed(double x, double y) const { return -h0 * (1.0 - (x * x + y * y) / (a * a)); }
+    double level(double x, double y, double t) const {
+        return eta * h0 / (a * a) * (2.0 * x * std::cos(omega() * t) + 2.0 * y * std::sin(omega() * t) - eta);
+    }
+};
+inline Scene thacker_planar(int n, const Thacker& th = Thacker{}) {
+    Scene s = flat_scene(n, n, 4.0 / n, -2.0, 0.0);
+    s.grid.y0 = -2.0 + 0.5 * s.grid.dy;
+    s.eta0.assign(s.grid.size(), 0.0);
+    s.u0.assign(s.grid.size(), 0.0);
+    s.v0.assign(s.grid.size(), 0.0);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const std::size_t k = s.grid.index(i, j);
+            const double x = s.grid.x(i), y = s.grid.y(j);
+            s.z[k] = th.bed(x, y);
+            s.eta0[k] = std::max(th.level(x, y, 0.0), s.z[k]);
+            if (s.eta0[k] > s.z[k]) s.v0[k] = th.eta * th.omega();
+        }
+    return s;
 }
 
 // A square basin of n x n cells of 2.5 cm, 0.5 m deep, with a Gaussian hump of 1 cm

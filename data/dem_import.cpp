@@ -157,7 +157,7 @@ Dem read_dem(const std::string& path) {
 ImportFeatures kainan_import_features() {
     ImportFeatures f;
     f.features = kainan_features();
-    f.manning = {ManningRule{0.025, std::nullopt, -0.66, std::nullopt, std::nullopt}, ManningRule{0.013, {}, {}, {}, {}}};
+    f.manning = kainan_manning();
     return f;
 }
 
@@ -265,24 +265,6 @@ std::vector<double> window_min(const Grid& g, std::vector<double> v, int r) {
             v[g.index(i, j)] = m;
         }
     return v;
-}
-
-std::vector<double> manning_field(const Grid& g, const std::vector<ManningRule>& rules) {
-    if (rules.empty()) return {};
-    std::vector<double> n(g.size());
-    for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-            const double x = g.x(i), y = g.y(j);
-            double value = rules.back().n;
-            for (const ManningRule& r : rules)
-                if ((!r.x_min || x >= *r.x_min) && (!r.x_max || x < *r.x_max) && (!r.y_min || y >= *r.y_min) &&
-                    (!r.y_max || y < *r.y_max)) {
-                    value = r.n;
-                    break;
-                }
-            n[g.index(i, j)] = value;
-        }
-    return n;
 }
 
 }  // namespace

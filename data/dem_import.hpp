@@ -8,6 +8,7 @@
 
 #include "common/grid.hpp"
 #include "data/kainan_features.hpp"
+#include "data/manning.hpp"
 #include "formats/scene.hpp"
 
 namespace flotsam {
@@ -26,13 +27,6 @@ struct Dem {
 Dem read_dem(const std::string& path);
 Dem read_ascii_grid(const std::string& path);
 
-// Manning n inside optional bounds; rules apply in order, the first that holds wins.
-struct ManningRule {
-    double n = 0.013;                    // [s m^-1/3]
-    std::optional<double> x_min, x_max;  // [m], cell centre x in [x_min, x_max)
-    std::optional<double> y_min, y_max;  // [m]
-};
-
 // How cells become buildings: z above the local ground by more than min_height, where
 // local ground is the lowest max(z, 0) within `window` of the cell (so water next to a
 // building counts as ground at still-water level); or, when min_elevation is set,
@@ -50,8 +44,7 @@ struct ImportFeatures {
     BuildingRule buildings;
 };
 
-// The Kainan defaults: kainan_features(), n = 0.025 for x < -0.66 and 0.013 elsewhere,
-// the default building rule.
+// The Kainan defaults: kainan_features(), kainan_manning() and the default building rule.
 ImportFeatures kainan_import_features();
 
 // Reads a features TOML file. Tables it leaves out keep the values of `defaults`.

@@ -31,6 +31,10 @@ SceneFeatures kainan_features() {
     return f;
 }
 
+std::vector<ManningRule> kainan_manning() {
+    return {ManningRule{0.025, std::nullopt, -0.66, {}, {}}, ManningRule{0.013, {}, {}, {}, {}}};
+}
+
 bool matches_kainan_extent(const Grid& g) {
     const double tol_x = g.dx, tol_y = g.dy;
     return std::abs(g.x_min_edge() - kainan_x_min_edge) <= tol_x && std::abs(g.x_max_edge() - kainan_x_max_edge) <= tol_x &&

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/grid.hpp"
+#include "data/manning.hpp"
 #include "formats/scene.hpp"
 
 namespace flotsam {
@@ -25,6 +26,10 @@ inline constexpr double kainan_y_max_edge = -0.005;
 
 // WG1, WG2, the FD and LD starts, the FD/LD/channel sections and the four regions.
 SceneFeatures kainan_features();
+
+// The flume's roughness (SCENE.md): n = 0.025 seaward of x = -0.66 m (the flume's
+// mortar), 0.013 on the city model.
+std::vector<ManningRule> kainan_manning();
 
 // True when the grid's edges match the Kainan extent to within one cell of the grid.
 bool matches_kainan_extent(const Grid& g);

@@ -14,9 +14,8 @@ namespace flotsam {
 
 namespace {
 
-constexpr double flume_bed = -0.877;  // [m]
-constexpr double slope = 0.1;         // 1:10
-constexpr double manning_split_x = -0.66;
+constexpr double flume_bed = -0.877;    // [m]
+constexpr double slope = 0.1;           // 1:10
 constexpr double quay_north_y = -2.05;  // basin north quay [m]
 constexpr double basin_west_x = 0.90, basin_east_x = 3.75;
 constexpr double wall_top = 0.09;  // the breakwater wall on the reclaimed block [m]
@@ -194,7 +193,6 @@ GeneratedScene generate_scene(const SceneGenDef& def) {
     const Grid& g = s.grid;
     out.ground.resize(g.size());
     s.z.resize(g.size());
-    s.manning_n.resize(g.size());
     s.building.assign(g.size(), 0);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) {
@@ -202,7 +200,6 @@ GeneratedScene generate_scene(const SceneGenDef& def) {
             const double x = g.x(i), y = g.y(j);
             out.ground[k] = generated_bare_elevation(x, y);
             s.z[k] = out.ground[k];
-            s.manning_n[k] = x < manning_split_x ? 0.025 : 0.013;
             if (is_wall(x, y)) {
                 s.z[k] = wall_top;
                 s.building[k] = 1;
@@ -219,6 +216,7 @@ GeneratedScene generate_scene(const SceneGenDef& def) {
                     s.building[k] = 1;
                 }
     }
+    s.manning_n = manning_field(g, kainan_manning());
     apply_features(s, kainan_features());
     s.synthetic = true;
     s.title = "SYNTHETIC analogue of the 1/250 Kainan port-city flume (not the measured model)";

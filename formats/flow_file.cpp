@@ -1,6 +1,7 @@
 #include "formats/flow_file.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "common/cf.hpp"
 #include "common/error.hpp"
@@ -60,6 +61,36 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
     f.def_fill(arr_, cf::fill_value);
     f.put_att(arr_, "arrival_depth", def.arrival_depth);
     f.put_att(arr_, "comment", std::string("fill value where the depth never exceeds arrival_depth"));
+    max_level_ = cf::def_var(f, {.name = "max_level",
+                                 .type = NC_FLOAT,
+                                 .dims = {dy, dx},
+                                 .units = "m",
+                                 .standard_name = "sea_surface_height_above_mean_sea_level",
+                                 .long_name = "highest water level over the run (z + max_depth)",
+                                 .chunks = {cy, cx},
+                                 .deflate = def.deflate_level,
+                                 .fill = true});
+    f.put_att(max_level_, "cell_methods", std::string("time: maximum"));
+    f.put_att(max_level_, "comment", std::string("fill value where the cell was never wet"));
+    flooded_ = cf::def_var(f, {.name = "flooded",
+                               .type = NC_BYTE,
+                               .dims = {dy, dx},
+                               .long_name = "1 where the water depth exceeded flood_depth at some time in the run",
+                               .chunks = {cy, cx},
+                               .deflate = def.deflate_level});
+    f.put_att(flooded_, "flag_values", std::vector<std::int8_t>{0, 1});
+    f.put_att(flooded_, "flag_meanings", std::string("dry flooded"));
+    f.put_att(flooded_, "flood_depth", def.flood_depth);
+    f.put_att(flooded_, "comment",
+              std::string("the inundation line is the 0.5 contour of this flag (docs/hydro.md, \"Runup and inundation\")"));
+    auto runup_scalar = [&](const char* name, const char* long_name) {
+        const int v = cf::def_var(f, {.name = name, .units = "m", .long_name = long_name, .fill = true});
+        f.put_att(v, "flood_depth", def.flood_depth);
+        return v;
+    };
+    runup_z_ = runup_scalar("runup_elevation", "highest ground elevation above still water that flooded (flooded = 1)");
+    runup_x_ = runup_scalar("runup_x", "x of the cell centre where the runup elevation was reached");
+    runup_y_ = runup_scalar("runup_y", "y of the cell centre where the runup elevation was reached");
 
     const bool gauges = ngauge_ > 0 && def.gauge_samples > 0;
     int gn = -1, gx = -1, gy = -1;
@@ -122,6 +153,11 @@ void FlowWriter::find_vars() {
     maxd_ = file_.var("max_depth");
     maxs_ = file_.var("max_speed");
     arr_ = file_.var("arrival_time");
+    max_level_ = file_.var("max_level");
+    flooded_ = file_.var("flooded");
+    runup_z_ = file_.var("runup_elevation");
+    runup_x_ = file_.var("runup_x");
+    runup_y_ = file_.var("runup_y");
     nx_ = file_.dim_length("x");
     ny_ = file_.dim_length("y");
     if (file_.has_dim("gauge")) {
@@ -157,6 +193,35 @@ void FlowWriter::write_summary(const std::vector<float>& max_depth, const std::v
     file_.put(maxd_, max_depth);
     file_.put(maxs_, max_speed);
     file_.put(arr_, arrival_time);
+}
+
+void FlowWriter::write_runup(const RunupSummary& r) {
+    file_.put(max_level_, cf::filled(r.max_level));
+    file_.put(flooded_, r.flooded);
+    file_.put(runup_z_, cf::filled(std::vector<double>{r.elevation}));
+    file_.put(runup_x_, cf::filled(std::vector<double>{r.x}));
+    file_.put(runup_y_, cf::filled(std::vector<double>{r.y}));
+}
+
+RunupSummary runup_summary(const Grid& window, const std::vector<float>& z, const std::vector<float>& max_depth,
+                           double flood_depth) {
+    RunupSummary r;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    r.elevation = r.x = r.y = nan;
+    r.max_level.resize(max_depth.size());
+    r.flooded.resize(max_depth.size());
+    for (int j = 0; j < window.ny; ++j)
+        for (int i = 0; i < window.nx; ++i) {
+            const std::size_t k = window.index(i, j);
+            r.max_level[k] = max_depth[k] > 0.0f ? z[k] + max_depth[k] : float(nan);
+            r.flooded[k] = max_depth[k] > flood_depth ? 1 : 0;
+            if (r.flooded[k] && !(z[k] <= r.elevation)) {  // strictly higher, or the first
+                r.elevation = z[k];
+                r.x = window.x(i);
+                r.y = window.y(j);
+            }
+        }
+    return r;
 }
 
 }  // namespace flotsam

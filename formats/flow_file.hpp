@@ -11,6 +11,10 @@
 //                         dry cells: h = 0, u = v = 0 (never NaN)
 //   max_depth(y, x), max_speed(y, x)        over the whole run, sampled every step
 //   arrival_time(y, x)    [s] first time h > arrival_depth (attribute); fill where never
+//   max_level(y, x)       [m] highest water level (z + max_depth); fill where never wet
+//   flooded(y, x)         byte, 1 where h exceeded flood_depth (attribute) at some time
+//   runup_elevation, runup_x, runup_y   scalars [m]: the highest ground that flooded and
+//                         where (the first such cell, row by row from the south-west)
 //   gauge_* (gauge_time, gauge)             level, depth and velocity at named points
 //   :dry_depth_m          global attribute, the run's dry tolerance [m] (text or number)
 //
@@ -33,6 +37,17 @@ struct FlowGauge {
     double y = 0.0;  // [m]
 };
 
+// Where the water went, from the run's largest depths on the output window.
+struct RunupSummary {
+    std::vector<float> max_level;      // [m] z + max_depth where wet at some time, else NaN (stored as fill)
+    std::vector<std::int8_t> flooded;  // 1 where max_depth > flood_depth
+    double elevation = 0.0;            // [m] highest z of a flooded cell; NaN when none flooded
+    double x = 0.0, y = 0.0;           // [m] its cell centre
+};
+// From max_depth and z on `window` (row-major) with the threshold flood_depth [m].
+RunupSummary runup_summary(const Grid& window, const std::vector<float>& z, const std::vector<float>& max_depth,
+                           double flood_depth);
+
 struct FlowFileDef {
     Grid window;                      // the grid of the stored fields
     std::vector<float> z;             // bed elevation on `window` [m]
@@ -41,6 +56,7 @@ struct FlowFileDef {
     std::size_t gauge_samples = 0;                  // length of the gauge time axis
     double gauge_interval = 0.05;                   // [s]
     double arrival_depth = 0.025;                   // threshold of arrival_time [m]
+    double flood_depth = 0.001;                     // threshold of `flooded` [m]
     int deflate_level = 1;                          // 0..9; 1 is nearly as small as 9 and much faster
     int chunk = 64;                                 // tile edge of the (1, chunk, chunk) chunks [cells]
     std::map<std::string, std::string> attributes;  // global attributes (title, history, ...)
@@ -60,6 +76,8 @@ public:
                       const std::vector<float>& h, const std::vector<float>& u, const std::vector<float>& v);
     void write_summary(const std::vector<float>& max_depth, const std::vector<float>& max_speed,
                        const std::vector<float>& arrival_time);
+    // The runup outputs (RunupSummary; formats/flow_file.hpp's header lists them).
+    void write_runup(const RunupSummary& runup);
     void sync() { file_.sync(); }
     void close() { file_.close(); }
 
@@ -70,6 +88,7 @@ private:
     int h_ = -1, u_ = -1, v_ = -1, time_ = -1;
     int gt_ = -1, geta_ = -1, gh_ = -1, gu_ = -1, gv_ = -1;
     int maxd_ = -1, maxs_ = -1, arr_ = -1;
+    int max_level_ = -1, flooded_ = -1, runup_z_ = -1, runup_x_ = -1, runup_y_ = -1;
     std::size_t nx_ = 0, ny_ = 0, ngauge_ = 0;
 };
 

@@ -61,7 +61,8 @@ void open_side_state(const SideForcing& f, double h_in, double un_in, double h0,
         level_ghost(h_in, un_in, h0, 0.0, LevelMode::incident, g, h_out, un_out);
 }
 
-Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, const std::vector<double>& bed) : sides_(sides) {
+Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const PumpDef& pump, const Grid& grid, const std::vector<double>& bed)
+    : sides_(sides), pump_(pump) {
     length_ = {grid.ny * grid.dy, grid.ny * grid.dy, grid.nx * grid.dx, grid.nx * grid.dx};
     for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
         const BoundaryDef& b = def(s);
@@ -76,7 +77,7 @@ Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, cons
     }
     const BoundaryDef& w = def(Side::west);
     if (w.kind == BoundaryKind::pump) {
-        const int ncol = std::max(1, int(std::lround(w.pump_length / grid.dx)));
+        const int ncol = std::max(1, int(std::lround(pump_.length / grid.dx)));
         for (int j = 0; j < grid.ny; ++j)
             for (int i = 0; i < std::min(ncol, grid.nx); ++i)
                 if (bed[grid.index(i, j)] < 0.0) {
@@ -94,7 +95,7 @@ double Forcing::series_max(Side s) const {
 
 double Forcing::pump_rate(double t) const {
     const BoundaryDef& w = def(Side::west);
-    return w.kind == BoundaryKind::pump && t < w.pump_stop ? w.pump_discharge / pump_area_ : 0.0;
+    return w.kind == BoundaryKind::pump && t < pump_.stop ? pump_.discharge / pump_area_ : 0.0;
 }
 
 }  // namespace flotsam::hydro

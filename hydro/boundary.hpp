@@ -48,14 +48,31 @@ inline constexpr EnumNames<LevelMode, 2> level_mode_names{"level mode",
                                                           {{{LevelMode::incident, "incident"}, {LevelMode::total, "total"}}}};
 constexpr const auto& enum_names(LevelMode) { return level_mode_names; }
 
+// What a level or discharge side becomes after its series ends.
+enum class SeriesEnd {
+    error,         // nothing: the series must cover the whole run (checked before it starts)
+    transmissive,  // a transmissive side (no incoming wave): what is still in the domain
+                   // leaves instead of reflecting off a level held at its last value
+};
+inline constexpr EnumNames<SeriesEnd, 2> series_end_names{
+    "end of series", {{{SeriesEnd::error, "error"}, {SeriesEnd::transmissive, "transmissive"}}}};
+constexpr const auto& enum_names(SeriesEnd) { return series_end_names; }
+
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
     std::string series_file;  // CSV time,value for level / discharge
     LevelMode level_mode = LevelMode::total;
-    double pump_discharge = 0.0175;  // [m^3/s] mass source while pumping (half the flume pump)
-    double pump_stop = 300.0;        // [s] end of pumping
-    double pump_relax_time = 50.0;   // [s] e-folding time of the level after pumping
-    double pump_length = 0.2;        // [m] width of the strip of source cells along the side
+    SeriesEnd series_end = SeriesEnd::error;
+};
+
+// The public benchmark's forcing on the west side (BoundaryKind::pump): a mass source in
+// a strip of cells along the wall until `stop`, then a total level relaxing to still
+// water from its value at the stop.
+struct PumpDef {
+    double discharge = 0.0175;  // [m^3/s] mass source while pumping (half the flume pump)
+    double stop = 300.0;        // [s] end of pumping
+    double relax_time = 50.0;   // [s] e-folding time of the level after pumping
+    double length = 0.2;        // [m] width of the strip of source cells along the side
 };
 
 // Ghost values handed to a `nested` side: layer 1 (next to the edge) then layer 2, each
@@ -91,10 +108,11 @@ class Forcing {
 public:
     // `sides` in the order of Side; `bed` [m] on `grid`, row-major. Reads the series and
     // checks the sides (errors name the boundary); places the pump's strip on the cells
-    // below still water in the first pump_length along the west side.
-    Forcing(const std::array<BoundaryDef, 4>& sides, const Grid& grid, const std::vector<double>& bed);
+    // below still water in the first pump.length along the west side.
+    Forcing(const std::array<BoundaryDef, 4>& sides, const PumpDef& pump, const Grid& grid, const std::vector<double>& bed);
 
     const BoundaryDef& def(Side s) const { return sides_[int(s)]; }
+    const PumpDef& pump() const { return pump_; }
     // Largest value of side s's series (level [m] or discharge [m^3/s]); 0 without one.
     double series_max(Side s) const;
     // Forcing of side s at time t. `strip_level()` is the mean level [m] over the pump's
@@ -114,6 +132,7 @@ public:
 
 private:
     std::array<BoundaryDef, 4> sides_;
+    PumpDef pump_;
     std::array<TimeSeries, 4> series_;  // level [m] or discharge [m^3/s], where used
     std::array<double, 4> length_{};    // [m] of each side
     std::vector<std::array<int, 2>> pump_cells_;
@@ -127,14 +146,17 @@ SideForcing Forcing::at(Side s, double t, StripLevel&& strip_level) {
     const BoundaryDef& b = def(s);
     SideForcing f{b.kind, b.level_mode, 0.0};
     if (b.kind == BoundaryKind::pump) {
-        if (t < b.pump_stop) {
+        if (t < pump_.stop) {
             f.kind = BoundaryKind::wall;
         } else {
             if (!pump_stopped_) set_pump_level_at_stop(strip_level());
             f.kind = BoundaryKind::level;
             f.mode = LevelMode::total;
-            f.given = pump_level_at_stop_ * std::exp(-(t - b.pump_stop) / b.pump_relax_time);
+            f.given = pump_level_at_stop_ * std::exp(-(t - pump_.stop) / pump_.relax_time);
         }
+    } else if ((b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) && b.series_end == SeriesEnd::transmissive &&
+               t > series_[int(s)].end()) {
+        f.kind = BoundaryKind::transmissive;
     } else if (b.kind == BoundaryKind::level) {
         f.given = series_[int(s)].at(t);
     } else if (b.kind == BoundaryKind::discharge) {

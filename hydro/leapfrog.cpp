@@ -20,8 +20,11 @@ std::size_t LeapfrogSolver::edge_cell(Side s, int k) const {
     return at(k, s == Side::south ? 0 : grid_.ny - 1);
 }
 
-LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const LeapfrogDef& leapfrog)
-    : grid_(scene.grid), def_(def), lf_(leapfrog), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
+LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const LeapfrogDef& leapfrog)
+    : grid_(scene.grid),
+      def_(def),
+      lf_(leapfrog),
+      forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
     for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north})
         if (b->kind == BoundaryKind::nested)
             fail("", "--scheme leapfrog",
@@ -76,9 +79,20 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const L
             rest_depth_[int(s)].push_back(h_[e]);
             if (forcing_.def(s).kind == BoundaryKind::level) deepest = std::max(deepest, -z_[e] + forcing_.series_max(s));
         }
+    // The largest Courant rate at the start: the deepest water at rest, and every cell
+    // of a scene that starts moving with its |u| + c per direction (courant_number).
     const double wave_metric = std::sqrt(1.0 / (grid_.dx * grid_.dx) + 1.0 / (grid_.dy * grid_.dy));
+    double rate = std::sqrt(def.gravity * deepest) * wave_metric;
+    if (!scene.u0.empty())
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const std::size_t k = grid_.index(i, j);
+                if (h_[at(i, j)] > def.dry_depth)
+                    rate = std::max(rate, courant_number(h_[at(i, j)], scene.u0[k], scene.v0[k], def.gravity, 1.0, 1.0 / grid_.dx,
+                                                         1.0 / grid_.dy));
+            }
     dt_ = def.max_dt;
-    if (deepest > 0.0) dt_ = std::min(dt_, leapfrog.courant / (std::sqrt(def.gravity * deepest) * wave_metric));
+    if (rate > 0.0) dt_ = std::min(dt_, leapfrog.courant / rate);
     if (leapfrog.step_divides > 0.0) dt_ = leapfrog.step_divides / std::ceil(leapfrog.step_divides / dt_ - 1e-9);
 }
 

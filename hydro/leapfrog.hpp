@@ -1,6 +1,6 @@
 // The staggered leap-frog shallow-water solver (`--scheme leapfrog`): the scheme family
 // of the paper's STOC-ML and of the classic tsunami codes (TUNAMI, COMCOT), beside the
-// finite-volume one (solver.hpp). Same equations (MODEL.md), with h depth, z bed,
+// finite-volume one (solver.hpp). Same equations (docs/hydro.md, "Equations"), with h depth, z bed,
 // eta = h + z, (u, v) velocity:
 //
 //   h_t + (hu)_x + (hv)_y = 0
@@ -42,8 +42,9 @@
 //        h^(n+1) = h^n - dt [(M_(i+1/2) - M_(i-1/2)) / dx + (N_(j+1/2) - N_(j-1/2)) / dy]
 //
 // Linear stability (the forward-backward C-grid at rest): c dt sqrt(1/dx^2 + 1/dy^2) <= 1
-// with c = sqrt(g h). The step is fixed: from `courant` and the deepest water at the
-// start, shortened to divide the output interval so frames land on steps. Every step
+// with c = sqrt(g h). The step is fixed: from `courant` and the initial state's largest
+// Courant rate (the deepest water, and |u| + c per direction where the scene starts
+// moving), shortened to divide the output interval so frames land on steps. Every step
 // checks the Courant number of the new state, which adds the flow speed to c per
 // direction (leapfrog_kernels.hpp: courant_number), and fails naming --courant if it
 // passes 1: a changing step would break the leap-frog's half-step stagger.
@@ -60,7 +61,7 @@
 // reflect waves, so transmissive here is the classic codes' radiation condition
 // (M = c eta) in its nonlinear form. The pump is the same source strip and level.
 //
-// The one dry tolerance is SolverDef::dry_depth: a cell with h <= dry_depth sends no
+// The one dry tolerance is PhysicsDef::dry_depth: a cell with h <= dry_depth sends no
 // flux, a face opens only where the higher level stands more than dry_depth above the
 // higher ground, and a face whose mean depth is below it has no velocity.
 #pragma once
@@ -70,13 +71,14 @@
 
 #include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
-#include "hydro/solver.hpp"
+#include "hydro/physics.hpp"
 
 namespace flotsam::hydro {
 
 struct LeapfrogDef {
-    // Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), with
-    // h_max the deepest water at the start (and of a level boundary). Linear limit: 1.
+    // Courant number of the fixed step: dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), with h_max
+    // the deepest water at the start (and of a level boundary), or where the scene starts
+    // moving, dt sqrt(((|u| + c)/dx)^2 + ((|v| + c)/dy)^2) if larger. Linear limit: 1.
     double courant = 0.7;       // [-]
     double step_divides = 0.0;  // [s] shorten the step to divide this (the output interval); 0: no
 };
@@ -84,10 +86,8 @@ LeapfrogDef default_leapfrog_def();
 
 class LeapfrogSolver {
 public:
-    // `def` gives gravity, dry_depth, max_dt, default_manning_n, the boundaries and
-    // study_past_stability_limit (its finite-volume settings cfl, order, limiter_theta
-    // and friction are not used). Nested boundaries are refused.
-    LeapfrogSolver(const Scene& scene, const SolverDef& def, const LeapfrogDef& leapfrog);
+    // Nested boundaries are refused.
+    LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const LeapfrogDef& leapfrog);
 
     // The fixed step [s].
     double stable_dt() const { return dt_; }
@@ -97,7 +97,7 @@ public:
     double time() const { return time_; }
     void set_time(double t) { time_ = t; }
     const Grid& grid() const { return grid_; }
-    const SolverDef& def() const { return def_; }
+    const PhysicsDef& def() const { return def_; }
     const LeapfrogDef& leapfrog_def() const { return lf_; }
     const SolverStats& stats() const { return stats_; }
     // Largest Courant number (courant_number) of any cell after any step so far.
@@ -141,7 +141,7 @@ private:
     void continuity(double dt);
 
     Grid grid_;
-    SolverDef def_;
+    PhysicsDef def_;
     LeapfrogDef lf_;
     Forcing forcing_;
     std::size_t stride_ = 0;

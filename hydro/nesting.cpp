@@ -14,9 +14,6 @@ constexpr int kLayers = 2;  // ghost layers of hydro::Solver
 
 int snapped_interface(const Scene& s, const NestDef& n) {
     if (n.ratio < 2) fail(s.path, "--nest-ratio", "must be 2 or more for a nested run");
-    if (s.grid.ny % n.ratio != 0)
-        fail(s.path, "--nest-ratio",
-             "the scene's " + std::to_string(s.grid.ny) + " rows are not a multiple of " + std::to_string(n.ratio));
     const int i = int(std::floor((n.x - s.grid.x_min_edge()) / s.grid.dx + 1e-9));
     const int snapped = (i / n.ratio) * n.ratio;
     if (snapped < 2 * n.ratio || s.grid.nx - snapped < 2 * n.ratio)
@@ -24,16 +21,26 @@ int snapped_interface(const Scene& s, const NestDef& n) {
     return snapped;
 }
 
-// Block averages of the scene west of the interface.
-Scene coarse_scene(const Scene& s, int r, int i_nest) {
+}  // namespace
+
+int rows_ratio(int rows, int ratio) {
+    int r = std::min(ratio, rows);
+    while (rows % r != 0) --r;
+    return r;
+}
+
+namespace {
+
+// Block averages (rx x ry cells) of the scene west of the interface.
+Scene coarse_scene(const Scene& s, int rx, int ry, int i_nest) {
     Scene c;
     c.path = s.path;
-    c.grid.nx = i_nest / r;
-    c.grid.ny = s.grid.ny / r;
-    c.grid.dx = s.grid.dx * r;
-    c.grid.dy = s.grid.dy * r;
-    c.grid.x0 = s.grid.x0 + 0.5 * (r - 1) * s.grid.dx;
-    c.grid.y0 = s.grid.y0 + 0.5 * (r - 1) * s.grid.dy;
+    c.grid.nx = i_nest / rx;
+    c.grid.ny = s.grid.ny / ry;
+    c.grid.dx = s.grid.dx * rx;
+    c.grid.dy = s.grid.dy * ry;
+    c.grid.x0 = s.grid.x0 + 0.5 * (rx - 1) * s.grid.dx;
+    c.grid.y0 = s.grid.y0 + 0.5 * (ry - 1) * s.grid.dy;
     auto average = [&](const std::vector<double>& f) {
         std::vector<double> out;
         if (f.empty()) return out;
@@ -41,9 +48,9 @@ Scene coarse_scene(const Scene& s, int r, int i_nest) {
         for (int J = 0; J < c.grid.ny; ++J)
             for (int I = 0; I < c.grid.nx; ++I) {
                 double sum = 0.0;
-                for (int b = 0; b < r; ++b)
-                    for (int a = 0; a < r; ++a) sum += f[s.grid.index(I * r + a, J * r + b)];
-                out[c.grid.index(I, J)] = sum / double(r * r);
+                for (int b = 0; b < ry; ++b)
+                    for (int a = 0; a < rx; ++a) sum += f[s.grid.index(I * rx + a, J * ry + b)];
+                out[c.grid.index(I, J)] = sum / double(rx * ry);
             }
         return out;
     };
@@ -79,21 +86,22 @@ Scene fine_scene(const Scene& s, int i_nest) {
     return f;
 }
 
-SolverDef side_def(SolverDef d, Side nested_side) {
+PhysicsDef side_def(PhysicsDef d, Side nested_side) {
     (nested_side == Side::east ? d.east : d.west).kind = BoundaryKind::nested;
     return d;
 }
 }  // namespace
 
-NestedSolver::NestedSolver(const Scene& scene, const SolverDef& def, const NestDef& nest)
+NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest)
     : grid_(scene.grid),
       def_(def),
-      ratio_(nest.ratio),
+      rx_(nest.ratio),
+      ry_(rows_ratio(scene.grid.ny, nest.ratio)),
       i_nest_(snapped_interface(scene, nest)),
       z_(scene.z),
-      coarse_(coarse_scene(scene, nest.ratio, i_nest_), side_def(def, Side::east)),
-      fine_(fine_scene(scene, i_nest_), side_def(def, Side::west)) {
-    const int r = ratio_, ny = grid_.ny, ncy = ny / r;
+      coarse_(coarse_scene(scene, rx_, ry_, i_nest_), side_def(def, Side::east), fv),
+      fine_(fine_scene(scene, i_nest_), side_def(def, Side::west), fv) {
+    const int rx = rx_, ry = ry_, ny = grid_.ny, ncy = ny / ry;
     // Ghost ground: the fine grid's west ghosts stand on the scene's own cells west of
     // the interface; the coarse grid's east ghosts on block averages east of it.
     std::vector<double> zf(std::size_t(kLayers * ny)), zc(std::size_t(kLayers * ncy));
@@ -101,9 +109,9 @@ NestedSolver::NestedSolver(const Scene& scene, const SolverDef& def, const NestD
         for (int j = 0; j < ny; ++j) zf[std::size_t((L - 1) * ny + j)] = z_[grid_.index(i_nest_ - L, j)];
         for (int J = 0; J < ncy; ++J) {
             double sum = 0.0;
-            for (int b = 0; b < r; ++b)
-                for (int a = 0; a < r; ++a) sum += z_[grid_.index(i_nest_ + (L - 1) * r + a, J * r + b)];
-            zc[std::size_t((L - 1) * ncy + J)] = sum / double(r * r);
+            for (int b = 0; b < ry; ++b)
+                for (int a = 0; a < rx; ++a) sum += z_[grid_.index(i_nest_ + (L - 1) * rx + a, J * ry + b)];
+            zc[std::size_t((L - 1) * ncy + J)] = sum / double(rx * ry);
         }
     }
     fine_.set_ghost_bed(Side::west, zf);
@@ -112,6 +120,7 @@ NestedSolver::NestedSolver(const Scene& scene, const SolverDef& def, const NestD
 
 std::string NestedSolver::description() const {
     return coarse_.description() + "; nested: " + std::to_string(coarse_.grid().dx) +
+           (ry_ == rx_ ? std::string() : " x " + std::to_string(coarse_.grid().dy)) +
            " m west of x = " + std::to_string(grid_.x_min_edge() + i_nest_ * grid_.dx) + " m, sub-cycled, refluxed";
 }
 
@@ -131,21 +140,21 @@ SolverStats NestedSolver::stats() const {
 }
 
 GhostState NestedSolver::coarse_ghosts_from_fine() const {
-    const int r = ratio_, ncy = grid_.ny / r;
+    const int rx = rx_, ry = ry_, ncy = grid_.ny / ry;
     GhostState g;
     for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ncy), 0.0);
     for (int L = 1; L <= kLayers; ++L)
         for (int J = 0; J < ncy; ++J) {
             double h = 0.0, hu = 0.0, hv = 0.0;
-            for (int b = 0; b < r; ++b)
-                for (int a = 0; a < r; ++a) {
-                    const int i = (L - 1) * r + a, j = J * r + b;
+            for (int b = 0; b < ry; ++b)
+                for (int a = 0; a < rx; ++a) {
+                    const int i = (L - 1) * rx + a, j = J * ry + b;
                     h += fine_.depth(i, j);
                     hu += fine_.x_discharge(i, j);
                     hv += fine_.y_discharge(i, j);
                 }
             const std::size_t q = std::size_t((L - 1) * ncy + J);
-            const double inv = 1.0 / double(r * r);
+            const double inv = 1.0 / double(rx * ry);
             g.h[q] = h * inv;
             g.hu[q] = hu * inv;
             g.hv[q] = hv * inv;
@@ -182,15 +191,15 @@ GhostState NestedSolver::fine_ghosts_from_coarse() const {
 }
 
 void NestedSolver::reflux() {
-    const int r = ratio_, ncy = grid_.ny / r, I = coarse_.grid().nx - 1;
+    const int ry = ry_, ncy = grid_.ny / ry, I = coarse_.grid().nx - 1;
     const std::vector<double>& tc = coarse_.side_transfer(Side::east);
     const std::vector<double>& tf = fine_.side_transfer(Side::west);
     const double dxc = coarse_.grid().dx;
     std::vector<double>& h = coarse_.depth_data();
     for (int J = 0; J < ncy; ++J) {
         double fine_sum = 0.0;  // the fine faces along coarse row J, per unit length of it
-        for (int b = 0; b < r; ++b) fine_sum += tf[std::size_t(J * r + b)];
-        fine_sum /= double(r);
+        for (int b = 0; b < ry; ++b) fine_sum += tf[std::size_t(J * ry + b)];
+        fine_sum /= double(ry);
         double& hc = h[coarse_.at(I, J)];
         hc += (tc[std::size_t(J)] - fine_sum) / dxc;
         if (hc < 0.0) {
@@ -228,7 +237,7 @@ void NestedSolver::step(double dt) {
 
 double NestedSolver::depth(int i, int j) const {
     if (i >= i_nest_) return fine_.depth(i - i_nest_, j);
-    const int I = i / ratio_, J = j / ratio_;
+    const int I = i / rx_, J = j / ry_;
     if (coarse_.depth(I, J) <= def_.dry_depth) return 0.0;
     return std::max(0.0, coarse_.level(I, J) - z_[grid_.index(i, j)]);
 }
@@ -239,11 +248,11 @@ void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double
     // West of the interface: as depth() and x_velocity(), the coarse cell's level over
     // the scene's ground.
     const double dry = def_.dry_depth;
-    const int J = j / ratio_;
-    for (int I = i0 / ratio_; I * ratio_ < split; ++I) {
+    const int J = j / ry_;
+    for (int I = i0 / rx_; I * rx_ < split; ++I) {
         const bool coarse_wet = coarse_.depth(I, J) > dry;
         const double level = coarse_.level(I, J), u_coarse = coarse_.x_velocity(I, J), v_coarse = coarse_.y_velocity(I, J);
-        for (int i = std::max(i0, I * ratio_); i < std::min(split, (I + 1) * ratio_); ++i) {
+        for (int i = std::max(i0, I * rx_); i < std::min(split, (I + 1) * rx_); ++i) {
             const double d = coarse_wet ? std::max(0.0, level - z_[grid_.index(i, j)]) : 0.0;
             const bool wet = d > dry;
             h[i - i0] = d;
@@ -255,12 +264,12 @@ void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double
 
 double NestedSolver::x_velocity(int i, int j) const {
     if (i >= i_nest_) return fine_.x_velocity(i - i_nest_, j);
-    return depth(i, j) > def_.dry_depth ? coarse_.x_velocity(i / ratio_, j / ratio_) : 0.0;
+    return depth(i, j) > def_.dry_depth ? coarse_.x_velocity(i / rx_, j / ry_) : 0.0;
 }
 
 double NestedSolver::y_velocity(int i, int j) const {
     if (i >= i_nest_) return fine_.y_velocity(i - i_nest_, j);
-    return depth(i, j) > def_.dry_depth ? coarse_.y_velocity(i / ratio_, j / ratio_) : 0.0;
+    return depth(i, j) > def_.dry_depth ? coarse_.y_velocity(i / rx_, j / ry_) : 0.0;
 }
 
 }  // namespace flotsam::hydro

@@ -33,15 +33,20 @@ struct NestDef {
     double x = -2.0;  // interface [m]; moved west to the nearest multiple of `ratio` cells
     int ratio = 1;    // coarse spacing / scene spacing (2, 3, 4 ...); 1: one uniform grid, no nesting
 };
+// The coarse grid's ratio along y: `ratio`, or where the scene's rows are not a multiple
+// of it, the largest number below it that divides them (50 rows, ratio 4: 2), so that
+// nesting works at any resolution with the flume's exact width (the coarse cells are
+// then ratio x that times the scene's; 1 for a prime number of rows).
+int rows_ratio(int rows, int ratio);
 NestDef default_nest_def();
 
 class NestedSolver {
 public:
     // `def`'s west/south/north boundaries apply to the coarse grid, its east/south/north
-    // ones to the fine grid. Errors (naming the option) when the scene's rows are not a
-    // multiple of the ratio or the interface leaves fewer than 2 coarse or 2 × ratio fine
-    // columns.
-    NestedSolver(const Scene& scene, const SolverDef& def, const NestDef& nest);
+    // ones to the fine grid. The coarse cells are nest.ratio x rows_ratio(rows, ratio)
+    // scene cells. Errors (naming the option) when the interface leaves fewer than 2
+    // coarse or 2 × ratio fine columns.
+    NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest);
 
     // The coarse step (the fine grid sub-cycles inside it) [s].
     double stable_dt() const { return coarse_.stable_dt(); }
@@ -50,7 +55,7 @@ public:
     double time() const { return time_; }
     void set_time(double t);
     const Grid& grid() const { return grid_; }  // the scene's grid (output, gauges)
-    const SolverDef& def() const { return def_; }
+    const PhysicsDef& def() const { return def_; }
     SolverStats stats() const;
     double volume() const { return coarse_.volume() + fine_.volume(); }
     // Cell updates done so far (coarse cells × coarse steps + fine cells × fine steps).
@@ -87,9 +92,9 @@ private:
     void reflux();
 
     Grid grid_;
-    SolverDef def_;
-    int ratio_ = 1, i_nest_ = 0;
-    std::vector<double> z_;  // scene bed [m]
+    PhysicsDef def_;
+    int rx_ = 1, ry_ = 1, i_nest_ = 0;  // coarse cells along x and y per scene cell; first fine column
+    std::vector<double> z_;             // scene bed [m]
     Solver coarse_, fine_;
     double time_ = 0.0;
     double cell_updates_ = 0.0;

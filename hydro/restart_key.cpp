@@ -29,7 +29,7 @@ std::map<std::string, std::string> settings_of(const std::string& text) {
 
 }  // namespace
 
-std::string restart_key(const RunDef& run, const SolverDef& solver) {
+std::string restart_key(const RunDef& run, const PhysicsDef& solver) {
     std::map<std::string, std::string> key = settings_of(run.config_text);
     // Paths say where the inputs are, not what they hold: their bytes go in instead.
     key.erase("scene");

@@ -10,14 +10,14 @@
 #pragma once
 #include <string>
 
-#include "hydro/solver.hpp"
+#include "hydro/physics.hpp"
 
 namespace flotsam::hydro {
 
 struct RunDef;
 
 // One "name = value" per line, sorted by name.
-std::string restart_key(const RunDef& run, const SolverDef& solver);
+std::string restart_key(const RunDef& run, const PhysicsDef& solver);
 
 // "cfl: 0.45 in the checkpoint, 0.4 now; scene sha256: ... " — the settings whose values
 // differ between two keys (empty when the keys are equal).

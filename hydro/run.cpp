@@ -74,6 +74,12 @@ struct Summary {
     std::vector<float> max_depth, max_speed, arrival;
 };
 
+// Gauges sample the state bilinearly between the four cell centres around each point
+// (at a cell centre: that cell alone), so a gauge reads the flow where it stands, not
+// at the nearest centre up to half a cell away. Depth and velocities are interpolated
+// over the four cells (a dry one counts as h = u = v = 0); the level over the wet ones
+// only (a dry cell's "level" is its ground), and where all four are dry it is the
+// interpolated ground.
 class Gauges {
 public:
     Gauges(const std::vector<FlowGauge>& gauges, const Grid& g, double interval, double duration) : interval_(interval) {
@@ -84,7 +90,7 @@ public:
                 at += std::to_string(p.y);
                 fail("", "gauge '" + p.name + "'", "position (" + at + ") is outside the grid");
             }
-            cells_.push_back({g.cell_i(p.x), g.cell_j(p.y)});
+            points_.push_back(Stencil{axis(p.x, g.x(0), g.dx, g.nx), axis(p.y, g.y(0), g.dy, g.ny)});
         }
         check_range("--gauge-interval", interval, Range::positive("s"));
         if (!gauges.empty())
@@ -94,11 +100,31 @@ public:
         samples_ = gauges.empty() ? 0 : std::size_t(std::floor(duration / interval + 1e-9)) + 1;
     }
     std::size_t samples() const { return samples_; }
-    std::size_t count() const { return cells_.size(); }
+    std::size_t count() const { return points_.size(); }
     template <class S>
     std::vector<GaugeSample> read(const S& s) const {
         std::vector<GaugeSample> out;
-        for (auto [i, j] : cells_) out.push_back({s.level(i, j), s.depth(i, j), s.x_velocity(i, j), s.y_velocity(i, j)});
+        for (const Stencil& p : points_) {
+            GaugeSample g{0.0, 0.0, 0.0, 0.0};
+            double wet_weight = 0.0, wet_level = 0.0, ground = 0.0;
+            for (int b = 0; b < 2; ++b)
+                for (int a = 0; a < 2; ++a) {
+                    const double w = (a ? p.x.w : 1.0 - p.x.w) * (b ? p.y.w : 1.0 - p.y.w);
+                    if (w == 0.0) continue;
+                    const int i = p.x.i + a, j = p.y.i + b;
+                    const double h = s.depth(i, j);
+                    g.h += w * h;
+                    g.u += w * s.x_velocity(i, j);
+                    g.v += w * s.y_velocity(i, j);
+                    ground += w * (s.level(i, j) - h);
+                    if (h > 0.0) {
+                        wet_weight += w;
+                        wet_level += w * s.level(i, j);
+                    }
+                }
+            g.eta = wet_weight > 0.0 ? wet_level / wet_weight : ground;
+            out.push_back(g);
+        }
         return out;
     }
     // Records every sample time in (t0, t1] by linear interpolation between the states.
@@ -132,8 +158,23 @@ public:
     void resume_at(std::size_t next) { next_ = flushed_ = next; }
 
 private:
+    // Along one axis: the cell centre at or before the point (the last but one at the far
+    // edge) and the weight of the next one, in [0, 1].
+    struct Axis {
+        int i = 0;
+        double w = 0.0;
+    };
+    struct Stencil {
+        Axis x, y;
+    };
+    static Axis axis(double p, double first_centre, double spacing, int n) {
+        if (n < 2) return {0, 0.0};
+        const double f = (p - first_centre) / spacing;
+        const int i = std::clamp(int(std::floor(f)), 0, n - 2);
+        return {i, std::clamp(f - double(i), 0.0, 1.0)};
+    }
     double interval_;
-    std::vector<std::pair<int, int>> cells_;
+    std::vector<Stencil> points_;
     std::size_t samples_ = 0, next_ = 0, flushed_ = 0;
     std::vector<double> time_;
     std::vector<float> eta_, h_, u_, v_;
@@ -277,7 +318,7 @@ Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     return c;
 }
 
-std::string boundary_files(const SolverDef& d) {
+std::string boundary_files(const PhysicsDef& d) {
     std::string s;
     const BoundaryDef* sides[4] = {&d.west, &d.east, &d.south, &d.north};
     const char* names[4] = {"west", "east", "south", "north"};
@@ -286,7 +327,7 @@ std::string boundary_files(const SolverDef& d) {
     return s;
 }
 
-std::string boundary_checksums(const SolverDef& d) {
+std::string boundary_checksums(const PhysicsDef& d) {
     std::string s;
     for (const BoundaryDef* b : {&d.west, &d.east, &d.south, &d.north})
         if (!b->series_file.empty()) s += std::string(s.empty() ? "" : "; ") + "sha256:" + sha256_file(b->series_file);
@@ -302,6 +343,14 @@ double cpu_seconds() {
 
 // ---- the run, step by step ----
 
+// The scene's bed on the output window [m].
+std::vector<float> window_bed(const Scene& scene, const Window& win) {
+    std::vector<float> z(win.grid.size());
+    for (int j = win.j0; j <= win.j1; ++j)
+        for (int i = win.i0; i <= win.i1; ++i) z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+    return z;
+}
+
 std::vector<FlowGauge> gauge_points_of(const Scene& scene, const RunDef& run) {
     std::vector<FlowGauge> points;
     for (const auto& p : scene.points)
@@ -314,7 +363,7 @@ std::vector<FlowGauge> gauge_points_of(const Scene& scene, const RunDef& run) {
 // times, the gauges and the maxima, the file being written and the checkpoint's
 // bookkeeping.
 struct RunOutput {
-    RunOutput(const Scene& scene, const RunDef& run, const SolverDef& def)
+    RunOutput(const Scene& scene, const RunDef& run, const PhysicsDef& def)
         : win(make_window(scene.grid, run.window)),
           times(frame_times(run.duration, run.output_interval)),
           gauge_points(gauge_points_of(scene, run)),
@@ -340,20 +389,17 @@ struct RunOutput {
 
 // The flow file's definition: the window's bed, the axes, the gauges and the global
 // attributes that say how the flow was made.
-FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const SolverDef& def, const RunOutput& o,
+FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDef& def, const RunOutput& o,
                           const std::string& scheme) {
-    const Window& win = o.win;
     FlowFileDef fd;
-    fd.window = win.grid;
-    fd.z.resize(win.grid.size());
-    for (int j = win.j0; j <= win.j1; ++j)
-        for (int i = win.i0; i <= win.i1; ++i)
-            fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+    fd.window = o.win.grid;
+    fd.z = window_bed(scene, o.win);
     fd.frame_times = o.times;
     fd.gauges = o.gauge_points;
     fd.gauge_samples = o.gauges.samples();
     fd.gauge_interval = run.gauge_interval;
     fd.arrival_depth = run.arrival_depth;
+    fd.flood_depth = run.flood_depth;
     fd.deflate_level = run.deflate_level;
     fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
     fd.attributes["source"] = version_string() + "; " + scheme;
@@ -372,7 +418,7 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const SolverDef
 // A fresh run: creates the file and stores the initial state (frame 0, the maxima and
 // the gauges at t = 0).
 template <RunnableSolver S>
-void start(S& solver, const Scene& scene, const RunDef& run, const SolverDef& def, RunOutput& o) {
+void start(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& def, RunOutput& o) {
     o.writer.emplace(o.file.temp_path(), flow_file_def(scene, run, def, o, solver.description()));
     o.state.volume_start = solver.volume();
     write_frame(*o.writer, 0, solver, o.win);
@@ -406,13 +452,13 @@ void resume(S& solver, RunOutput& o) {
 // Saves the exact state at time t after `steps` steps, so that --restart continues to
 // the same result.
 template <RunnableSolver S>
-void save_checkpoint(S& solver, const SolverDef& def, RunOutput& o, double t, long steps) {
+void save_checkpoint(S& solver, const PhysicsDef& def, RunOutput& o, double t, long steps) {
     o.gauges.flush(*o.writer);
     o.writer->sync();
     o.state.time = t;
     o.state.steps = steps;
     o.state.next_gauge = o.gauges.next();
-    o.state.pump_stopped = def.west.kind == BoundaryKind::pump && t >= def.west.pump_stop;
+    o.state.pump_stopped = def.west.kind == BoundaryKind::pump && t >= def.pump.stop;
     o.state.pump_level = solver.pump_level_at_stop();
     o.state.key = o.key;
     write_checkpoint(o.checkpoint, solver, o.sum, o.state);
@@ -422,7 +468,7 @@ void save_checkpoint(S& solver, const SolverDef& def, RunOutput& o, double t, lo
 // Returns the step count since the start of the run (restarts included), negated when
 // the run stopped early at run.stop_after.
 template <RunnableSolver S>
-long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& o, Progress& progress) {
+long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput& o, Progress& progress) {
     double next_checkpoint = run.checkpoint_interval > 0.0
                                  ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval
                                  : 1e300;
@@ -473,7 +519,7 @@ long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& 
 }
 
 template <RunnableSolver S>
-RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const SolverDef& def) {
+RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& def) {
     const std::string ckpt = checkpoint_path(run.out_file);
     if (!run.restart && std::filesystem::exists(ckpt))
         fail(ckpt, "",
@@ -509,6 +555,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
     }
     o.gauges.flush(*o.writer);
     o.writer->write_summary(o.sum.max_depth, o.sum.max_speed, o.sum.arrival);
+    o.writer->write_runup(runup_summary(o.win.grid, window_bed(scene, o.win), o.sum.max_depth, run.flood_depth));
     o.writer->close();
     o.file.commit();
     std::filesystem::remove(o.checkpoint);
@@ -521,14 +568,16 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
 
 static_assert(RunnableSolver<Solver> && RunnableSolver<NestedSolver> && RunnableSolver<LeapfrogSolver>);
 
-RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
+RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");
     const OutputLock lock(run.out_file);  // one writer per output: a second run stops here
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
-    // Boundary series must cover the whole run before any work starts.
-    for (const BoundaryDef* b : {&solver_def.west, &solver_def.east, &solver_def.south, &solver_def.north})
-        if (!b->series_file.empty()) require_coverage(read_time_series_csv(b->series_file), 0.0, run.duration);
+    // Boundary series must cover the whole run (or its start, where the side hands over
+    // to a transmissive one when the series ends) before any work starts.
+    for (const BoundaryDef* b : {&physics.west, &physics.east, &physics.south, &physics.north})
+        if (!b->series_file.empty())
+            require_coverage(read_time_series_csv(b->series_file), 0.0, b->series_end == SeriesEnd::error ? run.duration : 0.0);
     if (run.scheme == Scheme::leapfrog) {
         if (run.nest.ratio > 1)
             fail("", "--nest-ratio",
@@ -536,15 +585,15 @@ RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
                      std::to_string(run.nest.ratio) + ", or --scheme leapfrog with --nest-ratio 1");
         LeapfrogDef lf = run.leapfrog;
         lf.step_divides = run.output_interval;
-        LeapfrogSolver solver(scene, solver_def, lf);
-        return run_with(solver, scene, run, solver_def);
+        LeapfrogSolver solver(scene, physics, lf);
+        return run_with(solver, scene, run, physics);
     }
     if (run.nest.ratio > 1) {
-        NestedSolver solver(scene, solver_def, run.nest);
-        return run_with(solver, scene, run, solver_def);
+        NestedSolver solver(scene, physics, run.finite_volume, run.nest);
+        return run_with(solver, scene, run, physics);
     }
-    Solver solver(scene, solver_def);
-    return run_with(solver, scene, run, solver_def);
+    Solver solver(scene, physics, run.finite_volume);
+    return run_with(solver, scene, run, physics);
 }
 
 }  // namespace flotsam::hydro

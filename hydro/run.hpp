@@ -26,10 +26,10 @@ constexpr const auto& enum_names(Scheme) { return scheme_names; }
 // Solver, NestedSolver and LeapfrogSolver satisfy it.
 template <class S>
 concept RunnableSolver = requires(S& s, const S& c, double t, int i, int j, double* row) {
-    { c.stable_dt() } -> std::same_as<double>;  // the step to take now [s]
-    s.step(t);                                  // advance by t [s]
-    { c.time() } -> std::same_as<double>;       // [s]
-    s.set_time(t);                              // land exactly on a frame time
+    { c.stable_dt() } -> std::same_as<double>;         // the step to take now [s]
+    s.step(t);                                         // advance by t [s]
+    { c.time() } -> std::same_as<double>;              // [s]
+    s.set_time(t);                                     // land exactly on a frame time
     { c.grid() } -> std::convertible_to<const Grid&>;  // the scene's grid (output, gauges)
     { c.level(i, j) } -> std::same_as<double>;         // [m], gauges
     { c.depth(i, j) } -> std::same_as<double>;         // [m]
@@ -38,9 +38,9 @@ concept RunnableSolver = requires(S& s, const S& c, double t, int i, int j, doub
     c.state_row(j, i, i, row, row, row);               // depth, velocities of a row (frames, maxima)
     { c.volume() } -> std::same_as<double>;            // [m^3]
     { c.stats() } -> std::convertible_to<SolverStats>;
-    { c.cell_updates() } -> std::same_as<double>;  // cells x steps done by this object
+    { c.cell_updates() } -> std::same_as<double>;                             // cells x steps done by this object
     { s.state_arrays() } -> std::same_as<std::vector<std::vector<double>*>>;  // the exact state (checkpoints)
-    { c.pump_level_at_stop() } -> std::same_as<double>;  // the pump side's restart state [m]
+    { c.pump_level_at_stop() } -> std::same_as<double>;                       // the pump side's restart state [m]
     s.set_pump_level_at_stop(t);
     { c.description() } -> std::same_as<std::string>;  // the scheme, for the file's `source`
 };
@@ -54,9 +54,11 @@ struct RunDef {
     double gauge_interval = 0.05;                 // [s] between gauge samples
     std::vector<FlowGauge> gauges;                // added to the scene's gauge points
     Scheme scheme = Scheme::finite_volume;
+    FiniteVolumeDef finite_volume;                  // --scheme fv only
     LeapfrogDef leapfrog = default_leapfrog_def();  // --scheme leapfrog only; its step divides output_interval
     NestDef nest = default_nest_def();              // ratio > 1: coarse grid in the flume (hydro/nesting.hpp); fv only
     double arrival_depth = 0.025;                   // [m] threshold of the arrival-time map (the draft)
+    double flood_depth = 0.001;                     // [m] threshold of the flooded flag and the runup
     double checkpoint_interval = 0.0;               // [s] simulated time between checkpoints; 0: none
     bool restart = false;                           // continue from <out>.checkpoint.nc
     double stop_after = -1.0;                       // [s] stop (as if interrupted) once past this time; < 0: never
@@ -83,7 +85,8 @@ struct RunResult {
     std::size_t file_bytes = 0;
 };
 
-RunResult run_hydro(const RunDef& run, const SolverDef& solver_def);
+// A run of `run.scheme` on the physics and boundaries of `physics`.
+RunResult run_hydro(const RunDef& run, const PhysicsDef& physics);
 
 // Path of the checkpoint that belongs to an output file.
 std::string checkpoint_path(const std::string& out_file);

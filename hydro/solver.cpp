@@ -13,15 +13,6 @@
 
 namespace flotsam::hydro {
 
-SolverDef default_solver_def() {
-    SolverDef d;
-    d.west.kind = BoundaryKind::level;
-    d.east.kind = BoundaryKind::transmissive;
-    d.south.kind = BoundaryKind::wall;
-    d.north.kind = BoundaryKind::wall;
-    return d;
-}
-
 namespace {
 constexpr int kGhost = 2;
 
@@ -32,10 +23,10 @@ inline void flush_subnormals() { _mm_setcsr(_mm_getcsr() | 0x8040); }
 bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
 }  // namespace
 
-Solver::Solver(const Scene& scene, const SolverDef& def)
-    : grid_(scene.grid), def_(def), forcing_({def.west, def.east, def.south, def.north}, scene.grid, scene.z) {
-    if (def.order != 1 && def.order != 2) fail("", "--order", "must be 1 or 2");
-    if (!(def.cfl > 0.0 && (def.cfl <= 0.5 || def.study_past_stability_limit)))
+Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv)
+    : grid_(scene.grid), def_(def), fv_(fv), forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
+    if (fv.order != 1 && fv.order != 2) fail("", "--order", "must be 1 or 2");
+    if (!(fv.cfl > 0.0 && (fv.cfl <= 0.5 || def.study_past_stability_limit)))
         fail("", "--cfl", "must be in (0, 0.5] (positivity of the depth needs <= 0.5)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
@@ -54,7 +45,7 @@ Solver::Solver(const Scene& scene, const SolverDef& def)
             const double eta0 = scene.eta0.empty() ? 0.0 : scene.eta0[k];
             const double h = std::max(0.0, eta0 - z_[p]);
             h_[p] = h;
-            if (!scene.u0.empty() && h > def.dry_depth) {
+            if (!scene.u0.empty() && h > 0.0) {
                 hu_[p] = h * scene.u0[k];
                 hv_[p] = h * scene.v0[k];
             }
@@ -112,7 +103,7 @@ double Solver::volume() const {
 
 std::string Solver::description() const {
     return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
-           (def_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
+           (fv_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
 }
 
 void Solver::state_row(int j, int i0, int i1, double* __restrict h, double* __restrict u, double* __restrict v) const {
@@ -146,7 +137,7 @@ double Solver::stable_dt() const {
         }
         max_wave_rate_ = amax;
     }
-    return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, def_.cfl / max_wave_rate_) : def_.max_dt;
+    return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, fv_.cfl / max_wave_rate_) : def_.max_dt;
 }
 
 void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
@@ -298,7 +289,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 #pragma omp simd
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         eta[c] = h[c] + z[c];
-        const double inv = h[c] > s.dry ? 1.0 / h[c] : 0.0;
+        const double inv = inverse_depth(h[c], s.dry);
         u[c] = hu[c] * inv;
         v[c] = hv[c] * inv;
     }
@@ -348,7 +339,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
         FaceFlux f;
         face_flux(em[c] + 0.5 * sem[c], hm[c] + 0.5 * shm[c], vm[c] + 0.5 * svm[c], um[c] + 0.5 * sum[c], e0[c] - 0.5 * se0[c],
-                  h0[c] - 0.5 * sh0[c], v0[c] - 0.5 * sv0[c], u0[c] - 0.5 * su0[c], s.g, f);
+                  h0[c] - 0.5 * sh0[c], v0[c] - 0.5 * sv0[c], u0[c] - 0.5 * su0[c], s.g, s.dry, f);
         mass[c] = f.mass;
         lo[c] = f.normal_L;
         hi[c] = f.normal_R;
@@ -392,7 +383,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     for (int c = c0 - 1; c < c1; ++c) {
         FaceFlux f;
         face_flux(e[c] + 0.5 * se[c], h[c] + 0.5 * sh[c], u[c] + 0.5 * su[c], v[c] + 0.5 * sv[c], e[c + 1] - 0.5 * se[c + 1],
-                  h[c + 1] - 0.5 * sh[c + 1], u[c + 1] - 0.5 * su[c + 1], v[c + 1] - 0.5 * sv[c + 1], s.g, f);
+                  h[c + 1] - 0.5 * sh[c + 1], u[c + 1] - 0.5 * su[c + 1], v[c + 1] - 0.5 * sv[c + 1], s.g, s.dry, f);
         fm[c] = f.mass;
         fl[c] = f.normal_L;
         fr[c] = f.normal_R;
@@ -455,10 +446,14 @@ template <bool kWithBase, Friction kFriction>
             hn = a * h0[c] + (1.0 - a) * hn;
             qx = a * hu0[c] + (1.0 - a) * qx;
             qy = a * hv0[c] + (1.0 - a) * qy;
-            const bool dry = hn <= dry_depth;
-            qx = dry ? 0.0 : qx;
-            qy = dry ? 0.0 : qy;
         }
+        // Thin layers keep their momentum (their velocity is desingularised where it is
+        // used, inverse_depth); a cell that holds no water holds none (+0, so that
+        // exactly dry land stays skippable: -0 + 0 = +0). Arithmetic, not a select, so
+        // that GCC vectorises the loop (a select after the friction's division does not).
+        const double holds_water = hn > 0.0 ? 1.0 : 0.0;
+        qx = qx * holds_water + 0.0;
+        qy = qy * holds_water + 0.0;
         h_out[c] = hn;
         hu_out[c] = qx;
         hv_out[c] = qy;
@@ -529,7 +524,7 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
     if (which == Stage::predictor) base_nonzero_ = state_nonzero_;
     for (int j = 0; j < ny; ++j) {
         ColumnRange a{0, nx};
-        if (def_.skip_dry_land) {
+        if (fv_.skip_dry_land) {
             a = {};
             for (int k = j - 2; k <= j + 2; ++k) a = hull(a, depth_nonzero_[std::size_t(k + kGhost)]);
             a = hull(clip(widen(a, 2), 0, nx), state_nonzero_[std::size_t(j)]);
@@ -559,10 +554,9 @@ void Solver::stage(Stage which, double dt, double t) {
     const double pump_rate = forcing_.pump_rate(t);  // [m/s] over the source strip
     const bool pumping = pump_rate != 0.0;
     find_active_columns(which, h, hu, hv, pumping);
-    const bool last = corrector || def_.order == 1;  // the step's result: remember its CFL rate
+    const bool last = corrector || fv_.order == 1;  // the step's result: remember its CFL rate
     const int nx = grid_.nx, ny = grid_.ny;
-    const Sweep s{
-        def_.gravity, def_.dry_depth, def_.limiter_theta, def_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
+    const Sweep s{def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
     auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
     auto row = [&](const std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     auto row_out = [&](std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
@@ -627,13 +621,12 @@ void Solver::stage(Stage which, double dt, double t) {
             for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
                 dh[pump_cells_[k] % stride_] += pump_rate;
             if (corrector)
-                update_row_with<true>(def_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                update_row_with<true>(fv_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
                                       row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
                                       row_out(hv_out, j), fixes, worst);
             else
-                update_row_with<false>(def_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
-                                       nullptr, nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes,
-                                       worst);
+                update_row_with<false>(fv_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), nullptr,
+                                       nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
             if (last) amax = std::max(amax, max_wave_rate_row(s, cols, row(h_out, j), row(hu_out, j), row(hv_out, j)));
         }
     }
@@ -672,7 +665,7 @@ void Solver::reset_side_transfer() {
 
 void Solver::step(double dt) {
     // Boundary mass transfer with the stepper's weights: Heun's U^{n+1} = U^n + dt/2 (L(U^n) + L(U^1)).
-    if (def_.order == 1) {
+    if (fv_.order == 1) {
         stage(Stage::predictor, dt, time_);
         if (track_transfer_)
             for (std::size_t j = 0; j < west_transfer_.size(); ++j) {

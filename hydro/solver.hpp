@@ -21,6 +21,7 @@
 #include "common/timeseries.hpp"
 #include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
+#include "hydro/physics.hpp"
 #include "hydro/swe_kernels.hpp"
 
 namespace flotsam::hydro {
@@ -38,41 +39,20 @@ struct ColumnRange {
     bool empty() const { return begin >= end; }
 };
 
-struct SolverDef {
-    double gravity = 9.81;  // [m s^-2]
-    // The one dry tolerance: a cell with h <= dry_depth has no velocity and no friction.
-    // 1e-5 m is a hundredth of a millimetre, far below any depth that moves debris
-    // (draft 2.5 cm) and far above round-off on depths of order 1 m.
-    double dry_depth = 1e-5;           // [m]
-    double cfl = 0.45;                 // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0
-    double max_dt = 0.05;              // [s] upper bound on the step
-    double limiter_theta = 1.3;        // 1 = minmod ... 2 = monotonised central
-    int order = 2;                     // 1: first order in space and time; 2: MUSCL + Heun
-    double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
+// The settings only the finite-volume scheme has (the physics: PhysicsDef).
+struct FiniteVolumeDef {
+    double cfl = 0.45;           // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0
+    double limiter_theta = 1.3;  // 1 = minmod ... 2 = monotonised central
+    int order = 2;               // 1: first order in space and time; 2: MUSCL + Heun
     // Skip cells whose whole stencil is exactly dry (h = hu = hv = 0): the same result,
     // faster. false computes every cell (the tests check that skipping changes no bit).
     bool skip_dry_land = true;
     Friction friction = Friction::implicit;  // explicit: stability study only
-    // Study only, never for a real run: accept cfl above 0.5 (finite volumes) and let the
-    // leap-frog run on past its Courant limit instead of failing, to show the failures.
-    bool study_past_stability_limit = false;
-    BoundaryDef west, east, south, north;
-};
-SolverDef default_solver_def();
-
-// Counters that say how the run went.
-struct SolverStats {
-    long steps = 0;
-    long negative_depth_fixes = 0;  // cells where round-off made h < 0 (set to 0)
-    double min_depth_seen = 0.0;    // most negative h before the fix [m]
-    double cell_stages = 0.0;       // interior cells x stages stepped
-    double cell_stages_dry = 0.0;   // of which skipped as dry land (all of the stencil exactly zero)
-    long outflow_limits = 0;        // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
 };
 
 class Solver {
 public:
-    Solver(const Scene& scene, const SolverDef& def);
+    Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv = {});
 
     // Largest stable step for the current state [s] (CFL and max_dt).
     double stable_dt() const;
@@ -82,7 +62,8 @@ public:
     double time() const { return time_; }
     void set_time(double t) { time_ = t; }
     const Grid& grid() const { return grid_; }
-    const SolverDef& def() const { return def_; }
+    const PhysicsDef& def() const { return def_; }
+    const FiniteVolumeDef& finite_volume_def() const { return fv_; }
     const SolverStats& stats() const { return stats_; }
 
     // Interior cell accessors.
@@ -152,7 +133,8 @@ private:
     const BoundaryDef& boundary(Side s) const;
 
     Grid grid_;
-    SolverDef def_;
+    PhysicsDef def_;
+    FiniteVolumeDef fv_;
     std::size_t stride_ = 0, rows_ = 0;
     double time_ = 0.0;
     SolverStats stats_;

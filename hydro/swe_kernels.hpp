@@ -1,7 +1,8 @@
 // Point-wise kernels of the shallow-water scheme: no loops, no storage, so each can be
 // read and tested alone. The loops that drive them live in solver.cpp.
 //
-// Equations (MODEL.md), with h depth, q = (hu, hv) discharge, z bed, eta = h + z:
+// Equations (docs/hydro.md, "Equations"), with h depth, q = (hu, hv) discharge, z bed,
+// eta = h + z:
 //
 //   h_t + (hu)_x + (hv)_y = 0
 //   (hu)_t + (hu^2 + g h^2/2)_x + (huv)_y = -g h z_x - g n^2 u |u| / h^(1/3)
@@ -21,10 +22,21 @@
 //
 // Flux: HLL for mass and normal momentum; the tangential momentum is carried upwind by
 // the mass flux, which keeps shear layers (the port's eddies) sharper than plain HLL.
+// Into dry ground (a side at most the dry tolerance deep) the flux is the exact
+// dry-bed Riemann solution's at the face instead: HLL carries water onto dry land at
+// half the fan's speed, and the front lags.
+//
+// Wet and dry: one tolerance eps (PhysicsDef::dry_depth, 1e-5 m). It desingularises the
+// velocity, u = 2 h q / (h^2 + max(h^2, eps^2)) (q/h above eps, bounded by q/eps and
+// vanishing with h below it), and switches the reconstruction to first order next to a
+// cell below it. It does not remove water or momentum: a thin layer keeps its discharge,
+// so the water at a front moves on (issue 14: a velocity set to zero below 1e-5 m, and
+// the momentum of such cells set to zero, held Ritter's front 0.6 m back at every
+// resolution; docs/hydro.md, "Wet/dry fronts").
 //
 // Friction: solved implicitly per cell for fixed h, |q| + a |q|^2 = |q*| with
-// a = dt g n^2 / h^(7/3), so it only slows the flow, never reverses it, and stays
-// finite as h -> 0 (q -> 0 there).
+// a = dt g n^2 / h^(7/3) (h held at eps below it), so it only slows the flow, never
+// reverses it, and stays finite as h -> 0.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -43,14 +55,19 @@ inline double limited_slope(double dl, double dr, double theta) {
     return lo > 0.0 ? lo : (hi < 0.0 ? hi : 0.0);
 }
 
-// Velocity from discharge; zero in dry cells so a film of round-off depth has no speed.
-inline double velocity(double h, double q, double dry_depth) { return h > dry_depth ? q / h : 0.0; }
+// 1/h, desingularised below the dry tolerance eps: 2 h / (h^2 + max(h^2, eps^2)), which
+// is 1/h for h >= eps and 2 h / (h^2 + eps^2) -> 0 as h -> 0, never above 1/eps.
+inline double inverse_depth(double h, double eps) { return 2.0 * h / (h * h + std::max(h * h, eps * eps)); }
+
+// Velocity from discharge: q/h, desingularised below the dry tolerance (inverse_depth),
+// so a film of round-off depth has a bounded speed and dry ground none.
+inline double velocity(double h, double q, double dry_depth) { return q * inverse_depth(h, dry_depth); }
 
 // The CFL rate of a cell, (|u| + c) / dx + (|v| + c) / dy with c = sqrt(g h) [1/s]: a
 // stable step is at most cfl over its largest value.
 inline double wave_rate(double h, double hu, double hv, double g, double dry_depth, double idx, double idy) {
     const double c = std::sqrt(g * h);
-    const double inv = h > dry_depth ? 1.0 / h : 0.0;
+    const double inv = inverse_depth(h, dry_depth);
     return (std::abs(hu) * inv + c) * idx + (std::abs(hv) * inv + c) * idy;
 }
 
@@ -67,7 +84,7 @@ struct FaceFlux {
 };
 
 inline double face_flux(double etaL, double hL, double unL, double utL, double etaR, double hR, double unR, double utR, double g,
-                        FaceFlux& f) {
+                        double dry_depth, FaceFlux& f) {
     const double zL = etaL - hL, zR = etaR - hR;
     const double zs = std::max(zL, zR);
     const double hsL = std::max(0.0, etaL - zs);
@@ -80,8 +97,26 @@ inline double face_flux(double etaL, double hL, double unL, double utL, double e
     const double span = sR - sL;
     // Both sides dry: no wave, no flux.
     const double inv = span > 1e-12 ? 1.0 / span : 0.0;
-    const double mass = (sR * qL - sL * qR + sL * sR * (hsR - hsL)) * inv;
-    const double normal = (sR * (qL * unL + pL) - sL * (qR * unR + pR) + sL * sR * (qR - qL)) * inv;
+    const double hll_mass = (sR * qL - sL * qR + sL * sR * (hsR - hsL)) * inv;
+    const double hll_normal = (sR * (qL * unL + pL) - sL * (qR * unR + pR) + sL * sR * (qR - qL)) * inv;
+    // Into dry ground the flux is the dry-bed Riemann solution's at the face: one
+    // rarefaction from the wet side, whose sonic state has u = c = (u_wet + 2 c_wet) / 3
+    // (right side dry; mirrored for the left), h = c^2 / g, so mass h c and momentum
+    // h c^2 + g h^2 / 2 = 1.5 h c^2; the wet side's flux when it is supercritical away
+    // from the face; nothing when it moves away faster than 2 c. HLL there carries the
+    // mass in at u + c/2 instead of the fan's mean speed u + c, and the front lags.
+    // One fan, from whichever side is wet (s = +1: the right side is dry); 1/g, not a
+    // division per face: these loops are bound by their divisions and roots.
+    const bool dryL = hsL <= dry_depth, dryR = hsR <= dry_depth;
+    const double s = dryR ? 1.0 : -1.0;
+    const double un_wet = dryR ? unL : unR, c_wet = dryR ? cL : cR, q_wet = dryR ? qL : qR, p_wet = dryR ? pL : pR;
+    const double cs = std::max(0.0, (s * un_wet + 2.0 * c_wet) * (1.0 / 3.0)), hs = cs * cs * (1.0 / g);
+    const bool away = s * un_wet >= c_wet;  // supercritical toward the dry side: the wet side's own flux
+    const double dry_mass = away ? q_wet : s * hs * cs;
+    const double dry_normal = away ? q_wet * un_wet + p_wet : 1.5 * hs * cs * cs;
+    const bool one_dry = dryL != dryR;
+    const double mass = one_dry ? dry_mass : hll_mass;
+    const double normal = one_dry ? dry_normal : hll_normal;
     f.mass = mass;
     f.normal_L = normal + 0.5 * g * (hL * hL - hsL * hsL);
     f.normal_R = normal + 0.5 * g * (hR * hR - hsR * hsR);
@@ -107,17 +142,16 @@ inline double inverse_cube_root(double h) {
 }
 
 // Implicit Manning friction on one discharge component pair (q1, q2) over dt:
-// returns the factor r in (0, 1] with q_new = r q*. g_n2 = g * n^2.
+// returns the factor r in (0, 1] with q_new = r q*. g_n2 = g * n^2. Below the dry
+// tolerance the depth in the friction term is held at dry_depth: thin layers keep
+// their (desingularised) momentum instead of losing all of it, and a stays finite.
 inline double friction_factor(double h, double q1, double q2, double g_n2, double dt, double dry_depth) {
-    // Dry: any finite r, multiplied by 0. (Written without a branch around the
-    // arithmetic so that the loops calling this vectorise.)
     const double hs = std::max(h, dry_depth);
     const double qmag = std::sqrt(q1 * q1 + q2 * q2);
     const double y = inverse_cube_root(hs), y3 = y * y * y;
     const double a = dt * g_n2 * (y3 * y3 * y);  // dt g n^2 / h^(7/3)
     // |q| = (-1 + sqrt(1 + 4 a |q*|)) / (2a), written without cancellation.
-    const double r = 2.0 / (1.0 + std::sqrt(1.0 + 4.0 * a * qmag));
-    return r * (h > dry_depth ? 1.0 : 0.0);
+    return 2.0 / (1.0 + std::sqrt(1.0 + 4.0 * a * qmag));
 }
 
 // Explicit Manning friction, kept only for the stability study: q_new = q* - e q_old with

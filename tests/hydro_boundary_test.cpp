@@ -28,7 +28,7 @@ double east_wall_level(LevelMode mode, const std::string& dir) {
     Scene scene;
     scene.grid = Grid{40, 2, 0.25, 0.25, 0.5, 0.5};
     scene.z.assign(scene.grid.size(), -0.8);
-    SolverDef d = default_solver_def();
+    PhysicsDef d = default_physics_def();
     d.default_manning_n = 0.0;
     d.east.kind = BoundaryKind::wall;
     d.west.kind = BoundaryKind::level;
@@ -55,10 +55,55 @@ double east_wall_level(LevelMode mode, const std::string& dir) {
 // WG2 at 0.117 m instead of the paper's 0.063 m (docs/hydro.md).
 TEST(LevelBoundary, TotalRecordFillsTheFlumeToItsLevelIncidentDoublesIt) {
     const std::string dir = test::scratch_dir("LevelBoundary");
-    EXPECT_EQ(default_solver_def().west.level_mode, LevelMode::total);
+    EXPECT_EQ(default_physics_def().west.level_mode, LevelMode::total);
     const double total = east_wall_level(LevelMode::total, dir);
     const double incident = east_wall_level(LevelMode::incident, dir);
     std::printf("east-wall level over 120-150 s: total %.5f m, incident %.5f m (record 0.01 m)\n", total, incident);
     EXPECT_NEAR(total, 0.010, 0.0003);
     EXPECT_NEAR(incident, 0.020, 0.001);
+}
+
+namespace {
+
+// A 10 m channel, 0.1 m deep (c = 0.99 m/s), wall on the east; the west side imposes
+// the total level of a 1 cm hump over 0-2 s, then either holds it at 0 until `hold`
+// (a level side: it reflects what comes back) or, with a series that ends at 2 s, hands
+// over to a transmissive side. Returns the largest |level| in the channel at 30 s, after
+// the hump has run to the east wall and back to the west side (about 20 s).
+double level_left_at_30s(const std::string& dir, SeriesEnd end, double hold) {
+    std::ostringstream csv;
+    csv << "time,eta\n";
+    for (int k = 0; k * 0.1 <= std::max(2.0, hold) + 1e-9; ++k) {
+        const double t = k * 0.1, s = std::sin(std::acos(-1.0) * std::min(t, 2.0) / 2.0);
+        csv << t << "," << 0.01 * s * s << "\n";
+    }
+    Scene scene;
+    scene.grid = Grid{200, 2, 0.025, 0.025, 0.05, 0.05};
+    scene.z.assign(scene.grid.size(), -0.1);
+    PhysicsDef d = default_physics_def();
+    d.default_manning_n = 0.0;
+    d.east.kind = BoundaryKind::wall;
+    d.west.series_file = test::write_file(dir, end == SeriesEnd::error ? "held.csv" : "ends.csv", csv.str());
+    d.west.series_end = end;
+    Solver solver(scene, d);
+    while (solver.time() < 30.0 - 1e-9) solver.step(std::min(solver.stable_dt(), 30.0 - solver.time()));
+    double worst = 0.0;
+    for (int i = 0; i < 200; ++i) worst = std::max(worst, std::abs(solver.level(i, 0)));
+    return worst;
+}
+
+}  // namespace
+
+// A level series that ends can hand over to a transmissive side (issue 14): the hump
+// that comes back from the east wall leaves through the west side, where a level held
+// at 0 sends it back into the channel at full height.
+TEST(LevelBoundary, SeriesThatEndsHandsOverToATransmissiveSide) {
+    const std::string dir = test::scratch_dir("SeriesEnd");
+    const double held = level_left_at_30s(dir, SeriesEnd::error, 30.0);
+    const double handed_over = level_left_at_30s(dir, SeriesEnd::transmissive, 2.0);
+    std::printf("largest |level| at 30 s: level held at 0 %.5f m, handed over to transmissive %.5f m (hump 0.01 m)\n", held,
+                handed_over);
+    EXPECT_GT(held, 0.005);
+    EXPECT_LT(handed_over, 0.1 * held);
+    EXPECT_EQ(parse_enum<SeriesEnd>("transmissive", "--west-series-end"), SeriesEnd::transmissive);
 }

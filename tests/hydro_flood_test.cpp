@@ -40,7 +40,7 @@ TEST(GeneratedSceneFlood, ShoreFloodsRoofsStayDry) {
         f << "time,eta\n";  // rises to 3.5 cm in 60 s: above the 1 cm shore, below 5 cm roofs
         for (int t = 0; t <= 120; t += 5) f << t << "," << 0.035 * std::min(1.0, t / 60.0) << "\n";
     }
-    hydro::SolverDef sd = hydro::default_solver_def();
+    hydro::PhysicsDef sd = hydro::default_physics_def();
     sd.west.series_file = dir + "/level.csv";
     sd.west.level_mode = hydro::LevelMode::total;
     hydro::RunDef rd;

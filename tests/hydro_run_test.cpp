@@ -62,15 +62,15 @@ RunDef base_run(const std::string& scene, const std::string& out) {
     return r;
 }
 
-SolverDef level_def(const std::string& series) {
-    SolverDef d = default_solver_def();
+PhysicsDef level_def(const std::string& series) {
+    PhysicsDef d = default_physics_def();
     d.west.series_file = series;
     return d;
 }
 
 // Runs `r` to a checkpoint at 1 s intervals, stops it after 2.7 s as if interrupted,
 // and continues it with --restart; returns whether the continued run completed.
-bool interrupted_and_restarted(RunDef r, const SolverDef& d) {
+bool interrupted_and_restarted(RunDef r, const PhysicsDef& d) {
     r.checkpoint_interval = 1.0;
     r.stop_after = 2.7;
     EXPECT_FALSE(run_hydro(r, d).completed);
@@ -129,7 +129,7 @@ TEST(HydroRun, RestartContinuesToTheSameResultAndSameInputsGiveSameBytes) {
     const auto dir = test::scratch_dir("hydro_restart");
     const auto scene = make_scene(dir);
     const auto series = make_series(dir);
-    const SolverDef d = level_def(series);
+    const PhysicsDef d = level_def(series);
     run_hydro(base_run(scene, dir + "/a.nc"), d);
     run_hydro(base_run(scene, dir + "/b.nc"), d);
     EXPECT_EQ(sha256_file(dir + "/a.nc"), sha256_file(dir + "/b.nc"));
@@ -156,7 +156,7 @@ TEST(HydroRun, RestartContinuesToTheSameResultAndSameInputsGiveSameBytes) {
 TEST(HydroRun, SameBytesOnOneAndTwoThreads) {
     const auto dir = test::scratch_dir("hydro_threads");
     const auto scene = make_scene(dir);
-    const SolverDef d = level_def(make_series(dir));
+    const PhysicsDef d = level_def(make_series(dir));
     for (int ratio : {1, 2}) {
         std::string sha[2];
         for (int threads : {1, 2}) {
@@ -174,7 +174,7 @@ TEST(HydroRun, SameBytesOnOneAndTwoThreads) {
 TEST(HydroRun, NestedRunRestartsToTheSameResult) {
     const auto dir = test::scratch_dir("hydro_nested_restart");
     const auto scene = make_scene(dir);
-    const SolverDef d = level_def(make_series(dir));
+    const PhysicsDef d = level_def(make_series(dir));
     RunDef a = base_run(scene, dir + "/a.nc");
     a.nest = NestDef{0.3, 2};
     const RunResult full = run_hydro(a, d);
@@ -199,7 +199,7 @@ TEST(HydroRun, NestedRunRestartsToTheSameResult) {
 TEST(HydroRun, LeapfrogRunRestartsToTheSameResultAndRecordsItsScheme) {
     const auto dir = test::scratch_dir("hydro_leapfrog_restart");
     const auto scene = make_scene(dir);
-    const SolverDef d = level_def(make_series(dir));
+    const PhysicsDef d = level_def(make_series(dir));
     RunDef a = base_run(scene, dir + "/a.nc");
     a.scheme = Scheme::leapfrog;
     const RunResult full = run_hydro(a, d);
@@ -272,11 +272,47 @@ TEST(HydroRun, XarrayDecodesTimeAndFindsStandardNames) {
     const auto dir = test::scratch_dir("hydro_xr");
     const auto scene = make_scene(dir);
     run_hydro(base_run(scene, dir + "/flow.nc"), level_def(make_series(dir)));
-    const std::string cmd =
-        "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.inspect_flow " + dir + "/flow.nc --check > " + dir + "/out.txt 2>&1";
+    const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.inspect_flow " + dir +
+                            "/flow.nc --check > " + dir + "/out.txt 2>&1";
     const int rc = std::system(cmd.c_str());
     std::ifstream f(dir + "/out.txt");
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     EXPECT_EQ(rc, 0) << text;
     EXPECT_NE(text.find("time decoded as datetime64"), std::string::npos) << text;
+}
+
+// Gauges interpolate bilinearly between the four cell centres around them: on a plane
+// level (still water tilted at t = 0 over a flat bed), the gauge reads the plane's value
+// at its own point, which the nearest cell (up to half a 2 cm cell away, 1e-4 m off on
+// this slope) does not. A gauge beside a dry roof takes its level from the wet cells.
+TEST(HydroRun, GaugesReadThePlaneLevelWhereTheyStand) {
+    const auto dir = test::scratch_dir("hydro_gauge_bilinear");
+    Scene s;
+    s.grid = Grid{30, 20, 0.01, 0.01, 0.02, 0.02};
+    s.z.assign(s.grid.size(), -0.1);
+    s.eta0.assign(s.grid.size(), 0.0);
+    for (int j = 0; j < 20; ++j)
+        for (int i = 0; i < 30; ++i) s.eta0[s.grid.index(i, j)] = 0.01 * s.grid.x(i) - 0.003 * s.grid.y(j);
+    s.z[s.grid.index(20, 10)] = 0.05;  // a roof, dry
+    s.eta0[s.grid.index(20, 10)] = 0.05;
+    write_scene(dir + "/plane.nc", s, "test");
+    RunDef r = base_run(dir + "/plane.nc", dir + "/flow.nc");
+    r.duration = 0.1;
+    r.output_interval = 0.1;
+    r.gauges = {{"A", 0.137, 0.291}, {"B", 0.414, 0.207}};  // B: beside the roof at (0.41, 0.21)
+    PhysicsDef d = default_physics_def();
+    d.west.kind = BoundaryKind::wall;
+    d.east.kind = BoundaryKind::wall;
+    ASSERT_TRUE(run_hydro(r, d).completed);
+    const nc::File f = nc::File::open_read(dir + "/flow.nc");
+    const auto eta = f.get_float(f.var("gauge_eta"));  // (gauge_time, gauge): sample 0 first
+    EXPECT_NEAR(eta[0], 0.01 * 0.137 - 0.003 * 0.291, 1e-7);
+    // B sits at 20.2 and 9.85 cell spacings from the first centres: the roof's cell
+    // (20, 10) weighs 0.8 x 0.85 = 0.68 and is dry; the level comes from the three wet
+    // cells (20, 9), (21, 9), (21, 10) with weights 0.12, 0.03, 0.17.
+    const double w[3] = {0.8 * 0.15, 0.2 * 0.15, 0.2 * 0.85};
+    const double lv[3] = {0.01 * 0.41 - 0.003 * 0.19, 0.01 * 0.43 - 0.003 * 0.19, 0.01 * 0.43 - 0.003 * 0.21};
+    EXPECT_NEAR(eta[1], (w[0] * lv[0] + w[1] * lv[1] + w[2] * lv[2]) / (w[0] + w[1] + w[2]), 1e-7);
+    const auto h = f.get_float(f.var("gauge_h"));  // the roof's cell counts with depth 0
+    EXPECT_NEAR(h[1], w[0] * (lv[0] + 0.1) + w[1] * (lv[1] + 0.1) + w[2] * (lv[2] + 0.1), 1e-7);
 }

@@ -15,24 +15,25 @@ using namespace flotsam::hydro;
 
 namespace {
 
-SolverDef study_def(double manning_n) {
-    SolverDef d = test::closed_def();
+PhysicsDef study_def(double manning_n) {
+    PhysicsDef d = test::closed_def();
     d.default_manning_n = manning_n;
     d.study_past_stability_limit = true;
     return d;
 }
 
-test::Watch leapfrog_run(const Scene& s, SolverDef d, double courant, double t_end) {
+test::Watch leapfrog_run(const Scene& s, PhysicsDef d, double courant, double t_end) {
     LeapfrogDef lf = default_leapfrog_def();
     lf.courant = courant;
     LeapfrogSolver solver(s, d, lf);
     return test::run_watched(solver, s, t_end);
 }
 
-test::Watch fv_run(const Scene& s, SolverDef d, double cfl, double t_end, Friction friction = Friction::implicit) {
-    d.cfl = cfl;
-    d.friction = friction;
-    Solver solver(s, d);
+test::Watch fv_run(const Scene& s, PhysicsDef d, double cfl, double t_end, Friction friction = Friction::implicit) {
+    FiniteVolumeDef fv;
+    fv.cfl = cfl;
+    fv.friction = friction;
+    Solver solver(s, d, fv);
     return test::run_watched(solver, s, t_end);
 }
 
@@ -51,7 +52,7 @@ TEST(CourantLimit, LeapfrogHoldsUpToOneAndBlowsUpAbove) {
     EXPECT_TRUE(above.blew_up());
     EXPECT_GT(above.level_rise, 0.01);  // grid-scale growth, not the wave
     // Outside the study the setting is refused, and a run whose flow outgrows the step stops.
-    SolverDef guarded = study_def(0.0);
+    PhysicsDef guarded = study_def(0.0);
     guarded.study_past_stability_limit = false;
     LeapfrogDef lf = default_leapfrog_def();
     lf.courant = 1.05;
@@ -64,9 +65,10 @@ TEST(CourantLimit, LeapfrogHoldsUpToOneAndBlowsUpAbove) {
 TEST(CourantLimit, FiniteVolumesHoldAtTheDefaultAndFailAbove) {
     const Scene s = test::basin_wave(40);
     const test::Watch held = fv_run(s, study_def(0.0), 0.45, 1.5);
-    SolverDef d = study_def(0.0);
-    d.cfl = 1.2;
-    Solver over(s, d);
+    PhysicsDef d = study_def(0.0);
+    FiniteVolumeDef fv;
+    fv.cfl = 1.2;
+    Solver over(s, d, fv);
     const test::Watch failed = test::run_watched(over, s, 1.5, 1.0);  // watched until the level has risen 1 m
     std::printf("finite volumes wave: cfl 0.45 level rise %.2e m; cfl 1.2: %.3f m, %ld depths clamped (worst %.2e m)\n",
                 held.level_rise, failed.level_rise, over.stats().negative_depth_fixes, over.stats().min_depth_seen);
@@ -76,7 +78,7 @@ TEST(CourantLimit, FiniteVolumesHoldAtTheDefaultAndFailAbove) {
     EXPECT_GT(over.stats().negative_depth_fixes, 0);
     EXPECT_LT(over.stats().min_depth_seen, -1e-3);
     d.study_past_stability_limit = false;
-    EXPECT_NE(test::error_of([&] { Solver(s, d); }).find("--cfl: must be in (0, 0.5]"), std::string::npos);
+    EXPECT_NE(test::error_of([&] { Solver(s, d, fv); }).find("--cfl: must be in (0, 0.5]"), std::string::npos);
 }
 
 // Manning friction in a 0.1 mm film draining down a 1:10 slope: the implicit treatment
@@ -85,7 +87,7 @@ TEST(CourantLimit, FiniteVolumesHoldAtTheDefaultAndFailAbove) {
 // dt g n^2 |u| / h^(4/3) >> 1.
 TEST(Friction, ImplicitHoldsInThinFilmsWhereExplicitFails) {
     const Scene s = test::film_on_slope();
-    SolverDef d = study_def(0.025);
+    PhysicsDef d = study_def(0.025);
     d.max_dt = 1.0;  // the step follows the cfl
     const test::Watch implicit = fv_run(s, d, 0.45, 20.0);
     const test::Watch explicit_small = fv_run(s, d, 0.2, 20.0, Friction::explicit_);
@@ -112,7 +114,7 @@ TEST(Friction, ImplicitHoldsInThinFilmsWhereExplicitFails) {
 // stops such a run.
 TEST(WetDryFronts, BoreIntoBuildingsHoldsInBothSchemes) {
     const Scene s = test::bore_into_buildings();
-    SolverDef d = test::closed_def();
+    PhysicsDef d = test::closed_def();
     d.default_manning_n = 0.013;
     Solver fv(s, d);
     const test::Watch f = test::run_watched(fv, s, 2.0);

@@ -1,0 +1,40 @@
+// What every scheme of stage one reads (finite volumes, solver.hpp; leap-frog,
+// leapfrog.hpp): the physics of the equations (docs/hydro.md), what drives the four
+// sides, the limits on the step that both schemes honour, and the counters a run
+// reports. The settings that only one scheme has are in its own definition
+// (FiniteVolumeDef, LeapfrogDef).
+#pragma once
+#include "hydro/boundary.hpp"
+
+namespace flotsam::hydro {
+
+struct PhysicsDef {
+    double gravity = 9.81;  // [m s^-2]
+    // The one dry tolerance: below it velocities are desingularised (swe_kernels.hpp,
+    // inverse_depth) and the reconstruction is first order; the leap-frog's faces do not
+    // open. 1e-5 m is a hundredth of a millimetre, far below any depth that moves debris
+    // (draft 2.5 cm) and far above round-off on depths of order 1 m.
+    double dry_depth = 1e-5;           // [m]
+    double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
+    BoundaryDef west, east, south, north;
+    PumpDef pump;  // the west side's, when it is a pump
+    // Limits on the step, for both schemes.
+    double max_dt = 0.05;  // [s] upper bound on the step
+    // Study only, never for a real run: accept cfl above 0.5 (finite volumes) and let the
+    // leap-frog run on past its Courant limit instead of failing, to show the failures.
+    bool study_past_stability_limit = false;
+};
+// West: a level series; east: transmissive; south and north: walls.
+PhysicsDef default_physics_def();
+
+// Counters that say how the run went.
+struct SolverStats {
+    long steps = 0;
+    long negative_depth_fixes = 0;  // cells where round-off made h < 0 (set to 0)
+    double min_depth_seen = 0.0;    // most negative h before the fix [m]
+    double cell_stages = 0.0;       // interior cells x stages stepped
+    double cell_stages_dry = 0.0;   // of which skipped as dry land (all of the stencil exactly zero)
+    long outflow_limits = 0;        // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
+};
+
+}  // namespace flotsam::hydro
