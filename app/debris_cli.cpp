@@ -8,8 +8,11 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/progress.hpp"
+#include "debris/catalogue.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
 #include "formats/scene.hpp"
@@ -32,7 +35,35 @@ struct DebrisOptions {
     std::string time_interpolation = debris::to_string(debris::default_flow_reader_def().time_interpolation);
     int threads = 0;
     bool quiet = false;
+    std::string body_type;  // catalogue entry; "": the options' values (the paper's box)
+    bool list_bodies = false;
 };
+
+// The body options that a catalogue entry sets when the command line leaves them out.
+void apply_catalogue(DebrisOptions& o, const CLI::App* sub) {
+    if (o.body_type.empty()) return;
+    const debris::BodyDef c = debris::catalogue_body_def(o.body_type, "--body");
+    auto take = [&](const char* option, double& field, double value) {
+        if (sub->get_option(option)->count() == 0) field = value;
+    };
+    take("--length", o.body.length, c.length);
+    take("--width", o.body.width, c.width);
+    take("--height", o.body.height, c.height);
+    take("--specific-gravity", o.body.specific_gravity, c.specific_gravity);
+    take("--cd1", o.body.cd1, c.cd1);
+    take("--cd2", o.body.cd2, c.cd2);
+    take("--cm", o.body.cm, c.cm);
+    take("--mu", o.body.mu, c.mu);
+    take("--restitution", o.body.restitution, c.restitution);
+}
+
+void print_catalogue() {
+    std::printf("%-22s %8s %7s %7s %10s %5s %5s %5s %5s %5s  %s\n", "name", "L [m]", "B [m]", "D [m]", "mass [kg]", "cd1", "cd2",
+                "cm", "mu", "e", "description");
+    for (const auto& b : debris::catalogue())
+        std::printf("%-22s %8.3f %7.3f %7.3f %10.4g %5.2f %5.2f %5.2f %5.2f %5.2f  %s\n", b.name.c_str(), b.length, b.width,
+                    b.height, b.mass, b.cd1, b.cd2, b.cm, b.mu, b.restitution, b.description.c_str());
+}
 
 // "x,y,heading_deg" → a body at that place.
 debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, int index) {
@@ -57,7 +88,7 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
     return b;
 }
 
-void run_debris(const DebrisOptions& o, const std::string& command_line) {
+void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
     debris::BodyDef base = o.body;
     base.contact = debris::parse_contact_model(o.contact);
     base.collision = debris::parse_collision_model(o.collision);
@@ -87,10 +118,10 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
         start_names.emplace_back();
     }
 
-    debris::WorldDef wdef = debris::default_world_def();
-    if (!(o.dt_max > 0)) fail("--dt-max", std::to_string(o.dt_max), "must be positive");
+    debris::WorldDef wdef = debris::default_world_def(bodies);
+    if (!(o.dt_max > 0) && !dt_max_default) fail("--dt-max", std::to_string(o.dt_max), "must be positive");
     if (!(o.vertex_step_fraction > 0)) fail("--vertex-step-fraction", std::to_string(o.vertex_step_fraction), "must be positive");
-    wdef.step.dt_max = o.dt_max;
+    if (!dt_max_default) wdef.step.dt_max = o.dt_max;
     wdef.step.vertex_step_fraction = o.vertex_step_fraction;
     wdef.step.integrator = debris::parse_integrator(o.integrator);
     wdef.flow.time_interpolation = debris::parse_time_interpolation(o.time_interpolation);
@@ -102,7 +133,7 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
     }
     debris::World world(o.flow, std::move(building), wdef);
     for (const auto& b : bodies) {
-        if (!world.flow().grid().contains(b.x, b.y)) fail("body '" + b.name + "'", "position", "outside the flow grid");
+        if (!world.covers(b.x, b.y)) fail("body '" + b.name + "'", "position", "outside the flow grid");
         world.add_body(b);
     }
     const double t0 = world.time();
@@ -132,7 +163,9 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
                      "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
                      world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
     }
-    debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names});
+    // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
+    const cf::GridMapping crs = cf::read_crs(nc::File::open_read(o.flow), "h");
+    debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names, crs});
 }
 
 }  // namespace
@@ -141,7 +174,7 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     auto opts = std::make_shared<DebrisOptions>();
     CLI::App* sub = app.add_subcommand("debris", "Replay debris bodies through a stored flow and write their trajectories");
     add_config_option(sub);
-    sub->add_option("--flow", opts->flow, "flow file written by `flotsam hydro`")->required()->check(CLI::ExistingFile);
+    sub->add_option("--flow", opts->flow, "flow file written by `flotsam hydro` (required)")->check(CLI::ExistingFile);
     sub->add_option("--scene", opts->scene, "scene file: building mask and named start points")->check(CLI::ExistingFile);
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
@@ -165,7 +198,9 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str();
     sub->add_option("--output-interval", opts->output_interval, "time between trajectory samples [s]")->capture_default_str();
     sub->add_option("--end-time", opts->end_time, "stop here [s] (default: the flow's last frame; later holds it steady)");
-    sub->add_option("--dt-max", opts->dt_max, "largest time step [s]")->capture_default_str();
+    sub->add_option("--dt-max", opts->dt_max,
+                    "largest time step [s] (default: 0.01 s for the paper's 0.25 m box, scaled as sqrt(length / 0.25 m) for "
+                    "the shortest body: the same step in Froude-scaled time at any scale)");
     sub->add_option("--vertex-step-fraction", opts->vertex_step_fraction,
                     "largest corner displacement per step, in grid cells (no tunnelling at the default)")
         ->capture_default_str();
@@ -176,7 +211,20 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str();
     sub->add_option("--threads", opts->threads, "OpenMP threads over bodies (0: default)")->capture_default_str();
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
-    sub->callback([opts, command_line] { run_debris(*opts, command_line); });
+    sub->add_option("--body", opts->body_type,
+                    "a body from the catalogue (docs/debris.md): its dimensions, mass and coefficients, unless given as "
+                    "options; one of " +
+                        debris::catalogue_names());
+    sub->add_flag("--list-bodies", opts->list_bodies, "print the debris catalogue and exit");
+    sub->callback([opts, sub, command_line] {
+        if (opts->list_bodies) {
+            print_catalogue();
+            return;
+        }
+        if (opts->flow.empty()) fail("debris", "--flow", "required");
+        apply_catalogue(*opts, sub);
+        run_debris(*opts, sub->get_option("--dt-max")->count() == 0, command_line);
+    });
 }
 
 }  // namespace flotsam

@@ -21,6 +21,7 @@ struct TrajectoryFileDef {
     std::string history;                   // the command line
     std::string flow_file;                 // the replayed flow
     std::vector<std::string> start_names;  // per body: the scene point, or "" for --at
+    cf::GridMapping crs;                   // the flow's CRS; empty: local metres
 };
 
 // Writes atomically (temporary file, then rename).

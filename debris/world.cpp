@@ -11,6 +11,18 @@ namespace flotsam::debris {
 
 WorldDef default_world_def() { return WorldDef{}; }
 
+WorldDef default_world_def(const std::vector<BodyDef>& bodies) {
+    WorldDef d = default_world_def();
+    if (bodies.empty()) return d;
+    double shortest = bodies.front().length;
+    for (const auto& b : bodies) shortest = std::min(shortest, b.length);
+    const double s = shortest / 0.25;  // [-]; 1 for the paper's box
+    d.step.dt_max *= std::sqrt(s);
+    d.flow.dry_depth *= s;
+    d.flow.accel_depth *= s;
+    return d;
+}
+
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {
     if (scene.building.empty()) return {};
     std::vector<std::uint8_t> out(grid.size(), 0);
@@ -27,13 +39,21 @@ World::World(const std::string& flow_path, std::vector<std::uint8_t> building, c
     : def_(def), flow_(flow_path, def.flow) {
     if (!building.empty() && building.size() != flow_.grid().size())
         fail(flow_path, "building mask", "does not match the flow grid");
+    // Map coordinates (beyond 10 km from the origin): work relative to a round kilometre.
+    const auto origin = [](double edge) { return std::abs(edge) > 1e4 ? 1000.0 * std::floor(edge / 1000.0) : 0.0; };
+    origin_x_ = origin(flow_.grid().x_min_edge());
+    origin_y_ = origin(flow_.grid().y_min_edge());
+    if (origin_x_ != 0.0 || origin_y_ != 0.0) flow_.set_origin(origin_x_, origin_y_);
     obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
     time_ = flow_.start_time();
 }
 
 std::size_t World::add_body(const BodyDef& def) {
-    params_.push_back(make_body_params(def, def_.step.water_density));
-    states_.push_back(initial_state(def, time_));
+    BodyDef local = def;
+    local.x -= origin_x_;
+    local.y -= origin_y_;
+    params_.push_back(make_body_params(local, def_.step.water_density));
+    states_.push_back(initial_state(local, time_));
     window_fitted_ = false;
     stats_.push_back({});
     return states_.size() - 1;
@@ -48,7 +68,7 @@ void World::fit_window() {
     const StepContext ctx{flow_, obstacles_, def_.step};
     for (std::size_t b = 0; b < states_.size(); ++b) {
         // Beyond what one step needs (else a body could never be served), plus the margin.
-        const double r = window_pad(ctx, params_[b]) + def_.window_margin;
+        const double r = window_pad(ctx, params_[b]) + def_.window_margin_lengths * params_[b].def.length;
         x0 = std::min(x0, states_[b].x - r);
         x1 = std::max(x1, states_[b].x + r);
         y0 = std::min(y0, states_[b].y - r);

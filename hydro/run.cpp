@@ -370,6 +370,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         fd.gauge_interval = run.gauge_interval;
         fd.arrival_depth = run.arrival_depth;
         fd.deflate_level = run.deflate_level;
+        fd.crs = scene.crs;
         fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
         fd.attributes["source"] = version_string() + "; " + scheme_description(solver);
         fd.attributes["history"] = run.command_line;

@@ -5,7 +5,9 @@
 #include <memory>
 #include <numbers>
 
+#include "common/cf.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/progress.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
@@ -52,12 +54,16 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     r.perturbation = spec.perturbation;
     r.member_count = int(all.size());
     r.output_interval = spec.output_interval;
-    debris::WorldDef wdef = debris::default_world_def();
+    std::vector<debris::BodyDef> shapes;
+    for (const auto& b : spec.bodies) shapes.push_back(b.shape);
+    debris::WorldDef wdef = debris::default_world_def(shapes);  // scale-dependent settings follow the bodies
     if (spec.dt_max > 0) wdef.step.dt_max = spec.dt_max;
     wdef.threads = def.threads;
     r.dt_max = wdef.step.dt_max;
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
+    // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.
+    r.crs = cf::read_crs(nc::File::open_read(spec.flows.front()), "h");
 
     std::unique_ptr<Scene> scene;
     if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));
@@ -75,7 +81,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         }
         debris::World world(path, std::move(building), wdef);
         for (const Member* m : on_flow) {
-            if (!world.flow().grid().contains(m->def.x, m->def.y))
+            if (!world.covers(m->def.x, m->def.y))
                 fail(spec.path, "body '" + m->def.name + "'", "start outside the grid of flow " + path);
             world.add_body(m->def);
         }

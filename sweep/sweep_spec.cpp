@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "common/sha256.hpp"
 #include "common/toml_lite.hpp"
+#include "debris/catalogue.hpp"
 #include "formats/scene.hpp"
 
 namespace flotsam::sweep {
@@ -216,6 +217,7 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
             bad(doc, *t, key, "must be a number or an array of numbers");
         }
     }
+    spec.control = control;
     const bool include_control = has(*t, "include_control") ? toml_bool(doc, *t, "include_control") : true;
     if (d == "control") {
         spec.params = {{"control", control, true}};
@@ -301,8 +303,14 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
     std::unique_ptr<Scene> scene;
     for (const auto& t : doc.tables) {
         if (t.name != "body") continue;
-        toml_allow_only(doc, t, {"start", "at", "name", "length", "width", "height", "specific_gravity"});
+        toml_allow_only(doc, t, {"start", "at", "name", "type", "length", "width", "height", "specific_gravity"});
         BodySpec b;
+        if (has(t, "type")) {
+            b.type = toml_string(doc, t, "type");
+            if (!debris::find_catalogue_body(b.type))
+                bad(doc, t, "type", "'" + b.type + "' is not in the debris catalogue (" + debris::catalogue_names() + ")");
+            b.shape = debris::catalogue_body_def(b.type, path);
+        }
         if (has(t, "start") == has(t, "at"))
             bad(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
         if (has(t, "start")) {
@@ -404,11 +412,21 @@ std::vector<Member> enumerate_members(const SweepSpec& spec) {
                         d.contact = spec.variants[std::size_t(v)].contact;
                         d.collision = spec.variants[std::size_t(v)].collision;
                         const ParamValues& pv = spec.params[std::size_t(p)].values;
-                        d.cd1 = pv[0];
-                        d.cd2 = pv[1];
-                        d.cm = pv[2];
-                        d.mu = pv[3];
-                        d.restitution = pv[4];
+                        const BodySpec& body = spec.bodies[std::size_t(b)];
+                        if (body.type.empty()) {
+                            d.cd1 = pv[0];
+                            d.cd2 = pv[1];
+                            d.cm = pv[2];
+                            d.mu = pv[3];
+                            d.restitution = pv[4];
+                        } else {  // the entry's own coefficients, scaled as the set scales the control
+                            const ParamValues& c = spec.control;
+                            d.cd1 = body.shape.cd1 * (pv[0] / c[0]);
+                            d.cd2 = body.shape.cd2 * (pv[1] / c[1]);
+                            d.cm = body.shape.cm * (pv[2] / c[2]);
+                            d.mu = c[3] > 0 ? body.shape.mu * (pv[3] / c[3]) : pv[3];
+                            d.restitution = c[4] > 0 ? std::min(1.0, body.shape.restitution * (pv[4] / c[4])) : pv[4];
+                        }
                         out.push_back(m);
                     }
             }

@@ -62,6 +62,10 @@ struct BodySpec {
     double x = 0.0, y = 0.0;                             // [m], from the scene point or `at`
     double heading_deg = 0.0;                            // long axis from +x, counter-clockwise [degree]
     debris::BodyDef shape = debris::default_body_def();  // length, width, height, specific gravity
+    // Catalogue entry (debris/catalogue.hpp), "" for none. Such a body keeps the entry's
+    // coefficients as its own control: a parameter set multiplies them by the set's
+    // value over the spec's control value (so "cd1x1.5" is 1.5 x the body's own cd1).
+    std::string type;
 };
 
 struct PerturbationDef {
@@ -79,7 +83,8 @@ struct SweepSpec {
     std::vector<BodySpec> bodies;
     std::vector<Variant> variants;
     std::vector<ParameterSet> params;
-    std::string design;  // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
+    ParamValues control = paper_control();  // the [parameters] control values
+    std::string design;                     // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
     PerturbationDef perturbation;
     double output_interval = 1.0;  // trajectory sample spacing [s]
     double end_time = -1.0;        // [s]; < 0: the earliest last frame of the flows

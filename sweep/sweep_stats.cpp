@@ -20,14 +20,14 @@ namespace {
 
 const double nan = std::nan("");
 
-SectionSummary summarise(std::vector<double> ys, std::vector<double> speeds, const StatsDef& def) {
+SectionSummary summarise(std::vector<double> ys, std::vector<double> speeds, double kde_floor) {
     SectionSummary s;
     s.count = int(ys.size());
     std::sort(ys.begin(), ys.end());
     s.y_mean = mean_of(ys);
     s.y_median = quantile_sorted(ys, 0.5);
     s.y_std = std_of(ys);
-    s.bandwidth = silverman_bandwidth(speeds, def.kde_floor);
+    s.bandwidth = silverman_bandwidth(speeds, kde_floor);
     std::sort(speeds.begin(), speeds.end());
     s.speed_mean = mean_of(speeds);
     s.speed_median = quantile_sorted(speeds, 0.5);
@@ -84,6 +84,7 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     for (std::size_t p = 0; p < sw.params.size(); ++p)
         if (sw.params[p].is_control && s.control < 0) s.control = int(p);
     s.sections = scene.sections;
+    s.crs = scene.crs;
     for (const auto& r : scene.regions) s.regions.push_back(r.name);
     s.time = sw.time;
     const std::size_t nm = sw.members.size(), ns = s.sections.size(), np = s.params.size(), nr = s.regions.size(),
@@ -120,12 +121,14 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     for (std::size_t m = 0; m < nm; ++m) {
         const debris::Track& t = sw.members[m].track;
         if (t.x.empty()) continue;
-        const int k0 = motion_start_index(t.x, t.y);
+        const double scale = body_scale(sw.members[m].length);
+        const int k0 = motion_start_index(t.x, t.y, motion_threshold * scale);
         if (k0 >= 0) {
             const double tm = s.time[std::size_t(k0)];
             s.motion_start[m] = tm;
             s.max_rotation[m] = max_rotation(s.time, t.yaw_deg, k0, def.yaw_window);
-            s.max_yaw_to_motion[m] = max_yaw_to_motion(s.time, t.yaw_deg, t.u, t.v, k0, def.yaw_window, def.yaw_min_speed);
+            s.max_yaw_to_motion[m] =
+                max_yaw_to_motion(s.time, t.yaw_deg, t.u, t.v, k0, def.yaw_window, def.yaw_min_speed * std::sqrt(scale));
             const double xe = sample_at(s.time, t.x, tm + def.yaw_window), ye = sample_at(s.time, t.y, tm + def.yaw_window);
             s.motion_direction[m] = std::atan2(ye - t.y[0], xe - t.x[0]) * 180.0 / std::numbers::pi;
         }
@@ -162,14 +165,17 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     double top = 0.0;
     s.section.assign(ng, std::vector<SectionSummary>(ns));
     s.section_by_param.assign(ng, std::vector<std::vector<SectionSummary>>(np, std::vector<SectionSummary>(ns)));
+    // The group's body sets the scale of its thresholds (trajectory_kernels.hpp).
+    auto group_scale = [&](std::size_t g) { return body_scale(sw.members[std::size_t(s.groups[g].members.front())].length); };
     for (std::size_t g = 0; g < ng; ++g)
         for (std::size_t c = 0; c < ns; ++c) {
+            const double kde_floor = def.kde_floor * std::sqrt(group_scale(g));
             collect(s.groups[g].members, -1, c, ys, sp);
-            s.section[g][c] = summarise(ys, sp, def);
+            s.section[g][c] = summarise(ys, sp, kde_floor);
             for (double v : sp) top = std::max(top, v + 3.0 * s.section[g][c].bandwidth);
             for (std::size_t p = 0; p < np; ++p) {
                 collect(s.groups[g].members, int(p), c, ys, sp);
-                s.section_by_param[g][p][c] = summarise(ys, sp, def);
+                s.section_by_param[g][p][c] = summarise(ys, sp, kde_floor);
                 for (double v : sp) top = std::max(top, v + 3.0 * s.section_by_param[g][p][c].bandwidth);
             }
         }
@@ -235,9 +241,10 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
         }
         if (s.control < 0) continue;
         const auto& dc = s.distance_mean[g][std::size_t(s.control)];
+        const double r_min = def.r_min_distance * group_scale(g);
         for (std::size_t p = 0; p < np; ++p)
             for (std::size_t k = 0; k < nt; ++k)
-                if (dc[k] >= def.r_min_distance && !std::isnan(s.distance_mean[g][p][k]))
+                if (dc[k] >= r_min && !std::isnan(s.distance_mean[g][p][k]))
                     s.relative_error[g][p][k] = (s.distance_mean[g][p][k] - dc[k]) / dc[k];
     }
 
@@ -287,10 +294,18 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                   dreg = f.def_dim("region", nr), dsp = f.def_dim("speed", nk), dyaw = f.def_dim("yaw_bin", nb),
                   dbnd = f.def_dim("bnds", 2), dt = f.def_dim("time", nt), dm = f.def_dim("member", nm),
                   dx = f.def_dim("x", std::size_t(s.map.nx)), dy = f.def_dim("y", std::size_t(s.map.ny));
+        const std::string grid_mapping = cf::grid_mapping_of(s.crs);
+        // Variables over (..., y, x) are maps: they name the grid mapping.
         auto var = [&](const std::string& name, nc_type type, std::vector<int> dims, const char* units,
                        const std::string& long_name, bool fill = false) {
-            return cf::def_var(
-                f, {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name, .fill = fill});
+            const bool map = dims.size() >= 2 && dims[dims.size() - 2] == dy && dims.back() == dx;
+            return cf::def_var(f, {.name = name,
+                                   .type = type,
+                                   .dims = std::move(dims),
+                                   .units = units,
+                                   .long_name = long_name,
+                                   .fill = fill,
+                                   .grid_mapping = map ? grid_mapping : std::string()});
         };
         // Tables.
         const int vgb = var("group_body", NC_STRING, {dg}, "", "body of the group");
@@ -372,6 +387,7 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
 
         // Maps.
         const cf::XYAxes map_axes = cf::def_xy(f, dx, dy, "map cell centre");
+        cf::def_crs(f, s.crs);
         const int vpp = var("pass_probability", NC_FLOAT, {dg, dy, dx}, "1",
                             "fraction of the group's trajectories whose centre passes the cell");
         const int vmx =
