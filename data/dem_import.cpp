@@ -214,6 +214,16 @@ ManningRule read_manning(const TomlDoc& doc, const TomlTable& t) {
     return m;
 }
 
+// The shortest decimal that reads back as the same double.
+std::string shortest_text(double v) {
+    char buf[40];
+    for (int digits = 1; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (std::strtod(buf, nullptr) == v) break;
+    }
+    return buf;
+}
+
 std::string read_hydro_defaults(const TomlDoc& doc, const TomlTable& t) {
     toml_allow_only(doc, t, scene_hydro_options());
     std::string lines;
@@ -223,14 +233,11 @@ std::string read_hydro_defaults(const TomlDoc& doc, const TomlTable& t) {
         std::string text;
         if (v.kind == TomlValue::Kind::Number) {
             if (key != "nest-x" && !(v.number > 0.0)) fail(doc.path, "line " + std::to_string(v.line), key + " must be positive");
-            char buf[40];
-            std::snprintf(buf, sizeof buf, "%.17g", v.number);
-            text = buf;
+            text = shortest_text(v.number);
         } else if (v.kind == TomlValue::Kind::NumberArray && key == "output-window" && v.numbers.size() == 4) {
             for (std::size_t k = 0; k < 4; ++k) {
-                char buf[40];
-                std::snprintf(buf, sizeof buf, "%s%.17g", k ? "," : "", v.numbers[k]);
-                text += buf;
+                if (k > 0) text += ',';
+                text += shortest_text(v.numbers[k]);
             }
         } else {
             fail(doc.path, "line " + std::to_string(v.line),

@@ -320,7 +320,7 @@ TEST(GisImport, FeaturesHydroTableBecomesSceneRecommendations) {
     ImportDef def = import_def(tif);
     def.features_path = write_file(dir, "f.toml", "[hydro]\nmax-dt = 0.79\narrival-depth = 6.25\nnest-x = -300\n");
     const Scene s = import_scene(def);
-    EXPECT_EQ(s.hydro_defaults, "max-dt = 0.79000000000000004\narrival-depth = 6.25\nnest-x = -300\n");
+    EXPECT_EQ(s.hydro_defaults, "max-dt = 0.79\narrival-depth = 6.25\nnest-x = -300\n");
     def.features_path = write_file(dir, "bad.toml", "[hydro]\ncfl = 0.3\n");
     const std::string e = error_of([&] { import_scene(def); });
     EXPECT_NE(e.find("bad.toml"), std::string::npos) << e;
