@@ -82,6 +82,12 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const SolverDef& def, const L
     if (leapfrog.step_divides > 0.0) dt_ = leapfrog.step_divides / std::ceil(leapfrog.step_divides / dt_ - 1e-9);
 }
 
+std::string LeapfrogSolver::description() const {
+    return "staggered C-grid, leap-frog, first-order upwind momentum advection, semi-implicit Manning, outflow limiter; fixed "
+           "step " +
+           std::to_string(stable_dt()) + " s (Courant " + std::to_string(lf_.courant) + ")";
+}
+
 double LeapfrogSolver::volume() const {
     double v = 0.0;  // serial: the same sum whatever the thread count
     for (int j = 0; j < grid_.ny; ++j)

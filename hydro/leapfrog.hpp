@@ -65,6 +65,7 @@
 // higher ground, and a face whose mean depth is below it has no velocity.
 #pragma once
 #include <array>
+#include <string>
 #include <vector>
 
 #include "formats/scene.hpp"
@@ -122,6 +123,10 @@ public:
         }
     }
     double volume() const;  // [m^3]
+    // Interior cells x steps since construction.
+    double cell_updates() const { return double(stats_.steps) * double(grid_.size()); }
+    // The scheme in words, with its fixed step (the flow file's `source`).
+    std::string description() const;
 
     double pump_level_at_stop() const { return forcing_.pump_level_at_stop(); }
     void set_pump_level_at_stop(double v) { forcing_.set_pump_level_at_stop(v); }

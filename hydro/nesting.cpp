@@ -110,6 +110,11 @@ NestedSolver::NestedSolver(const Scene& scene, const SolverDef& def, const NestD
     coarse_.set_ghost_bed(Side::east, zc);
 }
 
+std::string NestedSolver::description() const {
+    return coarse_.description() + "; nested: " + std::to_string(coarse_.grid().dx) +
+           " m west of x = " + std::to_string(grid_.x_min_edge() + i_nest_ * grid_.dx) + " m, sub-cycled, refluxed";
+}
+
 void NestedSolver::set_time(double t) {
     time_ = t;
     coarse_.set_time(t);

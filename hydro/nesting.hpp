@@ -21,6 +21,7 @@
 // Keep the interface in water that stays wet and smooth (the flume's slope at
 // 0.2–0.3 m depth is a good place): the coupling is first order there in x.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "formats/scene.hpp"
@@ -54,6 +55,8 @@ public:
     double volume() const { return coarse_.volume() + fine_.volume(); }
     // Cell updates done so far (coarse cells × coarse steps + fine cells × fine steps).
     double cell_updates() const { return cell_updates_; }
+    // The scheme and the two grids in words (the flow file's `source`).
+    std::string description() const;
     long fine_steps() const { return fine_steps_; }
     int interface_column() const { return i_nest_; }  // first fine column on the scene grid
     const Solver& coarse() const { return coarse_; }

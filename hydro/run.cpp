@@ -196,19 +196,12 @@ struct Checkpoint {
     std::string key;  // restart_key() of the run that wrote it
 };
 
-// The conserved state of a solver, as arrays: h, hu, hv of each grid (padded layout).
-std::vector<std::vector<double>*> state_arrays(Solver& s) {
-    return {&s.depth_data(), &s.x_discharge_data(), &s.y_discharge_data()};
-}
-std::vector<std::vector<double>*> state_arrays(NestedSolver& s) { return s.state_arrays(); }
-std::vector<std::vector<double>*> state_arrays(LeapfrogSolver& s) { return s.state_arrays(); }
-
 template <class S>
 void write_checkpoint(const std::string& path, S& s, const Summary& sum, const Checkpoint& c) {
     AtomicOutput out(path);
     {
         nc::File f = nc::File::create(out.temp_path());
-        const auto arrays = state_arrays(s);
+        const auto arrays = s.state_arrays();
         std::vector<int> vs;
         for (std::size_t k = 0; k < arrays.size(); ++k) {
             const int d = f.def_dim("state_" + std::to_string(k) + "_cell", arrays[k]->size());
@@ -259,7 +252,7 @@ Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
     c.pump_level = need("pump_level");
     c.pump_stopped = need("pump_stopped") != 0.0;
     c.key = read_checkpoint_key(path);
-    const auto arrays = state_arrays(s);
+    const auto arrays = s.state_arrays();
     for (std::size_t k = 0; k < arrays.size(); ++k) {
         const std::string name = "state_" + std::to_string(k);
         auto v = f.get_double(f.var(name));
@@ -296,112 +289,137 @@ double cpu_seconds() {
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-double cell_updates(const Solver& s, long steps) { return double(steps) * double(s.grid().size()); }
-double cell_updates(const NestedSolver& s, long) { return s.cell_updates(); }
-double cell_updates(const LeapfrogSolver& s, long steps) { return double(steps) * double(s.grid().size()); }
+// ---- the run, step by step ----
 
-std::string scheme_description(const Solver& s) {
-    return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
-           (s.def().friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
-}
-std::string scheme_description(const LeapfrogSolver& s) {
-    return "staggered C-grid, leap-frog, first-order upwind momentum advection, semi-implicit Manning, outflow limiter; fixed "
-           "step " +
-           std::to_string(s.stable_dt()) + " s (Courant " + std::to_string(s.leapfrog_def().courant) + ")";
-}
-std::string scheme_description(const NestedSolver& s) {
-    return scheme_description(s.coarse()) + "; nested: " + std::to_string(s.coarse().grid().dx) +
-           " m west of x = " + std::to_string(s.grid().x_min_edge() + s.interface_column() * s.grid().dx) +
-           " m, sub-cycled, refluxed";
-}
-
-template <class S>
-RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const SolverDef& solver_def) {
-    const Window win = make_window(scene.grid, run.window);
-    const std::vector<double> times = frame_times(run.duration, run.output_interval);
-
-    std::vector<FlowGauge> gauge_points;
+std::vector<FlowGauge> gauge_points_of(const Scene& scene, const RunDef& run) {
+    std::vector<FlowGauge> points;
     for (const auto& p : scene.points)
-        if (p.kind == "gauge") gauge_points.push_back({p.name, p.x, p.y});
-    for (const auto& g : run.gauges) gauge_points.push_back(g);
-    Gauges gauges(gauge_points, scene.grid, run.gauge_interval, run.duration);
+        if (p.kind == "gauge") points.push_back({p.name, p.x, p.y});
+    for (const auto& g : run.gauges) points.push_back(g);
+    return points;
+}
 
-    Summary sum;
-    sum.max_depth.assign(win.grid.size(), 0.0f);
-    sum.max_speed.assign(win.grid.size(), 0.0f);
-    sum.arrival.assign(win.grid.size(), float(kFill));
-
-    const std::string key = restart_key(run, solver_def);
-    const std::string ckpt = checkpoint_path(run.out_file);
-    if (!run.restart && std::filesystem::exists(ckpt))
-        fail(ckpt, "",
-             "holds an interrupted run of " + run.out_file + ": continue it with --restart, or remove " + ckpt + " and " +
-                 run.out_file + ".part to start afresh");
-    AtomicOutput out(run.out_file);
-    std::optional<FlowWriter> writer;
-    Checkpoint state;
-    if (run.restart) {
-        out.keep_partial();  // the interrupted run's work: never removed, whatever happens next
-        if (!std::filesystem::exists(ckpt)) fail(ckpt, "", "no checkpoint to restart from");
-        if (!std::filesystem::exists(out.temp_path()))
-            fail(out.temp_path(), "", "the partial output of the interrupted run is missing");
-        // The settings first (attributes only), so that a refusal touches no state.
-        const std::string written_with = read_checkpoint_key(ckpt);
-        if (written_with != key)
-            fail(ckpt, "",
-                 "was written with other settings, scene or boundary files (" + differing_settings(written_with, key) +
-                     "): restart with the checkpoint's settings, or remove " + ckpt + " and " + out.temp_path() +
-                     " to start afresh");
-        state = read_checkpoint(ckpt, solver, sum);
-        solver.set_time(state.time);
-        if (state.pump_stopped) solver.set_pump_level_at_stop(state.pump_level);
-        writer.emplace(FlowWriter::reopen(out.temp_path()));
-        gauges.resume_at(state.next_gauge);
-    } else {
-        FlowFileDef fd;
-        fd.window = win.grid;
-        fd.z.resize(win.grid.size());
-        for (int j = win.j0; j <= win.j1; ++j)
-            for (int i = win.i0; i <= win.i1; ++i)
-                fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
-        fd.frame_times = times;
-        fd.gauges = gauge_points;
-        fd.gauge_samples = gauges.samples();
-        fd.gauge_interval = run.gauge_interval;
-        fd.arrival_depth = run.arrival_depth;
-        fd.deflate_level = run.deflate_level;
-        fd.crs = scene.crs;
-        fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
-        fd.attributes["source"] = version_string() + "; " + scheme_description(solver);
-        fd.attributes["history"] = run.command_line;
-        fd.attributes["flotsam_config"] = run.config_text;
-        fd.attributes["scene_file"] = run.scene_file;
-        fd.attributes["scene_title"] = scene.title;
-        fd.attributes["realisation"] = std::to_string(run.realisation);
-        fd.attributes["boundary_file"] = boundary_files(solver_def);
-        fd.attributes["boundary_checksum"] = boundary_checksums(solver_def);
-        fd.attributes["dry_depth_m"] = std::to_string(solver_def.dry_depth);
-        writer.emplace(out.temp_path(), fd);
-        state.volume_start = solver.volume();
-        write_frame(*writer, 0, solver, win);
-        state.next_frame = 1;
-        accumulate(sum, solver, win, 0.0, run.arrival_depth);
-        gauges.record(0.0, gauges.read(solver), 0.0, gauges.read(solver));
+// What a run carries from start to end besides the solver: the output window and frame
+// times, the gauges and the maxima, the file being written and the checkpoint's
+// bookkeeping.
+struct RunOutput {
+    RunOutput(const Scene& scene, const RunDef& run, const SolverDef& def)
+        : win(make_window(scene.grid, run.window)),
+          times(frame_times(run.duration, run.output_interval)),
+          gauge_points(gauge_points_of(scene, run)),
+          gauges(gauge_points, scene.grid, run.gauge_interval, run.duration),
+          key(restart_key(run, def)),
+          file(run.out_file),
+          checkpoint(checkpoint_path(run.out_file)) {
+        sum.max_depth.assign(win.grid.size(), 0.0f);
+        sum.max_speed.assign(win.grid.size(), 0.0f);
+        sum.arrival.assign(win.grid.size(), float(kFill));
     }
+    Window win;
+    std::vector<double> times;
+    std::vector<FlowGauge> gauge_points;
+    Gauges gauges;
+    Summary sum;
+    std::string key;  // restart_key() of this run
+    AtomicOutput file;
+    std::string checkpoint;
+    std::optional<FlowWriter> writer;
+    Checkpoint state;  // where the run stands (its time and counters are set when saved)
+};
 
-    Progress progress(run.label, run.duration, 10.0, run.quiet);
-    RunResult res;
-    const auto wall0 = std::chrono::steady_clock::now();
-    const double cpu0 = cpu_seconds();
+// The flow file's definition: the window's bed, the axes, the gauges and the global
+// attributes that say how the flow was made.
+FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const SolverDef& def, const RunOutput& o,
+                          const std::string& scheme) {
+    const Window& win = o.win;
+    FlowFileDef fd;
+    fd.window = win.grid;
+    fd.z.resize(win.grid.size());
+    for (int j = win.j0; j <= win.j1; ++j)
+        for (int i = win.i0; i <= win.i1; ++i)
+            fd.z[win.grid.index(i - win.i0, j - win.j0)] = float(scene.z[scene.grid.index(i, j)]);
+    fd.frame_times = o.times;
+    fd.gauges = o.gauge_points;
+    fd.gauge_samples = o.gauges.samples();
+    fd.gauge_interval = run.gauge_interval;
+    fd.arrival_depth = run.arrival_depth;
+    fd.deflate_level = run.deflate_level;
+    fd.crs = scene.crs;
+    fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
+    fd.attributes["source"] = version_string() + "; " + scheme;
+    fd.attributes["history"] = run.command_line;
+    fd.attributes["flotsam_config"] = run.config_text;
+    fd.attributes["scene_file"] = run.scene_file;
+    fd.attributes["scene_title"] = scene.title;
+    fd.attributes["realisation"] = std::to_string(run.realisation);
+    fd.attributes["boundary_file"] = boundary_files(def);
+    fd.attributes["boundary_checksum"] = boundary_checksums(def);
+    fd.attributes["dry_depth_m"] = std::to_string(def.dry_depth);
+    return fd;
+}
+
+// A fresh run: creates the file and stores the initial state (frame 0, the maxima and
+// the gauges at t = 0).
+template <RunnableSolver S>
+void start(S& solver, const Scene& scene, const RunDef& run, const SolverDef& def, RunOutput& o) {
+    o.writer.emplace(o.file.temp_path(), flow_file_def(scene, run, def, o, solver.description()));
+    o.state.volume_start = solver.volume();
+    write_frame(*o.writer, 0, solver, o.win);
+    o.state.next_frame = 1;
+    accumulate(o.sum, solver, o.win, 0.0, run.arrival_depth);
+    o.gauges.record(0.0, o.gauges.read(solver), 0.0, o.gauges.read(solver));
+}
+
+// A restart: the state, maxima and partial file of the interrupted run, if they were
+// written with the same settings, scene and boundary files.
+template <RunnableSolver S>
+void resume(S& solver, RunOutput& o) {
+    o.file.keep_partial();  // the interrupted run's work: never removed, whatever happens next
+    if (!std::filesystem::exists(o.checkpoint)) fail(o.checkpoint, "", "no checkpoint to restart from");
+    if (!std::filesystem::exists(o.file.temp_path()))
+        fail(o.file.temp_path(), "", "the partial output of the interrupted run is missing");
+    // The settings first (attributes only), so that a refusal touches no state.
+    const std::string written_with = read_checkpoint_key(o.checkpoint);
+    if (written_with != o.key)
+        fail(o.checkpoint, "",
+             "was written with other settings, scene or boundary files (" + differing_settings(written_with, o.key) +
+                 "): restart with the checkpoint's settings, or remove " + o.checkpoint + " and " + o.file.temp_path() +
+                 " to start afresh");
+    o.state = read_checkpoint(o.checkpoint, solver, o.sum);
+    solver.set_time(o.state.time);
+    if (o.state.pump_stopped) solver.set_pump_level_at_stop(o.state.pump_level);
+    o.writer.emplace(FlowWriter::reopen(o.file.temp_path()));
+    o.gauges.resume_at(o.state.next_gauge);
+}
+
+// Saves the exact state at time t after `steps` steps, so that --restart continues to
+// the same result.
+template <RunnableSolver S>
+void save_checkpoint(S& solver, const SolverDef& def, RunOutput& o, double t, long steps) {
+    o.gauges.flush(*o.writer);
+    o.writer->sync();
+    o.state.time = t;
+    o.state.steps = steps;
+    o.state.next_gauge = o.gauges.next();
+    o.state.pump_stopped = def.west.kind == BoundaryKind::pump && t >= def.west.pump_stop;
+    o.state.pump_level = solver.pump_level_at_stop();
+    o.state.key = o.key;
+    write_checkpoint(o.checkpoint, solver, o.sum, o.state);
+}
+
+// Steps to the last frame, storing frames, gauges, maxima and checkpoints on the way.
+// Returns the step count since the start of the run (restarts included), negated when
+// the run stopped early at run.stop_after.
+template <RunnableSolver S>
+long step_to_end(S& solver, const RunDef& run, const SolverDef& def, RunOutput& o, Progress& progress) {
     double next_checkpoint = run.checkpoint_interval > 0.0
                                  ? (std::floor(solver.time() / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval
                                  : 1e300;
-    long steps = state.steps;
-    auto before = gauges.read(solver);
-    bool stopped = false;
-    while (state.next_frame < times.size()) {
+    long steps = o.state.steps;
+    auto before = o.gauges.read(solver);
+    while (o.state.next_frame < o.times.size()) {
         const double t0 = solver.time();
-        const double target = times[state.next_frame];
+        const double target = o.times[o.state.next_frame];
         double dt = solver.stable_dt();
         // A step that would stop within a millionth of itself short of the frame goes to
         // it (a fixed step that divides the interval lands there despite round-off in t).
@@ -411,66 +429,79 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Solve
         if (reaches) solver.set_time(target);  // land exactly on the frame time
         ++steps;
         const double t1 = solver.time();
-        auto after = gauges.read(solver);
-        gauges.record(t0, before, t1, after);
+        auto after = o.gauges.read(solver);
+        o.gauges.record(t0, before, t1, after);
         before = std::move(after);
-        accumulate(sum, solver, win, t1, run.arrival_depth);
+        accumulate(o.sum, solver, o.win, t1, run.arrival_depth);
         if (reaches) {
-            write_frame(*writer, state.next_frame, solver, win);
-            ++state.next_frame;
-            gauges.flush(*writer);
-            writer->sync();
+            write_frame(*o.writer, o.state.next_frame, solver, o.win);
+            ++o.state.next_frame;
+            o.gauges.flush(*o.writer);
+            o.writer->sync();
         }
         // Checkpoints and stops fall on stored frames, and every frame ends with a sync:
         // the file then has the same bytes (HDF5's layout included) whether the run was
         // checkpointed, stopped and restarted, or never interrupted.
-        if (reaches && (t1 >= next_checkpoint - 1e-12 || (run.stop_after >= 0.0 && t1 >= run.stop_after))) {
-            gauges.flush(*writer);
-            writer->sync();
-            state.time = t1;
-            state.steps = steps;
-            state.next_gauge = gauges.next();
-            state.pump_stopped = solver_def.west.kind == BoundaryKind::pump && t1 >= solver_def.west.pump_stop;
-            state.pump_level = solver.pump_level_at_stop();
-            state.key = key;
-            write_checkpoint(ckpt, solver, sum, state);
+        const bool stop = run.stop_after >= 0.0 && t1 >= run.stop_after;
+        if (reaches && (t1 >= next_checkpoint - 1e-12 || stop)) {
+            save_checkpoint(solver, def, o, t1, steps);
             if (run.checkpoint_interval > 0.0)
                 next_checkpoint = (std::floor(t1 / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval;
-            if (run.stop_after >= 0.0 && t1 >= run.stop_after) {
-                stopped = true;
-                break;
-            }
+            if (stop) return -steps;
         }
         progress.update(t1, dt, steps);
     }
+    return steps;
+}
+
+template <RunnableSolver S>
+RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const SolverDef& def) {
+    const std::string ckpt = checkpoint_path(run.out_file);
+    if (!run.restart && std::filesystem::exists(ckpt))
+        fail(ckpt, "",
+             "holds an interrupted run of " + run.out_file + ": continue it with --restart, or remove " + ckpt + " and " +
+                 run.out_file + ".part to start afresh");
+    RunOutput o(scene, run, def);
+    if (run.restart)
+        resume(solver, o);
+    else
+        start(solver, scene, run, def, o);
+    const long steps_before = o.state.steps;  // 0 unless restarted
+    const auto wall0 = std::chrono::steady_clock::now();
+    const double cpu0 = cpu_seconds();
+    Progress progress(run.label, run.duration, 10.0, run.quiet);
+    const long signed_steps = step_to_end(solver, run, def, o, progress);
+
+    RunResult res;
     res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     res.cpu_seconds = cpu_seconds() - cpu0;
-    res.steps = steps - state.steps * (run.restart ? 1 : 0);
+    res.completed = signed_steps >= 0;
+    res.steps = std::abs(signed_steps) - steps_before;
     res.simulated = solver.time();
-    res.cell_updates_per_second = cell_updates(solver, res.steps) / std::max(res.wall_seconds, 1e-9);
-    res.volume_start = state.volume_start;
+    res.cell_updates_per_second = solver.cell_updates() / std::max(res.wall_seconds, 1e-9);
+    res.volume_start = o.state.volume_start;
     res.volume_end = solver.volume();
     res.negative_depth_fixes = solver.stats().negative_depth_fixes;
     res.outflow_limits = solver.stats().outflow_limits;
     res.dry_skipped_fraction = solver.stats().cell_stages_dry / std::max(solver.stats().cell_stages, 1.0);
-    if (stopped) {
-        writer->close();
-        out.keep_partial();
-        res.completed = false;
+    if (!res.completed) {
+        o.writer->close();
+        o.file.keep_partial();
         return res;
     }
-    gauges.flush(*writer);
-    writer->write_summary(sum.max_depth, sum.max_speed, sum.arrival);
-    writer->close();
-    out.commit();
-    std::filesystem::remove(ckpt);
-    progress.finish(solver.time(), steps);
-    res.completed = true;
+    o.gauges.flush(*o.writer);
+    o.writer->write_summary(o.sum.max_depth, o.sum.max_speed, o.sum.arrival);
+    o.writer->close();
+    o.file.commit();
+    std::filesystem::remove(o.checkpoint);
+    progress.finish(solver.time(), std::abs(signed_steps));
     res.file_bytes = std::filesystem::file_size(run.out_file);
     return res;
 }
 
 }  // namespace
+
+static_assert(RunnableSolver<Solver> && RunnableSolver<NestedSolver> && RunnableSolver<LeapfrogSolver>);
 
 RunResult run_hydro(const RunDef& run, const SolverDef& solver_def) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");

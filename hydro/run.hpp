@@ -3,6 +3,7 @@
 // checkpoints let an interrupted run continue to the same result.
 #pragma once
 #include <array>
+#include <concepts>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,30 @@ namespace flotsam::hydro {
 // staggered leap-frog of the classic tsunami codes (leapfrog.hpp).
 enum class Scheme { finite_volume, leapfrog };
 Scheme parse_scheme(const std::string& s, const std::string& option);  // "fv" | "leapfrog"
+
+// What the run driver (run.cpp) needs of a solver: stepping, the state for frames,
+// gauges and maxima, the exact state for checkpoints, and how to describe itself.
+// Solver, NestedSolver and LeapfrogSolver satisfy it.
+template <class S>
+concept RunnableSolver = requires(S& s, const S& c, double t, int i, int j, double* row) {
+    { c.stable_dt() } -> std::same_as<double>;  // the step to take now [s]
+    s.step(t);                                  // advance by t [s]
+    { c.time() } -> std::same_as<double>;       // [s]
+    s.set_time(t);                              // land exactly on a frame time
+    { c.grid() } -> std::convertible_to<const Grid&>;  // the scene's grid (output, gauges)
+    { c.level(i, j) } -> std::same_as<double>;         // [m], gauges
+    { c.depth(i, j) } -> std::same_as<double>;         // [m]
+    { c.x_velocity(i, j) } -> std::same_as<double>;    // [m/s]
+    { c.y_velocity(i, j) } -> std::same_as<double>;    // [m/s]
+    c.state_row(j, i, i, row, row, row);               // depth, velocities of a row (frames, maxima)
+    { c.volume() } -> std::same_as<double>;            // [m^3]
+    { c.stats() } -> std::convertible_to<SolverStats>;
+    { c.cell_updates() } -> std::same_as<double>;  // cells x steps done by this object
+    { s.state_arrays() } -> std::same_as<std::vector<std::vector<double>*>>;  // the exact state (checkpoints)
+    { c.pump_level_at_stop() } -> std::same_as<double>;  // the pump side's restart state [m]
+    s.set_pump_level_at_stop(t);
+    { c.description() } -> std::same_as<std::string>;  // the scheme, for the file's `source`
+};
 
 struct RunDef {
     std::string scene_file;

@@ -116,6 +116,11 @@ double Solver::volume() const {
     return v * grid_.dx * grid_.dy;
 }
 
+std::string Solver::description() const {
+    return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
+           (def_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
+}
+
 void Solver::state_row(int j, int i0, int i1, double* __restrict h, double* __restrict u, double* __restrict v) const {
     const double* depth = h_.data() + at(i0, j);
     const double* qx = hu_.data() + at(i0, j);

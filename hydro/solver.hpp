@@ -97,6 +97,10 @@ public:
     void state_row(int j, int i0, int i1, double* h, double* u, double* v) const;
     // Total water volume [m^3].
     double volume() const;
+    // Interior cells x steps since construction.
+    double cell_updates() const { return double(stats_.steps) * double(grid_.size()); }
+    // The scheme in words (the flow file's `source`).
+    std::string description() const;
 
     // Padded state, for checkpoints and output (size (nx+4)*(ny+4)). The non-const
     // accessors tell the solver that the state may change outside step(): write through
@@ -108,6 +112,8 @@ public:
     const std::vector<double>& x_discharge_data() const { return hu_; }
     const std::vector<double>& y_discharge_data() const { return hv_; }
     std::size_t stride() const { return stride_; }
+    // h, hu, hv (padded), the exact state for checkpoints.
+    std::vector<std::vector<double>*> state_arrays() { return {&depth_data(), &x_discharge_data(), &y_discharge_data()}; }
 
     // Nesting (hydro/nesting.hpp), west and east sides only. Ghost values of a `nested`
     // side: the state `a` at time t0 and `b` at t1, interpolated linearly in time

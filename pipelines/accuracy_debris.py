@@ -2,7 +2,7 @@
 """Debris speed against accuracy on one stored flow of the real layout.
 
     accuracy_debris.py --scene S.nc --flow F.nc --runs DIR --csv-frames A.csv --csv-steps B.csv
-                       [--flotsam build/flotsam] [--jobs 2]
+                       [--flotsam build/flotsam] [--jobs 2] [--launch PREFIX]
 
 F is a flow stored every 0.1 s. The coarser stored intervals (0.2, 0.5, 1, 2, 5 s) are
 made from it by keeping every k-th frame (pipelines/subsample_flow.py), so every
@@ -24,13 +24,16 @@ a long-horizon distance soon measures which side of a building a body went rathe
 how accurate a step was; the "floor" rows (the reference run with every start moved
 1 mm east) give the spread that any change at all produces. CPU: `flotsam debris
 --threads 1`'s own count (its "debris cost" line), stepping only, per body-run. A run
-whose trajectory file exists is not repeated (delete DIR's files to redo).
+whose trajectory file exists is not repeated (delete DIR's files to redo). --launch
+puts a launcher in front of every debris run (srun …, docs/cluster.md); --jobs runs that
+many at once.
 """
 import argparse
 import concurrent.futures
 import csv
 import os
 import re
+import shlex
 import subprocess
 import sys
 
@@ -90,7 +93,7 @@ def run_debris(a, out, flow, bodies, extra):
                       stderr)
         return list(m.groups()) if m else None
 
-    n, steps, cpu, reading = run_once("accuracy_debris", out, out + ".cost", cmd, parse)
+    n, steps, cpu, reading = run_once("accuracy_debris", out, out + ".cost", cmd, parse, launch=shlex.split(a.launch))
     return {"bodies": int(n), "steps": int(steps), "stepping_cpu_s": float(cpu), "reading_cpu_s": float(reading)}
 
 
@@ -142,6 +145,7 @@ def main():
     ap.add_argument("--csv-steps", required=True)
     ap.add_argument("--flotsam", default="build/flotsam")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--launch", default="", help="launcher prefix for every debris run (docs/cluster.md)")
     a = ap.parse_args()
     os.makedirs(a.runs, exist_ok=True)
     starts = scene_starts(a.scene)

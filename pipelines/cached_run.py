@@ -10,21 +10,24 @@ import subprocess
 import sys
 
 
-def run_once(who, out, record, cmd, parse, announce=False):
+def run_once(who, out, record, cmd, parse, announce=False, launch=()):
     """Runs `cmd` unless `out` and `record` exist; returns the record's comma-separated fields.
 
     parse(stderr, cpu_s) gives the fields to record, or None when the command did not print
     what it should. cpu_s is the children's user + system time of this run; it is only
-    meaningful when runs are not started from several threads at once. With `announce`, the
-    command is printed when it runs.
+    meaningful when runs are not started from several threads at once, and it is None when
+    the command ran through a launcher (`launch`, the words put in front of it: srun …,
+    docs/cluster.md), since the run's processor time is then spent elsewhere. With
+    `announce`, the command is printed when it runs.
     """
     if not (os.path.exists(out) and os.path.exists(record)):
+        cmd = list(launch) + list(cmd)
         if announce:
             print(f"{who}:", " ".join(cmd), flush=True)
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, stderr=subprocess.PIPE, text=True)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        cpu = None if launch else (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         if p.returncode != 0:
             sys.exit(f"{who}: {' '.join(cmd)} failed:\n{p.stderr[-2000:]}")
         fields = parse(p.stderr, cpu)
