@@ -1,11 +1,14 @@
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/toml_lite.hpp"
 
 namespace flotsam {
@@ -193,6 +196,29 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
     out.insert(out.end(), from_file.begin(), from_file.end());
     out.insert(out.end(), rest.begin(), rest.end());
     return out;
+}
+
+}  // namespace flotsam
+
+namespace flotsam {
+
+std::string apply_scene_hydro_defaults(CLI::App* sub, const std::string& scene_path) {
+    const nc::File f = nc::File::open_read(scene_path);
+    const std::string text = f.att_text(NC_GLOBAL, "flotsam_hydro_defaults").value_or("");
+    std::string applied;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        const auto eq = line.find(" = ");
+        if (eq == std::string::npos) fail(scene_path, "attribute 'flotsam_hydro_defaults'", "bad line '" + line + "'");
+        const std::string key = line.substr(0, eq), value = line.substr(eq + 3);
+        CLI::Option* opt = sub->get_option_no_throw("--" + key);
+        if (!opt) fail(scene_path, "attribute 'flotsam_hydro_defaults'", "names an unknown hydro option '" + key + "'");
+        if (opt->count() > 0) continue;  // the command line (or --config) wins
+        opt->add_result(value);
+        opt->run_callback();
+        applied += (applied.empty() ? "" : ", ") + key + " = " + value;
+    }
+    return applied;
 }
 
 }  // namespace flotsam

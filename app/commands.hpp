@@ -43,9 +43,15 @@ void add_config_option(CLI::App* sub);
 // that fails the option's check.
 std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** argv);
 
+// Sets the hydro options that the scene recommends (its flotsam_hydro_defaults: settings
+// tuned to its scale, written by `scene import` from a features file's [hydro] table)
+// and that the command line and --config leave out. Returns what it set, for the log.
+std::string apply_scene_hydro_defaults(CLI::App* sub, const std::string& scene_path);
+
 void register_hydro_commands(CLI::App& app, const std::string& command_line);     // app/hydro_cli.cpp
 void register_data_commands(CLI::App& app, const std::string& command_line);      // app/data_cli.cpp: scene, boundary
 void register_debris_commands(CLI::App& app, const std::string& command_line);    // app/debris_cli.cpp: debris
 void register_pipeline_commands(CLI::App& app, const std::string& command_line);  // app/sweep_cli.cpp: sweep, stats
+void register_export_commands(CLI::App& app);                                     // app/export_cli.cpp: export
 
 }  // namespace flotsam

@@ -1,5 +1,6 @@
 // Command-line surface of the data stage: `scene generate`, `scene import`,
 // `boundary generate`.
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -42,28 +43,54 @@ void register_scene_generate(CLI::App* scene, const std::string& command_line) {
 void register_scene_import(CLI::App* scene, const std::string& command_line) {
     auto def = std::make_shared<ImportDef>();
     auto out = std::make_shared<std::string>();
+    auto extent = std::make_shared<std::vector<double>>();
     CLI::App* sub = scene->add_subcommand(
         "import",
-        "Import a user DEM (NetCDF with x, y, z(y, x), or ESRI ASCII grid .asc) as a scene: resampled to --resolution "
-        "(cell-area average when coarsening, bilinear when refining), with points, sections, regions, Manning rules and "
-        "a building rule from --features (TOML; see docs/scene.md). Without --features, a DEM with the Kainan extent "
-        "gets the Kainan defaults; any other DEM gets no features and no Manning field.");
-    sub->add_option("--dem", def->dem_path, "DEM file (.nc or .asc)")->required();
+        "Import a user DEM as a scene: any raster GDAL reads (GeoTIFF, ESRI ASCII grid, NetCDF, ...) in a projected CRS "
+        "in metres (or local metres), resampled to --resolution (cell-area average when coarsening, bilinear when "
+        "refining), with points, sections, regions, Manning rules and a building rule from --features (TOML; see "
+        "docs/scene.md), building footprints from a vector file, and Manning n from a land-use raster or polygons. "
+        "Without --features, a DEM with the Kainan extent gets the Kainan defaults; any other DEM gets no features "
+        "and no Manning field.");
+    sub->add_option("--dem", def->dem_path, "DEM file (GeoTIFF, .asc, NetCDF, or anything GDAL reads)")->required();
     sub->add_option("--features", def->features_path, "features TOML file");
     sub->add_option("--resolution", def->resolution, "grid spacing of the scene [m]")
         ->capture_default_str()
         ->check(in_range(Range::positive("m").up_to(1e5)));
     sub->add_option("--out", *out, "output scene file (NetCDF)")->required();
+    GisImportDef& g = def->gis;
+    sub->add_option("--crs", g.assign_crs,
+                    "the DEM's CRS when its file has none (EPSG:n, WKT, PROJ or a .prj file), or 'local' for local metres");
+    sub->add_option("--target-crs", g.target_crs,
+                    "reproject the DEM to this projected CRS in metres (needed for a DEM in degrees), e.g. EPSG:32653");
+    sub->add_option("--still-water-level", g.still_water_level,
+                    "the DEM's value at still water in its vertical datum [m]: z = DEM - this")
+        ->capture_default_str();
+    sub->add_option("--extent", *extent, "keep only x_min,x_max,y_min,y_max [m, in the scene's CRS]")->expected(4)->delimiter(',');
+    sub->add_option("--nodata-fill", g.nodata_fill, "elevation for the DEM's nodata cells [m above still water] (else an error)");
+    sub->add_option("--buildings", g.buildings,
+                    "building footprints (polygons: GeoJSON, shapefile, GeoPackage, ...), burnt into the building mask "
+                    "instead of the features file's building rule");
+    sub->add_option("--buildings-layer", g.buildings_layer, "layer of --buildings (default: the first)");
+    sub->add_option("--building-height-field", g.building_height_field,
+                    "attribute of --buildings with the height above ground [m]: z becomes the footprint's lowest ground + height");
+    sub->add_option("--building-height", g.building_height, "height above ground [m] of footprints without a height value");
+    sub->add_option("--manning-raster", g.manning_raster,
+                    "raster of Manning n, or of land-use codes with --manning-classes (any CRS; resampled onto the scene)");
+    sub->add_option("--manning-classes", g.manning_classes, "CSV 'class,n': the Manning n of each land-use code");
+    sub->add_option("--manning-polygons", g.manning_polygons, "polygons with a Manning n attribute (win over the raster)");
+    sub->add_option("--manning-field", g.manning_field, "the n attribute of --manning-polygons")->capture_default_str();
     add_config_option(sub);
-    sub->callback([def, out, command_line] {
+    sub->callback([def, out, extent, command_line] {
         const OutputGuard guard({{"--out", *out}}, {{"--dem", def->dem_path}, {"--features", def->features_path}});
+        if (!extent->empty()) def->gis.extent = std::array<double, 4>{(*extent)[0], (*extent)[1], (*extent)[2], (*extent)[3]};
         const Scene s = import_scene(*def);
         write_scene(*out, s, command_line);
         std::size_t roofs = 0;
         for (auto b : s.building) roofs += std::size_t(b);
-        std::printf("scene: %s (%d x %d cells of %.4g m; %zu building cells; %zu points, %zu sections, %zu regions)\n",
+        std::printf("scene: %s (%d x %d cells of %.4g m; %zu building cells; %zu points, %zu sections, %zu regions%s)\n",
                     out->c_str(), s.grid.nx, s.grid.ny, def->resolution, roofs, s.points.size(), s.sections.size(),
-                    s.regions.size());
+                    s.regions.size(), s.crs.empty() ? "" : ("; CRS " + s.crs.name()).c_str());
     });
 }
 
@@ -92,14 +119,21 @@ void register_boundary_generate(CLI::App* boundary) {
     sub->add_option("--return-time", def->return_time, "relaxation time of the return flow [s]")
         ->capture_default_str()
         ->check(in_range(Range::positive("s")));
+    auto scale = std::make_shared<double>(1.0);
+    sub->add_option("--froude-scale", *scale,
+                    "write the records at this many times the flume's scale (times x sqrt, levels x; 250: Kainan itself); "
+                    "the other options stay in flume units")
+        ->capture_default_str()
+        ->check(in_range(Range::positive().up_to(1e4)));
     add_config_option(sub);
-    sub->callback([def, dir] {
+    sub->callback([def, dir, scale] {
         std::vector<NamedPath> outputs;
         for (const auto& p : boundary_record_paths(*dir, def->count)) outputs.push_back({"--out-dir", p});
         const OutputGuard guard(outputs, {});
-        const auto records = generate_boundary_records(*def);
+        auto records = generate_boundary_records(*def);
+        if (*scale != 1.0) froude_scale(records, *scale);
         const auto paths = write_boundary_records(*dir, records);
-        const BoundarySummary s = summarise_boundary(records);
+        const BoundarySummary s = summarise_boundary(records, 30.0 * std::sqrt(*scale));
         std::printf("boundary: %zu records in %s (%s ... %s)\n", paths.size(), dir->c_str(), paths.front().c_str(),
                     paths.back().c_str());
         std::printf(

@@ -9,9 +9,12 @@
 
 #include "app/commands.hpp"
 #include "app/settings_cli.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/output_lock.hpp"
 #include "common/progress.hpp"
+#include "debris/catalogue.hpp"
 #include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
@@ -29,7 +32,35 @@ struct DebrisOptions {
     double output_interval = 0.5;                          // [s]
     double end_time = -1.0;                                // [s]; < 0: the flow's last frame
     bool quiet = false;
+    std::string body_type;  // catalogue entry; "": the options' values (the paper's box)
+    bool list_bodies = false;
 };
+
+// The body options that a catalogue entry sets when the command line leaves them out.
+void apply_catalogue(DebrisOptions& o, const CLI::App* sub) {
+    if (o.body_type.empty()) return;
+    const debris::BodyDef c = debris::catalogue_body_def(o.body_type, "--body");
+    auto take = [&](const char* option, double& field, double value) {
+        if (sub->get_option(option)->count() == 0) field = value;
+    };
+    take("--length", o.body.length, c.length);
+    take("--width", o.body.width, c.width);
+    take("--height", o.body.height, c.height);
+    take("--specific-gravity", o.body.specific_gravity, c.specific_gravity);
+    take("--cd1", o.body.cd1, c.cd1);
+    take("--cd2", o.body.cd2, c.cd2);
+    take("--cm", o.body.cm, c.cm);
+    take("--mu", o.body.mu, c.mu);
+    take("--restitution", o.body.restitution, c.restitution);
+}
+
+void print_catalogue() {
+    std::printf("%-22s %8s %7s %7s %10s %5s %5s %5s %5s %5s  %s\n", "name", "L [m]", "B [m]", "D [m]", "mass [kg]", "cd1", "cd2",
+                "cm", "mu", "e", "description");
+    for (const auto& b : debris::catalogue())
+        std::printf("%-22s %8.3f %7.3f %7.3f %10.4g %5.2f %5.2f %5.2f %5.2f %5.2f  %s\n", b.name.c_str(), b.length, b.width,
+                    b.height, b.mass, b.cd1, b.cd2, b.cm, b.mu, b.restitution, b.description.c_str());
+}
 
 // "x,y,heading_deg" → a body at that place.
 debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, int index) {
@@ -55,7 +86,7 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
     return b;
 }
 
-void run_debris(const DebrisOptions& o, const std::string& command_line) {
+void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
     const debris::BodyDef& base = o.body;
     const OutputGuard guard({{"--out", o.out}}, {{"--flow", o.flow}, {"--scene", o.scene}});
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
@@ -81,7 +112,12 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
         start_names.emplace_back();
     }
 
-    debris::World world = debris::make_world(o.flow, scene.get(), bodies, o.world);
+    // The step and the acceleration guard follow the bodies' scale (default_world_def).
+    debris::WorldDef wdef = o.world;
+    const debris::WorldDef scaled = debris::default_world_def(bodies);
+    if (dt_max_default) wdef.step.dt_max = scaled.step.dt_max;
+    wdef.flow.accel_depth = scaled.flow.accel_depth;
+    debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef);
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
@@ -111,7 +147,9 @@ void run_debris(const DebrisOptions& o, const std::string& command_line) {
                      "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
                      world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
     }
-    debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names});
+    // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
+    const cf::GridMapping crs = cf::read_crs(nc::File::open_read(o.flow), "h");
+    debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names, crs});
 }
 
 }  // namespace
@@ -120,7 +158,7 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     auto opts = std::make_shared<DebrisOptions>();
     CLI::App* sub = app.add_subcommand("debris", "Replay debris bodies through a stored flow and write their trajectories");
     add_config_option(sub);
-    sub->add_option("--flow", opts->flow, "flow file written by `flotsam hydro`")->required()->check(CLI::ExistingFile);
+    sub->add_option("--flow", opts->flow, "flow file written by `flotsam hydro` (required)")->check(CLI::ExistingFile);
     sub->add_option("--scene", opts->scene, "scene file: building mask and named start points")->check(CLI::ExistingFile);
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
@@ -140,7 +178,20 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str()
         ->check(in_range(Range::count(0, 4096)));
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
-    sub->callback([opts, command_line] { run_debris(*opts, command_line); });
+    sub->add_option("--body", opts->body_type,
+                    "a body from the catalogue (docs/debris.md): its dimensions, mass and coefficients, unless given as "
+                    "options; one of " +
+                        debris::catalogue_names());
+    sub->add_flag("--list-bodies", opts->list_bodies, "print the debris catalogue and exit");
+    sub->callback([opts, sub, command_line] {
+        if (opts->list_bodies) {
+            print_catalogue();
+            return;
+        }
+        if (opts->flow.empty()) fail("debris", "--flow", "required");
+        apply_catalogue(*opts, sub);
+        run_debris(*opts, sub->get_option("--dt-max")->count() == 0, command_line);
+    });
 }
 
 }  // namespace flotsam

@@ -46,6 +46,8 @@ std::string result_settings(const std::string& dump) {
 
 void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line) {
     using namespace hydro;
+    if (const std::string applied = apply_scene_hydro_defaults(sub, o.run.scene_file); !applied.empty() && !o.run.quiet)
+        std::fprintf(stderr, "hydro: the scene's recommended settings: %s\n", applied.c_str());
     PhysicsDef& s = o.physics;
     o.run.scheme = parse_enum<Scheme>(o.scheme, "--scheme");
     o.run.finite_volume.friction = parse_enum<Friction>(o.friction, "--friction");

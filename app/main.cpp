@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     flotsam::register_data_commands(app, command_line);
     flotsam::register_debris_commands(app, command_line);
     flotsam::register_pipeline_commands(app, command_line);
+    flotsam::register_export_commands(app);
     try {
         std::vector<std::string> args = flotsam::expand_config_files(app, argc, argv);
         std::reverse(args.begin(), args.end());  // CLI11 takes the vector last-first

@@ -20,7 +20,7 @@ inline constexpr const char* time_units = "seconds since 2000-01-01 00:00:00";
 inline constexpr double fill_value = 9.969209968386869e36;
 
 // One variable. Attributes are written in this order: standard_name, units, long_name,
-// coordinates, then _FillValue; empty strings are left out.
+// coordinates, grid_mapping, then _FillValue; empty strings are left out.
 struct VarDef {
     std::string name;
     nc_type type = NC_DOUBLE;
@@ -32,8 +32,39 @@ struct VarDef {
     std::vector<std::size_t> chunks;  // empty: the library's default layout
     int deflate = 0;                  // 0 (off) .. 9, with the shuffle filter
     bool fill = false;                // missing values are stored as fill_value
+    std::string grid_mapping;         // the grid-mapping variable locating x/y ("crs"); "": none
 };
 int def_var(nc::File& f, const VarDef& v);
+
+// A coordinate reference system as a CF grid-mapping variable: a scalar variable whose
+// attributes describe the projection (grid_mapping_name, false_easting, ...) and carry
+// the whole definition as OGC WKT in crs_wkt, which GDAL and QGIS read. Gridded
+// variables point at it with their grid_mapping attribute; their x and y are then the
+// projection coordinates of that CRS in metres. A scene in local metres (the flume)
+// has none, and its files are written exactly as without this layer.
+struct GridMapping {
+    struct Attribute {
+        std::string name;
+        std::string text;             // a text attribute when `numbers` is empty
+        std::vector<double> numbers;  // a numeric attribute (one value or several)
+    };
+    std::vector<Attribute> attributes;  // in writing order
+    bool empty() const { return attributes.empty(); }
+    const Attribute* find(const std::string& name) const;
+    std::string wkt() const;   // crs_wkt, or "" when absent
+    std::string name() const;  // a short label: the EPSG code when the WKT names one, else grid_mapping_name
+};
+// The name every flotsam file gives its grid-mapping variable.
+inline constexpr const char* crs_variable = "crs";
+// Defines the grid-mapping variable `crs` (int, no dimensions) with crs's attributes;
+// returns its id, or -1 without defining anything when crs is empty.
+int def_crs(nc::File& f, const GridMapping& crs);
+// The grid-mapping variable named by `data_var`'s grid_mapping attribute (empty when the
+// variable or the attribute is absent). Errors name the file when the attribute names a
+// variable that is not there.
+GridMapping read_crs(const nc::File& f, const std::string& data_var);
+// What to put in VarDef::grid_mapping for a file with this CRS.
+inline std::string grid_mapping_of(const GridMapping& crs) { return crs.empty() ? std::string() : std::string(crs_variable); }
 
 // A time coordinate variable (double, seconds since the epoch above) on `dim`; `axis`
 // marks it as the file's T axis (a second time axis, such as gauge samples, leaves it out).

@@ -382,6 +382,18 @@ std::optional<std::vector<double>> File::att_doubles(int var, const std::string&
     return v;
 }
 
+std::vector<std::string> File::att_names(int var) const {
+    int n = 0;
+    check(var == NC_GLOBAL ? nc_inq_natts(id_, &n) : nc_inq_varnatts(id_, var, &n), var_label(var) + " attributes");
+    std::vector<std::string> names;
+    for (int k = 0; k < n; ++k) {
+        char name[NC_MAX_NAME + 1] = {};
+        check(nc_inq_attname(id_, var, k, name), var_label(var) + " attribute " + std::to_string(k));
+        names.emplace_back(name);
+    }
+    return names;
+}
+
 std::optional<double> File::att_double(int var, const std::string& name) const {
     auto v = att_doubles(var, name);
     if (!v || v->empty()) return std::nullopt;

@@ -78,6 +78,7 @@ public:
     std::optional<std::string> att_text(int var, const std::string& name) const;  // var = NC_GLOBAL for global
     std::optional<double> att_double(int var, const std::string& name) const;
     std::optional<std::vector<double>> att_doubles(int var, const std::string& name) const;
+    std::vector<std::string> att_names(int var) const;  // in the file's order
 
 private:
     File(int id, std::string path) : id_(id), path_(std::move(path)) {}

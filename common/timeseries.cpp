@@ -45,6 +45,7 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
     std::string line;
     int lineno = 0;
     bool header_allowed = true;
+    std::vector<int> lines;  // file line of each sample
     while (std::getline(f, line)) {
         ++lineno;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -72,15 +73,29 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
             if (!(t > s.time.back()))
                 fail(path, here,
                      "time " + std::to_string(t) + " s does not increase (previous " + std::to_string(s.time.back()) + " s)");
-            if (t - s.time.back() > max_gap)
+            if (max_gap > 0.0 && t - s.time.back() > max_gap)
                 fail(path, here,
                      "gap of " + std::to_string(t - s.time.back()) + " s between samples (at most " + std::to_string(max_gap) +
                          " s allowed)");
         }
         s.time.push_back(t);
         s.value.push_back(v);
+        lines.push_back(lineno);
     }
     if (s.time.size() < 2) fail(path, "", "needs at least 2 samples, has " + std::to_string(s.time.size()));
+    if (max_gap <= 0.0) {
+        std::vector<double> spacing(s.time.size() - 1);
+        for (std::size_t k = 0; k + 1 < s.time.size(); ++k) spacing[k] = s.time[k + 1] - s.time[k];
+        std::vector<double> sorted = spacing;
+        std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+        const double allowed = std::max(10.0, 10.0 * sorted[sorted.size() / 2]);
+        for (std::size_t k = 0; k < spacing.size(); ++k)
+            if (spacing[k] > allowed)
+                fail(path, "line " + std::to_string(lines[k + 1]),
+                     "gap of " + std::to_string(spacing[k]) + " s between samples (at most " + std::to_string(allowed) +
+                         " s allowed: 10 s or ten times the median spacing " + std::to_string(sorted[sorted.size() / 2]) +
+                         " s; missing data?)");
+    }
     return s;
 }
 

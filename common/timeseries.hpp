@@ -19,8 +19,11 @@ struct TimeSeries {
 // Reads "time,<name>" CSV. A header line is optional; '#' starts a comment line.
 // Throws naming the file and line for: a wrong column count, a non-number, NaN or
 // infinity, time not strictly increasing, a gap between samples longer than
-// `max_gap` seconds, or fewer than two samples.
-TimeSeries read_time_series_csv(const std::string& path, double max_gap = 10.0);
+// `max_gap` seconds, or fewer than two samples. max_gap = 0 (the default) sizes the
+// check to the record: a gap is missing data when it is longer than 10 s and longer than
+// ten times the record's median sample spacing (so a full-scale record sampled every
+// minute passes, and a 10 Hz flume record with a hole of 11 s does not).
+TimeSeries read_time_series_csv(const std::string& path, double max_gap = 0.0);
 
 // Throws naming the file when the series does not cover [t0, t1].
 void require_coverage(const TimeSeries& s, double t0, double t1);

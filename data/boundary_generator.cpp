@@ -156,6 +156,15 @@ std::vector<std::string> write_boundary_records(const std::string& dir, const st
     return paths;
 }
 
+void froude_scale(std::vector<TimeSeries>& records, double lambda) {
+    if (!(lambda > 0.0)) fail("--froude-scale", std::to_string(lambda), "must be positive");
+    const double time_scale = std::sqrt(lambda);
+    for (auto& r : records) {
+        for (double& t : r.time) t *= time_scale;
+        for (double& v : r.value) v *= lambda;
+    }
+}
+
 TimeSeries load_boundary_record(const std::string& path, double duration) {
     TimeSeries s = read_time_series_csv(path);
     require_coverage(s, 0.0, duration);

@@ -49,6 +49,10 @@ BoundarySummary summarise_boundary(const std::vector<TimeSeries>& records, doubl
 // The paths of `count` records in `dir`: wg1_r00.csv, wg1_r01.csv, ...
 std::vector<std::string> boundary_record_paths(const std::string& dir, int count);
 
+// The records at `lambda` times the flume's scale by Froude's law: times x sqrt(lambda),
+// levels x lambda (lambda = 250: the flume's records at the prototype scale of Kainan).
+void froude_scale(std::vector<TimeSeries>& records, double lambda);
+
 // File names wg1_r00.csv, wg1_r01.csv, ... in `dir` (created when missing).
 std::vector<std::string> write_boundary_records(const std::string& dir, const std::vector<TimeSeries>& records);
 

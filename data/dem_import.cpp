@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -69,7 +70,19 @@ Dem read_netcdf_dem(const std::string& path) {
     }
     d.grid = grid_from_coordinates(x, y, path);
     d.title = f.att_text(NC_GLOBAL, "title").value_or("");
+    d.crs = cf::read_crs(f, "z");
     return d;
+}
+
+// A NetCDF with the x, y, z layout that read_netcdf_dem reads.
+bool has_xyz_layout(const std::string& path) {
+    int id = -1;
+    if (nc_open(path.c_str(), NC_NOWRITE, &id) != NC_NOERR) return false;
+    int v = 0;
+    const bool xyz =
+        nc_inq_varid(id, "x", &v) == NC_NOERR && nc_inq_varid(id, "y", &v) == NC_NOERR && nc_inq_varid(id, "z", &v) == NC_NOERR;
+    nc_close(id);
+    return xyz;
 }
 
 // The six ESRI header keys, any order, any case; returns the first data line's number.
@@ -154,6 +167,27 @@ Dem read_dem(const std::string& path) {
     return read_netcdf_dem(path);
 }
 
+Dem read_dem(const std::string& path, const GisImportDef& gis, double resolution) {
+    if (!std::filesystem::exists(path)) fail(path, "", "no such file");
+    const bool ascii = lower(std::filesystem::path(path).extension().string()) == ".asc";
+    if ((ascii || has_xyz_layout(path)) && !gis.needs_gdal_raster()) {
+        Dem d = read_dem(path);
+        if (!gis.assign_crs.empty() || ascii) {
+            const cf::GridMapping assigned = sidecar_or_assigned_crs(path, gis);
+            if (!assigned.empty() || gis.assign_crs == "local") d.crs = assigned;
+        }
+        apply_extent_and_datum(d, gis);
+        return d;
+    }
+    return read_gis_dem(path, gis, resolution);
+}
+
+const std::vector<std::string>& scene_hydro_options() {
+    static const std::vector<std::string> keys = {"max-dt",          "dry-depth",     "arrival-depth", "gauge-interval",
+                                                  "output-interval", "output-window", "nest-x",        "nest-ratio"};
+    return keys;
+}
+
 ImportFeatures kainan_import_features() {
     ImportFeatures f;
     f.features = kainan_features();
@@ -206,6 +240,45 @@ ManningRule read_manning(const TomlDoc& doc, const TomlTable& t) {
     return m;
 }
 
+// The shortest decimal that reads back as the same double (whole numbers in full: -300,
+// not -3e+02).
+std::string shortest_text(double v) {
+    char buf[40];
+    if (v == std::floor(v) && std::fabs(v) < 1e15) {
+        std::snprintf(buf, sizeof buf, "%.0f", v);
+        return buf;
+    }
+    for (int digits = 1; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (std::strtod(buf, nullptr) == v) break;
+    }
+    return buf;
+}
+
+std::string read_hydro_defaults(const TomlDoc& doc, const TomlTable& t) {
+    toml_allow_only(doc, t, scene_hydro_options());
+    std::string lines;
+    for (const std::string& key : scene_hydro_options()) {  // a fixed order: the same bytes for the same settings
+        if (!t.values.count(key)) continue;
+        const TomlValue& v = t.values.at(key);
+        std::string text;
+        if (v.kind == TomlValue::Kind::Number) {
+            if (key != "nest-x" && !(v.number > 0.0)) fail(doc.path, "line " + std::to_string(v.line), key + " must be positive");
+            text = shortest_text(v.number);
+        } else if (v.kind == TomlValue::Kind::NumberArray && key == "output-window" && v.numbers.size() == 4) {
+            for (std::size_t k = 0; k < 4; ++k) {
+                if (k > 0) text += ',';
+                text += shortest_text(v.numbers[k]);
+            }
+        } else {
+            fail(doc.path, "line " + std::to_string(v.line),
+                 key + (key == "output-window" ? " must be [x_min, x_max, y_min, y_max]" : " must be a number"));
+        }
+        lines += key + " = " + text + "\n";
+    }
+    return lines;
+}
+
 BuildingRule read_buildings(const TomlDoc& doc, const TomlTable& t, BuildingRule b) {
     toml_allow_only(doc, t, {"min_height", "window", "min_elevation"});
     b.min_height = optional_number(doc, t, "min_height").value_or(b.min_height);
@@ -240,9 +313,11 @@ ImportFeatures read_import_features(const std::string& path, const ImportFeature
             f.manning.push_back(read_manning(doc, t));
         } else if (t.name == "buildings")
             f.buildings = read_buildings(doc, t, defaults.buildings);
+        else if (t.name == "hydro")
+            f.hydro_defaults = read_hydro_defaults(doc, t);
         else
             fail(path, "line " + std::to_string(t.line),
-                 "unknown table '" + t.name + "' (known: [[point]], [[section]], [[region]], [[manning]], [buildings])");
+                 "unknown table '" + t.name + "' (known: [[point]], [[section]], [[region]], [[manning]], [buildings], [hydro])");
     }
     return f;
 }
@@ -284,22 +359,33 @@ std::vector<std::int8_t> building_mask(const Grid& g, const std::vector<double>&
 
 Scene import_scene(const ImportDef& def) {
     if (!(def.resolution > 0.0)) fail("--resolution", "", "grid spacing must be positive");
-    const Dem dem = read_dem(def.dem_path);
-    const bool kainan = matches_kainan_extent(dem.grid);
+    const Dem dem = read_dem(def.dem_path, def.gis, def.resolution);
+    const bool kainan = dem.crs.empty() && matches_kainan_extent(dem.grid);
     const ImportFeatures defaults = kainan ? kainan_import_features() : ImportFeatures{};
     const ImportFeatures f = def.features_path.empty() ? defaults : read_import_features(def.features_path, defaults);
     Scene s;
     s.grid =
         grid_covering(dem.grid.x_min_edge(), dem.grid.x_max_edge(), dem.grid.y_min_edge(), dem.grid.y_max_edge(), def.resolution);
     s.z = resample(dem.grid, dem.z, s.grid);
+    s.crs = dem.crs;
     s.manning_n = manning_field(s.grid, f.manning);
-    s.building = building_mask(s.grid, s.z, f.buildings);
+    std::string notes;
+    s.manning_n = manning_from_gis(s, def.gis, s.manning_n, notes);
+    if (def.gis.buildings.empty())
+        s.building = building_mask(s.grid, s.z, f.buildings);
+    else
+        notes += std::string(notes.empty() ? "" : "; ") + burn_building_footprints(s, def.gis);
     apply_features(s, f.features);
+    s.hydro_defaults = f.hydro_defaults;
     s.title = dem.title.empty() ? "Scene imported from " + std::filesystem::path(def.dem_path).filename().string() : dem.title;
     s.comment =
         "Imported by flotsam scene import from " + def.dem_path + " at grid spacing " + std::to_string(def.resolution) +
         " m; features from " +
         (def.features_path.empty() ? (kainan ? std::string("the Kainan defaults") : std::string("none")) : def.features_path);
+    if (!s.crs.empty()) s.comment += "; CRS " + s.crs.name();
+    if (def.gis.still_water_level != 0.0)
+        s.comment += "; still water at " + std::to_string(def.gis.still_water_level) + " m in the DEM's vertical datum";
+    if (!notes.empty()) s.comment += "; " + notes;
     s.synthetic = false;
     return s;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/grid.hpp"
+#include "data/gis_import.hpp"
 #include "data/kainan_features.hpp"
 #include "data/manning.hpp"
 #include "formats/scene.hpp"
@@ -18,13 +19,19 @@ struct Dem {
     Grid grid;
     std::vector<double> z;  // [m], j * nx + i, j = 0 the southern row
     std::string path;
-    std::string title;  // the file's title attribute, if any
+    std::string title;    // the file's title attribute, if any
+    cf::GridMapping crs;  // its CRS; empty: local metres
 };
 
 // Reads `.asc` as an ESRI ASCII grid, anything else as NetCDF with variables x, y and
 // z(y, x) (y may decrease; rows are then flipped). Errors name the file and the variable,
 // header key or line.
 Dem read_dem(const std::string& path);
+// Any DEM: the two readers above when they apply (an ESRI grid, or a NetCDF with x, y, z)
+// and `gis` asks for no reprojection, cropping or filling (the CRS then comes from a .prj
+// beside the grid, the NetCDF's grid mapping, or --crs; none is local metres as before);
+// everything else through GDAL (data/gis_import.hpp), where a CRS is required.
+Dem read_dem(const std::string& path, const GisImportDef& gis, double resolution);
 Dem read_ascii_grid(const std::string& path);
 
 // How cells become buildings: z above the local ground by more than min_height, where
@@ -42,7 +49,13 @@ struct ImportFeatures {
     SceneFeatures features;
     std::vector<ManningRule> manning;  // empty: no manning_n field (the run's default applies)
     BuildingRule buildings;
+    // [hydro]: recommended hydro settings (Scene::hydro_defaults), "key = value" lines.
+    std::string hydro_defaults;
 };
+
+// The hydro options a scene may recommend: those whose defaults hold at the flume's
+// scale only (docs/scene.md, "Full scale").
+const std::vector<std::string>& scene_hydro_options();
 
 // The Kainan defaults: kainan_features(), kainan_manning() and the default building rule.
 ImportFeatures kainan_import_features();
@@ -55,6 +68,7 @@ struct ImportDef {
     std::string dem_path;
     std::string features_path;  // empty: Kainan defaults when the DEM's extent matches, else none
     double resolution = 0.02;   // target grid spacing [m]
+    GisImportDef gis;           // CRS, datum, nodata, footprints, land use (all optional)
 };
 
 Scene import_scene(const ImportDef& def);

@@ -72,6 +72,12 @@ public:
     explicit FlowReader(const std::string& path, const FlowReaderDef& def = default_flow_reader_def());
 
     const Grid& grid() const { return grid_; }
+    // Moves the frame of positions: the x, y given to the sampling calls (and grid()) are
+    // then relative to (x_origin, y_origin) [m]. For map coordinates (see World).
+    void set_origin(double x_origin, double y_origin) {
+        grid_.x0 -= x_origin;
+        grid_.y0 -= y_origin;
+    }
     const std::vector<double>& frame_times() const { return times_; }
     double start_time() const { return times_.front(); }
     double end_time() const { return times_.back(); }

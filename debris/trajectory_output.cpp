@@ -18,8 +18,8 @@ void record(World& world, TrajectorySeries& series) {
     for (std::size_t b = 0; b < world.size(); ++b) {
         const BodyState& s = world.states()[b];
         Track& t = series.tracks[b];
-        t.x.push_back(s.x);
-        t.y.push_back(s.y);
+        t.x.push_back(s.x + world.origin_x());
+        t.y.push_back(s.y + world.origin_y());
         t.yaw_deg.push_back(s.theta * 180.0 / std::numbers::pi);
         t.u.push_back(s.vx);
         t.v.push_back(s.vy);
@@ -58,7 +58,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         nc::File f = nc::File::create(out.temp_path());
         const std::size_t nb = world.size(), nt = series.time.size();
         const int dtraj = f.def_dim("trajectory", nb), dtime = f.def_dim("time", nt);
-        const TrackVariables track_vars = define_track_variables(f, dtraj, dtime);
+        const TrackVariables track_vars = define_track_variables(f, dtraj, dtime, def.crs);
         const int vid = cf::def_var(f, {.name = "trajectory_id", .type = NC_STRING, .dims = {dtraj}});
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         f.put_att(vid, "long_name", std::string("body name"));

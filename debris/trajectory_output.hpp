@@ -22,6 +22,7 @@ struct TrajectoryFileDef {
     std::string history;                   // the command line
     std::string flow_file;                 // the replayed flow
     std::vector<std::string> start_names;  // per body: the scene point, or "" for --at
+    cf::GridMapping crs;                   // the flow's CRS; empty: local metres
 };
 
 // The step and flow replay settings as global attributes (dt_max_s, vertex_step_fraction,

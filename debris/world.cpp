@@ -14,7 +14,7 @@ WorldDef default_world_def() { return WorldDef{}; }
 
 const Settings<StepDef>& step_settings() {
     static const Settings<StepDef> table = {
-        {"dt-max", "s", "largest time step", Range::positive("s").up_to(60.0), &StepDef::dt_max},
+        {"dt-max", "s", "largest time step (flotsam debris: 0.01 s for the paper's 0.25 m box, x sqrt(L / 0.25 m) for the shortest body L)", Range::positive("s").up_to(60.0), &StepDef::dt_max},
         {"vertex-step-fraction", "1", "largest corner displacement per step, in grid cells (no tunnelling at the default)",
          Range::positive().up_to(10.0), &StepDef::vertex_step_fraction},
         {"integrator", "", "fluid-force stage: semi-implicit Euler or Heun", {}, choice_of<&StepDef::integrator>()},
@@ -33,6 +33,17 @@ const Settings<FlowReaderDef>& flow_replay_settings() {
     return table;
 }
 
+WorldDef default_world_def(const std::vector<BodyDef>& bodies) {
+    WorldDef d = default_world_def();
+    if (bodies.empty()) return d;
+    double shortest = bodies.front().length;
+    for (const auto& b : bodies) shortest = std::min(shortest, b.length);
+    const double s = shortest / 0.25;  // [-]; 1 for the paper's box
+    d.step.dt_max *= std::sqrt(s);
+    d.flow.accel_depth *= s;  // the dry tolerance is the flow file's, set by the hydro run
+    return d;
+}
+
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {
     if (scene.building.empty()) return {};
     std::vector<std::uint8_t> out(grid.size(), 0);
@@ -49,6 +60,11 @@ World::World(const std::string& flow_path, std::vector<std::uint8_t> building, c
     : def_(def), flow_(flow_path, def.flow) {
     if (!building.empty() && building.size() != flow_.grid().size())
         fail(flow_path, "building mask", "does not match the flow grid");
+    // Map coordinates (beyond 10 km from the origin): work relative to a round kilometre.
+    const auto origin = [](double edge) { return std::abs(edge) > 1e4 ? 1000.0 * std::floor(edge / 1000.0) : 0.0; };
+    origin_x_ = origin(flow_.grid().x_min_edge());
+    origin_y_ = origin(flow_.grid().y_min_edge());
+    if (origin_x_ != 0.0 || origin_y_ != 0.0) flow_.set_origin(origin_x_, origin_y_);
     obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
     time_ = flow_.start_time();
 }
@@ -69,8 +85,11 @@ World make_world(const std::string& flow_path, const Scene* scene, const std::ve
 }
 
 std::size_t World::add_body(const BodyDef& def) {
-    params_.push_back(make_body_params(def, def_.step.water_density));
-    states_.push_back(initial_state(def, time_));
+    BodyDef local = def;
+    local.x -= origin_x_;
+    local.y -= origin_y_;
+    params_.push_back(make_body_params(local, def_.step.water_density));
+    states_.push_back(initial_state(local, time_));
     window_fitted_ = false;
     stats_.push_back({});
     return states_.size() - 1;
@@ -85,7 +104,7 @@ void World::fit_window() {
     const StepContext ctx{flow_, obstacles_, def_.step};
     for (std::size_t b = 0; b < states_.size(); ++b) {
         // Beyond what one step needs (else a body could never be served), plus the margin.
-        const double r = window_pad(ctx, params_[b]) + def_.window_margin;
+        const double r = window_pad(ctx, params_[b]) + def_.window_margin_lengths * params_[b].def.length;
         x0 = std::min(x0, states_[b].x - r);
         x1 = std::max(x1, states_[b].x + r);
         y0 = std::min(y0, states_[b].y - r);

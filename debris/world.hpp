@@ -18,8 +18,10 @@ namespace flotsam::debris {
 struct WorldDef {
     StepDef step = default_step_def();
     FlowReaderDef flow = default_flow_reader_def();
-    double window_margin = 1.0;  // loaded window reaches this far beyond the bodies [m]
-    int threads = 0;             // OpenMP threads over bodies; 0: the OpenMP default
+    // The loaded window reaches this many body lengths beyond each body (1 m for the
+    // paper's 0.25 m box); only how often the window moves depends on it, not a result.
+    double window_margin_lengths = 4.0;  // [-]
+    int threads = 0;                     // OpenMP threads over bodies; 0: the OpenMP default
 };
 WorldDef default_world_def();
 
@@ -27,6 +29,14 @@ WorldDef default_world_def();
 // structs' initialisers): options of `flotsam debris`, keys of a sweep's [sweep] table.
 const Settings<StepDef>& step_settings();               // dt-max, vertex-step-fraction, integrator
 const Settings<FlowReaderDef>& flow_replay_settings();  // time-interpolation
+
+// The defaults for these bodies: the settings that are lengths or times follow the
+// shortest body's length L by Froude's law, s = L / 0.25 m (the paper's box, for which
+// the defaults were set, gets them unchanged): the largest step (0.01 s) x sqrt(s), and
+// the flow reader's acceleration depth (1e-3 m) x s (the dry tolerance is the flow file's). A body
+// scaled by Froude (lengths x s, times x sqrt(s)) then takes the same steps in scaled
+// time, and a prototype-scale run is the flume's scaled (tests/froude_test.cpp).
+WorldDef default_world_def(const std::vector<BodyDef>& bodies);
 
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);
@@ -37,11 +47,21 @@ public:
     // below is the usual way in.
     World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def());
 
-    // Adds a body at the current time; returns its index.
+    // Adds a body at the current time (its position in the flow's own coordinates);
+    // returns its index.
     std::size_t add_body(const BodyDef& def);
     void advance_to(double t);
 
     double time() const { return time_; }
+    // Positions inside the world (states(), flow(), obstacles()) are relative to this
+    // origin [m]: (0, 0) for a grid in local metres (the flume), a round kilometre at the
+    // grid's lower-left corner for map coordinates (UTM northings run to 10^7 m, where a
+    // double resolves 1 nm and contact tolerances would sit at the rounding level, so a
+    // body's path would depend on where on Earth the port lies). record() adds it back.
+    double origin_x() const { return origin_x_; }
+    double origin_y() const { return origin_y_; }
+    // Whether the flow grid covers the point (x, y) given in the flow's own coordinates.
+    bool covers(double x, double y) const { return flow_.grid().contains(x - origin_x_, y - origin_y_); }
     const FlowReader& flow() const { return flow_; }
     const ObstacleMap& obstacles() const { return obstacles_; }
     const WorldDef& def() const { return def_; }
@@ -58,6 +78,7 @@ private:
 
     WorldDef def_;
     FlowReader flow_;
+    double origin_x_ = 0.0, origin_y_ = 0.0;
     ObstacleMap obstacles_;
     double time_ = 0.0;
     bool window_fitted_ = false;

@@ -22,11 +22,14 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
     const int dy = f.def_dim("y", ny_), dx = f.def_dim("x", nx_);
     const int vt = cf::def_time(f, dt, "time", "time since the start of the run");
     const cf::XYAxes axes = cf::def_xy(f, dx, dy, "cell centre");
+    cf::def_crs(f, def.crs);
+    const std::string grid_mapping = cf::grid_mapping_of(def.crs);
     const int vz = cf::def_var(f, {.name = "z",
                                    .type = NC_FLOAT,
                                    .dims = {dy, dx},
                                    .units = "m",
-                                   .long_name = "bed elevation above still water level, buildings included"});
+                                   .long_name = "bed elevation above still water level, buildings included",
+                                   .grid_mapping = grid_mapping});
     f.put_att(vz, "positive", std::string("up"));
 
     const std::size_t cy = std::min<std::size_t>(ny_, std::size_t(def.chunk)),
@@ -40,7 +43,8 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
                                .long_name = long_name,
                                .coordinates = "time y x",
                                .chunks = {1, cy, cx},
-                               .deflate = def.deflate_level});
+                               .deflate = def.deflate_level,
+                               .grid_mapping = grid_mapping});
     };
     h_ = field3("h", flow_names::depth, "m", "water depth (0 where dry)");
     u_ = field3("u", flow_names::x_velocity, "m s-1", "depth-averaged velocity toward +x (0 where dry)");
@@ -53,7 +57,8 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
                                .units = units,
                                .long_name = long_name,
                                .chunks = {cy, cx},
-                               .deflate = def.deflate_level});
+                               .deflate = def.deflate_level,
+                               .grid_mapping = grid_mapping});
     };
     maxd_ = field2("max_depth", "m", "largest water depth over the run");
     maxs_ = field2("max_speed", "m s-1", "largest depth-averaged speed over the run");

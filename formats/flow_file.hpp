@@ -17,6 +17,8 @@
 //                         where (the first such cell, row by row from the south-west)
 //   gauge_* (gauge_time, gauge)             level, depth and velocity at named points
 //   :dry_depth_m          global attribute, the run's dry tolerance [m] (text or number)
+//   crs                   the scene's CF grid mapping, when it has one; every (y, x) and
+//                         (time, y, x) field then names it (grid_mapping = "crs")
 //
 // h, u, v are chunked one frame deep in tiles (1, 64, 64) with shuffle + deflate, so a
 // reader that wants a small window of one or two frames decompresses little.
@@ -26,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cf.hpp"
 #include "common/grid.hpp"
 #include "common/netcdf.hpp"
 
@@ -60,6 +63,7 @@ struct FlowFileDef {
     int deflate_level = 1;                          // 0..9; 1 is nearly as small as 9 and much faster
     int chunk = 64;                                 // tile edge of the (1, chunk, chunk) chunks [cells]
     std::map<std::string, std::string> attributes;  // global attributes (title, history, ...)
+    cf::GridMapping crs;                            // the scene's CRS; empty: local metres
 };
 
 class FlowWriter {

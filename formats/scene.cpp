@@ -158,6 +158,8 @@ Scene read_scene(const std::string& path) {
     s.source = f.att_text(NC_GLOBAL, "source").value_or("");
     s.comment = f.att_text(NC_GLOBAL, "comment").value_or("");
     s.synthetic = f.att_text(NC_GLOBAL, "flotsam_synthetic").value_or("") == "true";
+    s.crs = cf::read_crs(f, "z");
+    s.hydro_defaults = f.att_text(NC_GLOBAL, "flotsam_hydro_defaults").value_or("");
     return s;
 }
 
@@ -169,6 +171,7 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         nc::File f = nc::File::create(out.temp_path());
         const int dx = f.def_dim("x", g.nx), dy = f.def_dim("y", g.ny);
         const cf::XYAxes axes = cf::def_xy(f, dx, dy, "cell centre");
+        cf::def_crs(f, s.crs);
         const std::vector<std::size_t> chunk = {std::size_t(std::min(g.ny, 128)), std::size_t(std::min(g.nx, 128))};
         auto field = [&](const char* name, nc_type t, const char* units, const char* standard_name, const char* long_name) {
             return cf::def_var(f, {.name = name,
@@ -178,7 +181,8 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
                                    .standard_name = standard_name,
                                    .long_name = long_name,
                                    .chunks = chunk,
-                                   .deflate = 4});
+                                   .deflate = 4,
+                                   .grid_mapping = cf::grid_mapping_of(s.crs)});
         };
         const int vz = field("z", NC_FLOAT, "m", "", "bed and building elevation above still water level");
         f.put_att(vz, "positive", std::string("up"));
@@ -244,6 +248,7 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         f.put_att(NC_GLOBAL, "history", history);
         if (!s.comment.empty()) f.put_att(NC_GLOBAL, "comment", s.comment);
         f.put_att(NC_GLOBAL, "flotsam_synthetic", std::string(s.synthetic ? "true" : "false"));
+        if (!s.hydro_defaults.empty()) f.put_att(NC_GLOBAL, "flotsam_hydro_defaults", s.hydro_defaults);
         f.enddef();
 
         f.put(axes.x, g.xs());

@@ -6,7 +6,9 @@
 // z(y, x) bed elevation above still water [m, positive up] (buildings included);
 // optional manning_n(y, x) [s m^-1/3]; optional building(y, x) [0/1 byte mask];
 // optional eta0, u0, v0 (y, x) initial level [m] and velocity [m/s];
-// optional feature tables (see write_scene): points, sections, regions.
+// optional feature tables (see write_scene): points, sections, regions; optional CF
+// grid-mapping variable `crs` (common/cf.hpp) when x and y are coordinates of a map
+// projection (a scene imported from GIS data), which every gridded field names.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -14,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cf.hpp"
 #include "common/grid.hpp"
 
 namespace flotsam {
@@ -54,7 +57,12 @@ struct Scene {
     std::string source;
     std::string comment;
     bool synthetic = false;  // generated analogue, not a measured layout
-    std::string path;        // the file it was read from (for messages)
+    cf::GridMapping crs;     // coordinate reference system of x, y; empty: local metres (the flume)
+    // Hydro settings this scene recommends (option = value, one per line, TOML), for the
+    // settings whose defaults are tuned to the flume's scale (max-dt, arrival-depth, ...):
+    // `flotsam hydro` applies those the command line leaves out. Empty: none.
+    std::string hydro_defaults;
+    std::string path;  // the file it was read from (for messages)
 
     const ScenePoint* find_point(const std::string& name) const;
 };

@@ -4,9 +4,11 @@
 
 namespace flotsam::debris {
 
-TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime) {
+TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime, const cf::GridMapping& crs) {
     TrackVariables vars{};
     vars.time = cf::def_time(f, dtime);
+    cf::def_crs(f, crs);
+    const std::string grid_mapping = cf::grid_mapping_of(crs);
     auto coordinate = [&](const char* name, const char* standard_name, const char* long_name, const char* axis) {
         const int v = cf::def_var(
             f, {.name = name, .dims = {dtraj, dtime}, .units = "m", .standard_name = standard_name, .long_name = long_name});
@@ -14,8 +16,12 @@ TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime) {
         return v;
     };
     auto field = [&](const char* name, const char* units, const char* long_name) {
-        return cf::def_var(
-            f, {.name = name, .dims = {dtraj, dtime}, .units = units, .long_name = long_name, .coordinates = "time x y"});
+        return cf::def_var(f, {.name = name,
+                               .dims = {dtraj, dtime},
+                               .units = units,
+                               .long_name = long_name,
+                               .coordinates = "time x y",
+                               .grid_mapping = grid_mapping});
     };
     vars.x = coordinate("x", "projection_x_coordinate", "x of the body centre (east)", "X");
     vars.y = coordinate("y", "projection_y_coordinate", "y of the body centre (north)", "Y");
@@ -32,6 +38,7 @@ TrackVariables define_track_variables(nc::File& f, int dtraj, int dtime) {
         std::string("released: the depth at the centre has exceeded the draft; grounded: friction acts; colliding: touched an "
                     "obstacle since the previous output; pivoting: rotating about the contact centroid (axis shift)"));
     f.put_att(vars.status, "coordinates", std::string("time x y"));
+    if (!grid_mapping.empty()) f.put_att(vars.status, "grid_mapping", grid_mapping);
     return vars;
 }
 

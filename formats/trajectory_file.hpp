@@ -13,11 +13,14 @@
 //                   restitution, length, width, height, specific_gravity (double),
 //                   added_yaw_inertia, collision_steps, unresolved_collisions,
 //                   axis_shift_steps (int)
+//   crs                        the flow's CF grid mapping, when it has one (yaw ... status
+//                              name it: x and y are then projection coordinates)
 // No time stamps anywhere: the same inputs give the same bytes.
 #pragma once
 #include <cstdint>
 #include <vector>
 
+#include "common/cf.hpp"
 #include "common/netcdf.hpp"
 
 namespace flotsam::debris {
@@ -43,7 +46,8 @@ struct Track {
 struct TrackVariables {
     int time, x, y, yaw, u, v, omega, status;
 };
-TrackVariables define_track_variables(nc::File& f, int trajectory_dim, int time_dim);
+// With a CRS, also defines the grid-mapping variable that the track variables name.
+TrackVariables define_track_variables(nc::File& f, int trajectory_dim, int time_dim, const cf::GridMapping& crs = {});
 // Writes the track of trajectory `index` (its series must have one value per time).
 void put_track(nc::File& f, const TrackVariables& vars, std::size_t index, const Track& track);
 

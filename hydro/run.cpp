@@ -401,6 +401,7 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDe
     fd.arrival_depth = run.arrival_depth;
     fd.flood_depth = run.flood_depth;
     fd.deflate_level = run.deflate_level;
+    fd.crs = scene.crs;
     fd.attributes["title"] = "flotsam shallow-water flow" + std::string(scene.synthetic ? " (synthetic scene)" : "");
     fd.attributes["source"] = version_string() + "; " + scheme;
     fd.attributes["history"] = run.command_line;

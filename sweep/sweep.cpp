@@ -6,7 +6,9 @@
 #include <numbers>
 
 #include "common/checks.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/progress.hpp"
 #include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
@@ -59,10 +61,17 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     r.member_count = int(all.size());
     r.output_interval = spec.output_interval;
     debris::WorldDef wdef = spec.world;
+    std::vector<debris::BodyDef> shapes;
+    for (const auto& b : spec.bodies) shapes.push_back(b.def);
+    const debris::WorldDef scaled = debris::default_world_def(shapes);  // scale-dependent settings follow the bodies
+    if (!spec.dt_max_given) wdef.step.dt_max = scaled.step.dt_max;
+    wdef.flow.accel_depth = scaled.flow.accel_depth;
     wdef.threads = def.threads;
     r.world = spec.world;
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
+    // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.
+    r.crs = cf::read_crs(nc::File::open_read(spec.flows.front()), "h");
 
     std::unique_ptr<Scene> scene;
     if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));

@@ -70,7 +70,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int dflow = f.def_dim("flow", r.flows.size()), dset = f.def_dim("param_set", r.params.size());
         const int dbody = f.def_dim("body", r.bodies.size()), dvar = f.def_dim("variant", r.variants.size());
 
-        const debris::TrackVariables track_vars = debris::define_track_variables(f, dtraj, dtime);
+        const debris::TrackVariables track_vars = debris::define_track_variables(f, dtraj, dtime, r.crs);
         auto var = [&](const char* name, nc_type type, std::vector<int> dims, const char* units, const char* long_name) {
             return cf::def_var(f, {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name});
         };
@@ -217,6 +217,7 @@ SweepResult read_sweep_file(const std::string& path) {
         column_var(name, "param_set");
         set_values.push_back(nc::read_finite(f, name));
     }
+    r.crs = cf::read_crs(f, "yaw");
     for (std::size_t s = 0; s < labels.size(); ++s) {
         ParameterSet ps{labels[s], {}, ctrl[s] != 0};
         for (const auto& v : set_values) ps.values.push_back(v[s]);
@@ -336,7 +337,7 @@ void write_summary_csv(const std::string& path, const SweepResult& r) {
     char buf[512];
     for (const auto& m : r.members) {
         const debris::Track& t = m.track;
-        const int k0 = t.x.empty() ? -1 : motion_start_index(t.x, t.y);
+        const int k0 = t.x.empty() ? -1 : motion_start_index(t.x, t.y, motion_threshold * body_scale(m.def.length));
         double vmax = 0.0, tmax = r.time.empty() ? 0.0 : r.time.front();
         for (std::size_t k = 0; k < t.u.size(); ++k) {
             const double sp = std::hypot(t.u[k], t.v[k]);

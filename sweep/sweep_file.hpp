@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cf.hpp"
 #include "common/netcdf.hpp"
 #include "debris/world.hpp"
 #include "formats/trajectory_file.hpp"
@@ -37,6 +38,7 @@ struct SweepResult {
     double output_interval = 0.0;  // [s]
     debris::WorldDef world;        // step and flow replay settings (threads: not recorded)
     std::vector<double> time;      // output times [s]
+    cf::GridMapping crs;           // the flows' CRS; empty: local metres
     // This part.
     Shard shard;                        // {0, 1}: the whole sweep
     std::vector<MemberRecord> members;  // by increasing id

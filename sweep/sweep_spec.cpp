@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "common/sha256.hpp"
 #include "common/toml_lite.hpp"
+#include "debris/catalogue.hpp"
 #include "formats/scene.hpp"
 
 namespace flotsam::sweep {
@@ -234,6 +235,7 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
             toml_fail(doc, *t, key, "must be a number or an array of numbers");
         }
     }
+    spec.control = control;
     const bool include_control = has(*t, "include-control") ? toml_bool(doc, *t, "include-control") : true;
     if (d == Design::control) {
         spec.params = {{"control", control, true}};
@@ -289,6 +291,7 @@ void read_sweep_table(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec, d
     if (has(*t, "output-interval")) spec.output_interval = number_in(doc, *t, "output-interval", Range::positive("s"));
     if (has(*t, "end-time")) spec.end_time = number_in(doc, *t, "end-time", Range::positive("s"));
     read_settings(doc, *t, debris::step_settings(), spec.world.step);
+    spec.dt_max_given = has(*t, "dt-max");
     read_settings(doc, *t, debris::flow_replay_settings(), spec.world.flow);
     read_settings(doc, *t, debris::body_model_settings(), body_model);
 }
@@ -298,10 +301,18 @@ void read_sweep_table(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec, d
 BodySpec read_body(const TomlDoc& doc, const TomlTable& t, SweepSpec& spec, const debris::BodyDef& body_model,
                    std::unique_ptr<Scene>& scene) {
     toml_allow_only(doc, t,
-                    keys_with(keys_with({"start", "at", "name"}, setting_keys(debris::body_shape_settings())),
+                    keys_with(keys_with({"start", "at", "name", "type"}, setting_keys(debris::body_shape_settings())),
                               setting_keys(debris::body_model_settings())));
     BodySpec b;
     b.def = body_model;
+    if (has(t, "type")) {  // a catalogue entry: its shape and coefficients
+        b.type = toml_string(doc, t, "type");
+        if (!debris::find_catalogue_body(b.type))
+            toml_fail(doc, t, "type", "'" + b.type + "' is not in the debris catalogue (" + debris::catalogue_names() + ")");
+        const debris::BodyDef entry = debris::catalogue_body_def(b.type, doc.path);
+        for (const auto* table : {&debris::body_shape_settings(), &debris::body_coefficient_settings()})
+            for (const auto& setting : *table) setting.set_number(b.def, setting.number(entry));
+    }
     if (has(t, "start") == has(t, "at"))
         toml_fail(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
     if (has(t, "start")) {
@@ -331,6 +342,22 @@ BodySpec read_body(const TomlDoc& doc, const TomlTable& t, SweepSpec& spec, cons
     read_settings(doc, t, debris::body_model_settings(), b.def);
     return b;
 }
+
+}  // namespace
+
+ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const ParamValues& set) {
+    const auto& table = design_parameters();
+    ParamValues v = set;
+    for (std::size_t p = 0; p < table.size(); ++p) {
+        const double control = spec.control[p];
+        if (table[p].is_factor() || !(control > 0)) continue;  // a factor scales every body alike
+        v[p] = table[p].number(body.def) * (set[p] / control);
+        if (table[p].key == "restitution") v[p] = std::min(1.0, v[p]);
+    }
+    return v;
+}
+
+namespace {
 
 void read_flows(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
     if (!t) fail(doc.path, "[flows]", "missing: give paths = [\"flow.nc\", ...] or pattern = \"dir/flow_r*.nc\" (or --flow)");
@@ -441,7 +468,10 @@ std::vector<Member> enumerate_members(const SweepSpec& spec) {
                         d.heading = start[2];
                         d.contact = spec.variants[std::size_t(v)].contact;
                         d.collision = spec.variants[std::size_t(v)].collision;
-                        apply_parameters(spec.params[std::size_t(p)].values, d);
+                        const BodySpec& body = spec.bodies[std::size_t(b)];
+                        apply_parameters(body.type.empty() ? spec.params[std::size_t(p)].values
+                                                           : catalogue_values(spec, body, spec.params[std::size_t(p)].values),
+                                         d);
                         out.push_back(m);
                     }
             }

@@ -82,6 +82,10 @@ struct BodySpec {
     double x = 0.0, y = 0.0;                           // [m], from the scene point or `at`
     double heading_deg = 0.0;                          // long axis from +x, counter-clockwise [degree]
     debris::BodyDef def = debris::default_body_def();  // shape and model settings ([[body]], [sweep])
+    // Catalogue entry (debris/catalogue.hpp), "" for none. Such a body keeps the entry's
+    // coefficients as its own control: a parameter set multiplies them by the set's
+    // value over the spec's control value (so "cd1x1.5" is 1.5 x the body's own cd1).
+    std::string type;
 };
 
 struct PerturbationDef {
@@ -99,11 +103,13 @@ struct SweepSpec {
     std::vector<BodySpec> bodies;
     std::vector<Variant> variants;
     std::vector<ParameterSet> params;
-    std::string design;  // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
+    ParamValues control = paper_control();  // the [parameters] control values
+    std::string design;                     // "control", "one_at_a_time", "factorial", "random", "latin_hypercube"
     PerturbationDef perturbation;
     double output_interval = 1.0;                          // trajectory sample spacing [s]
     double end_time = -1.0;                                // [s]; < 0: the earliest last frame of the flows
     debris::WorldDef world = debris::default_world_def();  // step and flow replay settings ([sweep])
+    bool dt_max_given = false;  // [sweep] dt-max set; else the step follows the bodies (debris::default_world_def)
 };
 
 // Reads and checks a spec. Bodies given by a scene start name are placed from the scene
@@ -125,6 +131,10 @@ struct MemberIndex {
 struct Member : MemberIndex {
     debris::BodyDef def;  // the body as run (name = the body's name)
 };
+
+// A parameter set's values for a catalogue body (BodySpec::type): each coefficient is the
+// entry's own times the set's value over the spec's control value.
+ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const ParamValues& set);
 
 // All members, flow outermost, then body, perturbation, variant, parameter set.
 std::vector<Member> enumerate_members(const SweepSpec& spec);

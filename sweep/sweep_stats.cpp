@@ -22,14 +22,14 @@ namespace {
 
 const double nan = std::nan("");
 
-SectionSummary summarise(std::vector<double> ys, std::vector<double> speeds, const StatsDef& def) {
+SectionSummary summarise(std::vector<double> ys, std::vector<double> speeds, double kde_floor) {
     SectionSummary s;
     s.count = int(ys.size());
     std::sort(ys.begin(), ys.end());
     s.y_mean = mean_of(ys);
     s.y_median = quantile_sorted(ys, 0.5);
     s.y_std = std_of(ys);
-    s.bandwidth = silverman_bandwidth(speeds, def.kde_floor);
+    s.bandwidth = silverman_bandwidth(speeds, kde_floor);
     std::sort(speeds.begin(), speeds.end());
     s.speed_mean = mean_of(speeds);
     s.speed_median = quantile_sorted(speeds, 0.5);
@@ -110,12 +110,14 @@ void yaw_per_member(SweepStats& s, const SweepResult& sw, const StatsDef& def) {
     for (std::size_t m = 0; m < nm; ++m) {
         const debris::Track& t = sw.members[m].track;
         if (t.x.empty()) continue;
-        const int k0 = motion_start_index(t.x, t.y);
+        const double scale = body_scale(sw.members[m].def.length);  // thresholds follow the body (trajectory_kernels.hpp)
+        const int k0 = motion_start_index(t.x, t.y, motion_threshold * scale);
         if (k0 < 0) continue;
         const double tm = s.time[std::size_t(k0)];
         s.motion_start[m] = tm;
         s.max_rotation[m] = max_rotation(s.time, t.yaw_deg, k0, def.yaw_window);
-        s.max_yaw_to_motion[m] = max_yaw_to_motion(s.time, t.yaw_deg, t.u, t.v, k0, def.yaw_window, def.yaw_min_speed);
+        s.max_yaw_to_motion[m] =
+            max_yaw_to_motion(s.time, t.yaw_deg, t.u, t.v, k0, def.yaw_window, def.yaw_min_speed * std::sqrt(scale));
         const double xe = sample_at(s.time, t.x, tm + def.yaw_window), ye = sample_at(s.time, t.y, tm + def.yaw_window);
         s.motion_direction[m] = std::atan2(ye - t.y[0], xe - t.x[0]) * 180.0 / std::numbers::pi;
     }
@@ -213,18 +215,23 @@ void collect_passages(const SweepStats& s, const SweepResult& sw, const std::vec
     }
 }
 
-// Calls f(summary, ys, speeds) for every section summary: per group, then per (group,
-// parameter set).
+// The Froude scale of a group's thresholds: its body's (trajectory_kernels.hpp).
+double group_scale(const SweepStats& s, const SweepResult& sw, std::size_t g) {
+    return body_scale(sw.members[std::size_t(s.groups[g].members.front())].def.length);
+}
+
+// Calls f(summary, ys, speeds, group) for every section summary: per group, then per
+// (group, parameter set).
 template <class F>
 void for_each_section_summary(SweepStats& s, const SweepResult& sw, F f) {
     std::vector<double> ys, speeds;
     for (std::size_t g = 0; g < s.groups.size(); ++g)
         for (std::size_t c = 0; c < s.sections.size(); ++c) {
             collect_passages(s, sw, s.groups[g].members, -1, c, ys, speeds);
-            f(s.section[g][c], ys, speeds);
+            f(s.section[g][c], ys, speeds, g);
             for (std::size_t p = 0; p < s.params.size(); ++p) {
                 collect_passages(s, sw, s.groups[g].members, int(p), c, ys, speeds);
-                f(s.section_by_param[g][p][c], ys, speeds);
+                f(s.section_by_param[g][p][c], ys, speeds, g);
             }
         }
 }
@@ -234,22 +241,23 @@ void section_summaries(SweepStats& s, const SweepResult& sw, const StatsDef& def
     const std::size_t ng = s.groups.size(), np = s.params.size(), ns = s.sections.size();
     s.section.assign(ng, std::vector<SectionSummary>(ns));
     s.section_by_param.assign(ng, std::vector<std::vector<SectionSummary>>(np, std::vector<SectionSummary>(ns)));
-    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>& ys, const std::vector<double>& speeds) {
-        q = summarise(ys, speeds, def);
-    });
+    for_each_section_summary(
+        s, sw, [&](SectionSummary& q, const std::vector<double>& ys, const std::vector<double>& speeds, std::size_t g) {
+            q = summarise(ys, speeds, def.kde_floor * std::sqrt(group_scale(s, sw, g)));
+        });
 }
 
 // Kernel densities of the passage speed, all on one speed axis that reaches 3
 // bandwidths beyond the fastest passage.
 void speed_densities(SweepStats& s, const SweepResult& sw, const StatsDef& def) {
     double top = 0.0;
-    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds) {
+    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds, std::size_t) {
         for (double v : speeds) top = std::max(top, v + 3.0 * q.bandwidth);
     });
     if (!(top > 0)) top = 1.0;
     const int nk = std::max(2, def.kde_points);
     for (int k = 0; k < nk; ++k) s.speed.push_back(top * k / (nk - 1));
-    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds) {
+    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds, std::size_t) {
         fill_kde(q, speeds, s.speed);
     });
 }
@@ -306,9 +314,10 @@ void distance_statistics(SweepStats& s, const SweepResult& sw, const StatsDef& d
         }
         if (s.control < 0) continue;
         const auto& dc = s.distance_mean[g][std::size_t(s.control)];
+        const double r_min = def.r_min_distance * group_scale(s, sw, g);
         for (std::size_t p = 0; p < np; ++p)
             for (std::size_t k = 0; k < nt; ++k)
-                if (dc[k] >= def.r_min_distance && !std::isnan(s.distance_mean[g][p][k]))
+                if (dc[k] >= r_min && !std::isnan(s.distance_mean[g][p][k]))
                     s.relative_error[g][p][k] = (s.distance_mean[g][p][k] - dc[k]) / dc[k];
     }
 }
@@ -355,6 +364,7 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     for (std::size_t p = 0; p < sw.params.size(); ++p)
         if (sw.params[p].is_control && s.control < 0) s.control = int(p);
     s.sections = scene.sections;
+    s.crs = scene.crs;
     for (const auto& r : scene.regions) s.regions.push_back(r.name);
     s.time = sw.time;
 
@@ -382,6 +392,7 @@ namespace {
 
 struct StatsDims {
     int group, param_set, section, region, speed, yaw_bin, bnds, time, member, x, y;
+    std::string grid_mapping;  // of the maps (over ..., y, x); "" without a CRS
 };
 
 using PutValues = std::function<void()>;
@@ -615,14 +626,25 @@ PutValues define_distance(nc::File& f, const StatsDims& d, const SweepStats& s) 
 // The probability and largest-speed maps.
 PutValues define_maps(nc::File& f, const StatsDims& d, const SweepStats& s) {
     const cf::XYAxes axes = cf::def_xy(f, d.x, d.y, "map cell centre");
-    const int vpp = def_stats_var(f, "pass_probability", NC_FLOAT, {d.group, d.y, d.x}, "1",
-                                  "fraction of the group's trajectories whose centre passes the cell");
-    const int vmx = def_stats_var(f, "max_debris_speed", NC_FLOAT, {d.group, d.y, d.x}, "m s-1",
-                                  "largest body speed in the cell over the group", true);
-    const int vppa = def_stats_var(f, "pass_probability_all", NC_FLOAT, {d.y, d.x}, "1",
-                                   "fraction of all trajectories whose centre passes the cell");
-    const int vmxa = def_stats_var(f, "max_debris_speed_all", NC_FLOAT, {d.y, d.x}, "m s-1",
-                                   "largest body speed in the cell over all trajectories", true);
+    cf::def_crs(f, s.crs);
+    // Maps name the grid mapping, so GIS tools place them.
+    auto map = [&](const std::string& name, std::vector<int> dims, const char* units, const std::string& long_name, bool fill) {
+        return cf::def_var(f, {.name = name,
+                               .type = NC_FLOAT,
+                               .dims = std::move(dims),
+                               .units = units,
+                               .long_name = long_name,
+                               .fill = fill,
+                               .grid_mapping = d.grid_mapping});
+    };
+    const int vpp = map("pass_probability", {d.group, d.y, d.x}, "1",
+                        "fraction of the group's trajectories whose centre passes the cell", false);
+    const int vmx =
+        map("max_debris_speed", {d.group, d.y, d.x}, "m s-1", "largest body speed in the cell over the group", true);
+    const int vppa =
+        map("pass_probability_all", {d.y, d.x}, "1", "fraction of all trajectories whose centre passes the cell", false);
+    const int vmxa =
+        map("max_debris_speed_all", {d.y, d.x}, "m s-1", "largest body speed in the cell over all trajectories", true);
     return [=, &f, &s] {
         f.put(axes.x, s.map.xs());
         f.put(axes.y, s.map.ys());
@@ -673,7 +695,8 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
                           f.def_dim("time", s.time.size()),
                           f.def_dim("member", s.member_group.size()),
                           f.def_dim("x", std::size_t(s.map.nx)),
-                          f.def_dim("y", std::size_t(s.map.ny))};
+                          f.def_dim("y", std::size_t(s.map.ny)),
+                          cf::grid_mapping_of(s.crs)};
         const std::vector<PutValues> puts = {
             define_tables(f, d, s),       define_passages(f, d, s),   define_yaw_histograms(f, d, s),
             define_member_table(f, d, s), define_member_yaw(f, d, s), define_rotation_from_start(f, d, s),

@@ -12,14 +12,17 @@
 
 namespace flotsam::sweep {
 
+// The lengths and speeds here hold for the paper's 0.25 m box; for another body each
+// group's are scaled by Froude's law with its body length (trajectory_kernels.hpp,
+// body_scale). The times (yaw_window, arrival_time) are the user's to set.
 struct StatsDef {
     double yaw_window = 30.0;      // yaw statistics over this long after the start (and after motion starts) [s]
-    double yaw_min_speed = 0.005;  // yaw against the motion only at samples at least this fast [m/s]
+    double yaw_min_speed = 0.005;  // yaw against the motion only at samples at least this fast [m/s] (x sqrt(L/0.25 m))
     double yaw_bin_width = 10.0;   // histogram bins over [−180, 180] [degree]
     double arrival_time = 300.0;   // region counts at this time [s]
-    double r_min_distance = 0.01;  // R(t) left undefined where the control's mean distance is below this [m]
+    double r_min_distance = 0.01;  // R(t) left undefined where the control's mean distance is below this [m] (x L/0.25 m)
     int kde_points = 128;          // points of the speed axis of the density estimates [-]
-    double kde_floor = 1e-3;       // smallest bandwidth, used when passage speeds do not spread [m/s]
+    double kde_floor = 1e-3;       // smallest bandwidth, used when passage speeds do not spread [m/s] (x sqrt(L/0.25 m))
     int map_coarsen = 1;           // map cell = this many scene cells along each side [-]
 };
 StatsDef default_stats_def();
@@ -79,6 +82,7 @@ struct SweepStats {
     Grid map;                                                     // the map grid
     std::vector<std::vector<float>> pass_probability, max_speed;  // [group][cell]; max_speed NaN: never passed
     std::vector<float> pass_probability_all, max_speed_all;       // all members
+    cf::GridMapping crs;                                          // the scene's CRS (of the maps); empty: local metres
 };
 
 SweepStats compute_stats(const SweepResult& sweep, const Scene& scene, const StatsDef& def = default_stats_def());

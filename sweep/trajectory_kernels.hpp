@@ -9,8 +9,14 @@
 
 namespace flotsam::sweep {
 
-// A body counts as moving once its centre is this far from its start [m].
+// A body counts as moving once its centre is this far from its start [m] (for the
+// paper's 0.25 m box; body_scale() scales it for other bodies).
 inline constexpr double motion_threshold = 0.005;
+
+// The thresholds of the statistics that are lengths or speeds hold for the paper's
+// 0.25 m box; for a body of length L they follow Froude's law with s = L / 0.25 m:
+// lengths x s, speeds and times x sqrt(s). Exactly 1 for the paper's box.
+inline double body_scale(double length) { return length / 0.25; }
 
 // Index of the first sample at least `threshold` from the first one; -1 when none.
 inline int motion_start_index(const std::vector<double>& x, const std::vector<double>& y, double threshold = motion_threshold) {

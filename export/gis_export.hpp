@@ -1,0 +1,48 @@
+// GIS out (issue 15): the hazard maps as Cloud-Optimised GeoTIFF and the debris tracks
+// as lines in a vector file, in the scene's CRS, so a planner opens them in QGIS as they
+// are. Reads the files flotsam writes (statistics, flow, trajectory or sweep files) by
+// their variable names (docs/sweep.md, formats/flow_file.hpp, formats/trajectory_file.hpp).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "common/cf.hpp"
+#include "common/grid.hpp"
+
+namespace flotsam::gis {
+
+// One map on a flotsam grid: values row-major with x fastest and the southern row first
+// (as in every flotsam file); NaN where the map has no value (nodata in the GeoTIFF).
+struct MapLayer {
+    std::string name;       // file stem and band description, e.g. "pass_probability_FD_LC-MC"
+    std::string long_name;  // what it is, with its group
+    std::string units;      // UDUNITS, e.g. "m s-1"; "1" for a fraction
+    std::vector<float> values;
+};
+
+// Writes `layer` as a Cloud-Optimised GeoTIFF (north-up, Float32, NaN nodata, DEFLATE,
+// internal tiles and overviews) on grid `g` in `crs` (none: local metres, said in the
+// file's metadata). Atomic: <path>.part, then renamed. `source` goes into the metadata.
+void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& crs, const MapLayer& layer,
+               const std::string& source);
+
+// The maps of a statistics file (flotsam stats): pass probability and largest debris
+// speed per group (body and model variant) and over all trajectories.
+std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs);
+
+// The maps of one or more flow files of one scene: maximum depth, maximum speed, arrival
+// time. Several flows (an ensemble) give their envelope: the largest depth and speed and
+// the earliest arrival of any flow, each cell on its own.
+std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs);
+
+// Writes the tracks of a trajectory or sweep file as one line per trajectory (its
+// samples in time order, fill values left out) with the per-trajectory variables as
+// attributes, plus start and end time, path length and largest speed. The format
+// follows the extension: .gpkg (GeoPackage), .geojson/.json (GeoJSON), .shp
+// (shapefile). Returns the number of lines. Atomic as above.
+std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path);
+
+// File name part for a group label: letters, digits, '-', '_' kept, '+' becomes '-'.
+std::string file_safe(const std::string& label);
+
+}  // namespace flotsam::gis
