@@ -32,7 +32,8 @@
 // cell below it. It does not remove water or momentum: a thin layer keeps its discharge,
 // so the water at a front moves on (issue 14: a velocity set to zero below 1e-5 m, and
 // the momentum of such cells set to zero, held Ritter's front 0.6 m back at every
-// resolution; docs/hydro.md, "Wet/dry fronts").
+// resolution). What a dam break onto dry ground still lags is made in its first steps,
+// by the cell average, and no tolerance changes it (docs/hydro.md, "Wet/dry fronts").
 //
 // Friction: solved implicitly per cell for fixed h, |q| + a |q|^2 = |q*| with
 // a = dt g n^2 / h^(7/3) (h held at eps below it), so it only slows the flow, never

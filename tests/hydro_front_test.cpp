@@ -67,36 +67,70 @@ TEST(FrontKernels, ImplicitFrictionStaysBoundedAsTheDepthVanishes) {
     EXPECT_NEAR(friction_factor(h, q, 0.0, gn2, dt, eps), expect, 1e-9);
 }
 
-// The issue's case at the defaults (dry tolerance 1e-5 m): the L1 error converges at
-// first order (a front limits any scheme to it), and the front, which lagged 0.56-0.64 m
-// at every resolution before (0.42-0.46 m at 2 cm), now lags 0.26-0.36 m at
-// 100-400 cells and less with every refinement (0.21-0.25 m at 800, 0.16-0.19 m at
-// 1600 cells; not asserted here, to keep the test fast). What
-// remains is the start: the fan is one cell wide at t = 0, so the fastest, thinnest
-// water at its tip is averaged into slower water for the first steps (the test below
-// shows the front transported from a resolved fan stays within 2 cells).
+// The issue's case at the defaults (dry tolerance 1e-5 m). Exact numbers, by hand:
+// c0 = sqrt(g h0) = 0.22147 m/s at 5 mm, 0.44294 m/s at 2 cm; the tip is at
+// 5 + 2 c0 t = 7.6577 m for both (6 s and 3 s); in the fan h = (2 c0 - xi)^2 / (9 g), so
+// h = 5e-7 m where 2 c0 - xi = sqrt(9 g 5e-7) = 6.644e-3 m/s, i.e. t * 6.644e-3 m behind
+// the tip: x_f = 7.6178 m (5 mm, 6 s) and 7.6377 m (2 cm, 3 s).
+//
+// The L1 error converges at first order (a front limits any scheme to it; issue: >= 0.8).
+// The front does NOT meet the issue's 2 cells: it lags 3.2, 6.4, 10.7 cells (0.32, 0.32,
+// 0.27 m) at 5 mm and 2.4, 5.8, 9.5 cells at 2 cm at 100, 200, 400 cells, and in metres
+// it shrinks slowly (0.21 m at 800, 0.15 m = 24 cells at 1600; bench/ritter_front.cpp
+// prints the table, docs/hydro.md "Wet/dry fronts" explains it). The tolerance is not the cause
+// (the next test): the lag is made in the first steps, while the fan is a few cells
+// wide. The first dry-bed flux carries water onto dry ground at the fan's mean speed,
+// c0, not at its tip speed 2 c0 (a cell average cannot hold both); that slow thin water
+// runs ahead as the scheme's diffusive tail, and the faster water behind piles into it:
+// a compressive front that regains its speed only slowly (0.86 * 2 c0 between 1.6 and
+// 3.2 s at 400 cells, 0.92 * 2 c0 between 3.2 and 6 s). Started from the exact fan at
+// 1 s the front stays within 2 cells (the test after next). The fronts are asserted to
+// the cell, so that a change that moves them is seen, for better or worse.
 TEST(Fronts, RitterDryBedConvergesAtTheDefaults) {
     struct Case {
-        double h0, t_end, l1_400;  // [m], [s], the L1 error at 400 cells [m^2]
+        double h0, t_end, exact_front;  // [m], [s], x_f [m]
+        double front[3];                // measured at 100, 200, 400 cells [m]
+        double l1_400;                  // the L1 error at 400 cells [m^2]
     };
-    for (const Case c : {Case{0.005, 6.0, 3.91e-5}, Case{0.02, 3.0, 1.58e-4}}) {
+    for (const Case c :
+         {Case{0.005, 6.0, 7.6178, {7.30, 7.30, 7.35}, 3.91e-5}, Case{0.02, 3.0, 7.6377, {7.40, 7.35, 7.40}, 1.58e-4}}) {
         double previous = 0.0;
+        int k = 0;
         for (int nx : {100, 200, 400}) {
             const test::RitterFront r = ritter(nx, c.h0, 0.0, c.t_end);
-            const double lag = r.tip - r.front;
-            std::printf("Ritter h0 = %.3f m, %d cells: front %.4f m (tip %.4f m, lag %.3f m = %.1f cells), L1 %.3e m^2%s", c.h0, nx,
-                        r.front, r.tip, lag, lag / r.dx, r.l1, previous > 0.0 ? "" : "\n");
+            const double lag = r.exact_front - r.front;
+            std::printf("Ritter h0 = %.3f m, %d cells: front %.4f m, exact %.4f m (lag %.3f m = %.1f cells), L1 %.3e m^2%s", c.h0,
+                        nx, r.front, r.exact_front, lag, lag / r.dx, r.l1, previous > 0.0 ? "" : "\n");
             if (previous > 0.0) {
                 const double order = std::log2(previous / r.l1);
                 std::printf(", order %.2f\n", order);
                 EXPECT_GE(order, 0.95) << c.h0 << " m, " << nx << " cells";  // measured 1.07-1.13
             }
-            EXPECT_LE(lag, 0.36) << c.h0 << " m, " << nx << " cells";
+            EXPECT_NEAR(r.exact_front, c.exact_front, 1e-4);
+            EXPECT_NEAR(r.front, c.front[k++], 0.5 * r.dx) << c.h0 << " m, " << nx << " cells";
             EXPECT_GE(r.min_depth_seen, -1e-12);       // the update itself keeps h >= 0
             EXPECT_NEAR(r.volume_change, 0.0, 1e-13);  // walls: mass to round-off
             previous = r.l1;
         }
         EXPECT_NEAR(previous, c.l1_400, 0.02 * c.l1_400) << c.h0;
+    }
+}
+
+// The tolerance holds no water back (issue 14's demand on it): with the dry tolerance
+// 10^4 times smaller, the front at 400 cells is no further east (measured: 1 cell behind
+// at 5 mm, 2 cells behind at 2 cm), and the L1 error is the same to 2 %.
+TEST(Fronts, RitterFrontIsNotHeldBackByTheDryTolerance) {
+    for (const double h0 : {0.005, 0.02}) {
+        const double t_end = h0 == 0.005 ? 6.0 : 3.0;
+        const test::RitterFront loose = ritter(400, h0, 0.0, t_end);
+        const test::RitterFront tight = test::ritter_front(400, h0, 0.0, t_end, 5e-7, [](const Scene& s, PhysicsDef d) {
+            d.dry_depth = 1e-9;
+            return Solver(s, d);
+        });
+        std::printf("Ritter h0 = %.3f m, 400 cells: front %.4f m at the default tolerance, %.4f m at 1e-9 m\n", h0, loose.front,
+                    tight.front);
+        EXPECT_GE(loose.front, tight.front) << h0;
+        EXPECT_NEAR(loose.l1, tight.l1, 0.02 * tight.l1) << h0;
     }
 }
 
