@@ -192,6 +192,7 @@ ImportFeatures kainan_import_features() {
     ImportFeatures f;
     f.features = kainan_features();
     f.manning = kainan_manning();
+    f.hydro_defaults = kainan_hydro_defaults();
     return f;
 }
 

@@ -57,7 +57,8 @@ struct ImportFeatures {
 // scale only (docs/scene.md, "Full scale").
 const std::vector<std::string>& scene_hydro_options();
 
-// The Kainan defaults: kainan_features(), kainan_manning() and the default building rule.
+// The Kainan defaults: kainan_features(), kainan_manning(), kainan_hydro_defaults() and the
+// default building rule.
 ImportFeatures kainan_import_features();
 
 // Reads a features TOML file. Tables it leaves out keep the values of `defaults`.

@@ -35,6 +35,8 @@ std::vector<ManningRule> kainan_manning() {
     return {ManningRule{0.025, std::nullopt, -0.66, {}, {}}, ManningRule{0.013, {}, {}, {}, {}}};
 }
 
+std::string kainan_hydro_defaults() { return "output-window = -1,8.1,-4.1,0\nnest-x = -1.2\nnest-ratio = 4\n"; }
+
 bool matches_kainan_extent(const Grid& g) {
     const double tol_x = g.dx, tol_y = g.dy;
     return std::abs(g.x_min_edge() - kainan_x_min_edge) <= tol_x && std::abs(g.x_max_edge() - kainan_x_max_edge) <= tol_x &&

@@ -31,6 +31,13 @@ SceneFeatures kainan_features();
 // mortar), 0.013 on the city model.
 std::vector<ManningRule> kainan_manning();
 
+// The hydro settings a Kainan scene recommends (Scene::hydro_defaults; `flotsam hydro`
+// applies them unless given): frames stored over the city and the port entrance only
+// (x >= -1 m: the debris never goes into the flume, whose frames would be 55 % of the
+// file), and the nested grid of docs/accuracy.md, 4 x the scene's spacing west of
+// x = -1.2 m, where the flume is plain water.
+std::string kainan_hydro_defaults();
+
 // True when the grid's edges match the Kainan extent to within one cell of the grid.
 bool matches_kainan_extent(const Grid& g);
 

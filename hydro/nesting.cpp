@@ -250,11 +250,14 @@ void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double
     const double dry = def_.dry_depth;
     const int J = j / ry_;
     for (int I = i0 / rx_; I * rx_ < split; ++I) {
-        const bool coarse_wet = coarse_.depth(I, J) > dry;
+        const double h_coarse = coarse_.depth(I, J);
+        const bool coarse_wet = h_coarse > dry;
         const double level = coarse_.level(I, J), u_coarse = coarse_.x_velocity(I, J), v_coarse = coarse_.y_velocity(I, J);
+        // A non-finite coarse state is passed on as it is, so the state checks name its cells.
+        const bool finite = std::isfinite(h_coarse) && std::isfinite(u_coarse) && std::isfinite(v_coarse);
         for (int i = std::max(i0, I * rx_); i < std::min(split, (I + 1) * rx_); ++i) {
-            const double d = coarse_wet ? std::max(0.0, level - z_[grid_.index(i, j)]) : 0.0;
-            const bool wet = d > dry;
+            const double d = !finite ? h_coarse : coarse_wet ? std::max(0.0, level - z_[grid_.index(i, j)]) : 0.0;
+            const bool wet = !finite || d > dry;
             h[i - i0] = d;
             u[i - i0] = wet ? u_coarse : 0.0;
             v[i - i0] = wet ? v_coarse : 0.0;

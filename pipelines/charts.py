@@ -165,6 +165,14 @@ def chart_time_to_draft(scene, flows, out):
     im = ax.imshow(vals, origin="lower", extent=[xs[0], xs[-1], ys[0], ys[-1]], cmap="viridis_r", vmin=0, vmax=300,
                    aspect="equal", alpha=0.9)
     fig.colorbar(im, ax=ax, shrink=0.8, label="time the depth first exceeds 2.5 cm [s]")
+    if "flooded" in f:  # the inundation line: the 0.5 contour of the flooded flag (docs/hydro.md)
+        depth = float(f["flooded"].attrs.get("flood_depth", float("nan")))
+        ax.contour(xs, ys, f["flooded"].values.astype(float), levels=[0.5], colors="k", linewidths=0.8)
+        ax.plot([], [], "k-", lw=0.8, label=f"inundation line (depth > {1000 * depth:g} mm at some time)")
+        if "runup_x" in f and np.isfinite(float(f["runup_x"])):
+            ax.plot(float(f["runup_x"]), float(f["runup_y"]), "k^", ms=7,
+                    label=f"highest flooded ground {1000 * float(f['runup_elevation']):.1f} mm")
+        ax.legend(loc="lower right", fontsize=8)
     for p in ("FD", "LD"):
         pts = point_positions(scene)
         if p in pts:

@@ -9,6 +9,7 @@
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/sha256.hpp"
+#include "formats/flow_file.hpp"
 #include "hydro/run.hpp"
 #include "tests/test_support.hpp"
 
@@ -315,4 +316,28 @@ TEST(HydroRun, GaugesReadThePlaneLevelWhereTheyStand) {
     EXPECT_NEAR(eta[1], (w[0] * lv[0] + w[1] * lv[1] + w[2] * lv[2]) / (w[0] + w[1] + w[2]), 1e-7);
     const auto h = f.get_float(f.var("gauge_h"));  // the roof's cell counts with depth 0
     EXPECT_NEAR(h[1], w[0] * (lv[0] + 0.1) + w[1] * (lv[1] + 0.1) + w[2] * (lv[2] + 0.1), 1e-7);
+}
+
+// The runup outputs by hand on a 4 x 2 beach: ground -0.1, 0, 0.02, 0.05 m along x (the
+// same in both rows), largest depths 0.1, 0.01, 0.0005 and 0 m in the south row and
+// 0.1, 0.0015, 0, 0 m in the north row, flood depth 1 mm. Flooded: the first two cells of
+// each row (0.5 mm is below the threshold); the highest flooded ground is 0 m, first
+// reached at (i 1, j 0); max_level z + max_depth where the cell was ever wet, else NaN.
+TEST(HydroRun, RunupOutputsByHand) {
+    const Grid g{4, 2, 0.5, 0.25, 1.0, 0.5};
+    const std::vector<float> z = {-0.1f, 0.0f, 0.02f, 0.05f, -0.1f, 0.0f, 0.02f, 0.05f};
+    const std::vector<float> max_depth = {0.1f, 0.01f, 0.0005f, 0.0f, 0.1f, 0.0015f, 0.0f, 0.0f};
+    const RunupSummary r = runup_summary(g, z, max_depth, 0.001);
+    EXPECT_EQ(r.flooded, (std::vector<std::int8_t>{1, 1, 0, 0, 1, 1, 0, 0}));
+    EXPECT_EQ(r.elevation, 0.0);
+    EXPECT_EQ(r.x, 1.5);
+    EXPECT_EQ(r.y, 0.25);
+    EXPECT_FLOAT_EQ(r.max_level[1], 0.01f);
+    EXPECT_FLOAT_EQ(r.max_level[2], 0.0205f);
+    EXPECT_TRUE(std::isnan(r.max_level[3]));
+    EXPECT_TRUE(std::isnan(r.max_level[6]));
+    // Nothing flooded: NaN position and elevation.
+    const RunupSummary dry = runup_summary(g, z, std::vector<float>(8, 0.0f), 0.001);
+    EXPECT_TRUE(std::isnan(dry.elevation));
+    EXPECT_TRUE(std::isnan(dry.x));
 }
