@@ -59,9 +59,8 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     for (std::size_t k = 0; k < 4; ++k) {
         const std::string side = kSideNames[k];
         const bool own = sub->get_option("--" + side + "-level-mode")->count() > 0;
-        sides[k]->level_mode = own || o.level_mode_all.empty()
-                                   ? parse_enum<LevelMode>(o.level_mode[k], "--" + side + "-level-mode")
-                                   : parse_enum<LevelMode>(o.level_mode_all, "--level-mode");
+        sides[k]->level_mode = own || o.level_mode_all.empty() ? parse_enum<LevelMode>(o.level_mode[k], "--" + side + "-level-mode")
+                                                               : parse_enum<LevelMode>(o.level_mode_all, "--level-mode");
         sides[k]->series_end = parse_enum<SeriesEnd>(o.series_end[k], "--" + side + "-series-end");
     }
     if (!o.window.empty()) o.run.window = std::array<double, 4>{o.window[0], o.window[1], o.window[2], o.window[3]};

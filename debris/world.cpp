@@ -14,7 +14,9 @@ WorldDef default_world_def() { return WorldDef{}; }
 
 const Settings<StepDef>& step_settings() {
     static const Settings<StepDef> table = {
-        {"dt-max", "s", "largest time step (flotsam debris: 0.01 s for the paper's 0.25 m box, x sqrt(L / 0.25 m) for the shortest body L)", Range::positive("s").up_to(60.0), &StepDef::dt_max},
+        {"dt-max", "s",
+         "largest time step (flotsam debris: 0.01 s for the paper's 0.25 m box, x sqrt(L / 0.25 m) for the shortest body L)",
+         Range::positive("s").up_to(60.0), &StepDef::dt_max},
         {"vertex-step-fraction", "1", "largest corner displacement per step, in grid cells (no tunnelling at the default)",
          Range::positive().up_to(10.0), &StepDef::vertex_step_fraction},
         {"integrator", "", "fluid-force stage: semi-implicit Euler or Heun", {}, choice_of<&StepDef::integrator>()},

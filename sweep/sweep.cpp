@@ -5,8 +5,8 @@
 #include <memory>
 #include <numbers>
 
-#include "common/checks.hpp"
 #include "common/cf.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/progress.hpp"

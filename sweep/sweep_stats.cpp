@@ -251,15 +251,17 @@ void section_summaries(SweepStats& s, const SweepResult& sw, const StatsDef& def
 // bandwidths beyond the fastest passage.
 void speed_densities(SweepStats& s, const SweepResult& sw, const StatsDef& def) {
     double top = 0.0;
-    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds, std::size_t) {
-        for (double v : speeds) top = std::max(top, v + 3.0 * q.bandwidth);
-    });
+    for_each_section_summary(s, sw,
+                             [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds, std::size_t) {
+                                 for (double v : speeds) top = std::max(top, v + 3.0 * q.bandwidth);
+                             });
     if (!(top > 0)) top = 1.0;
     const int nk = std::max(2, def.kde_points);
     for (int k = 0; k < nk; ++k) s.speed.push_back(top * k / (nk - 1));
-    for_each_section_summary(s, sw, [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds, std::size_t) {
-        fill_kde(q, speeds, s.speed);
-    });
+    for_each_section_summary(s, sw,
+                             [&](SectionSummary& q, const std::vector<double>&, const std::vector<double>& speeds, std::size_t) {
+                                 fill_kde(q, speeds, s.speed);
+                             });
 }
 
 // Per member: the first region that holds the position at the arrival time.
@@ -639,12 +641,10 @@ PutValues define_maps(nc::File& f, const StatsDims& d, const SweepStats& s) {
     };
     const int vpp = map("pass_probability", {d.group, d.y, d.x}, "1",
                         "fraction of the group's trajectories whose centre passes the cell", false);
-    const int vmx =
-        map("max_debris_speed", {d.group, d.y, d.x}, "m s-1", "largest body speed in the cell over the group", true);
+    const int vmx = map("max_debris_speed", {d.group, d.y, d.x}, "m s-1", "largest body speed in the cell over the group", true);
     const int vppa =
         map("pass_probability_all", {d.y, d.x}, "1", "fraction of all trajectories whose centre passes the cell", false);
-    const int vmxa =
-        map("max_debris_speed_all", {d.y, d.x}, "m s-1", "largest body speed in the cell over all trajectories", true);
+    const int vmxa = map("max_debris_speed_all", {d.y, d.x}, "m s-1", "largest body speed in the cell over all trajectories", true);
     return [=, &f, &s] {
         f.put(axes.x, s.map.xs());
         f.put(axes.y, s.map.ys());

@@ -54,11 +54,10 @@ struct Outputs {
 Outputs flow_and_sweep(const SmallCase& c) {
     Outputs o{c.dir + "/flow.nc", c.dir + "/sweep.nc", c.dir + "/spec.toml"};
     std::string out;
-    EXPECT_EQ(
-        test::run_cli(
-            "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --duration 4 --quiet" + whole_grid + " --out " + o.flow,
-                      &out),
-        0)
+    EXPECT_EQ(test::run_cli("hydro --scene " + c.scene + " --west level --west-series " + c.series + " --duration 4 --quiet" +
+                                whole_grid + " --out " + o.flow,
+                            &out),
+              0)
         << out;
     const std::string spec = test::write_file(c.dir, "spec.toml",
                                               "[sweep]\nscene = \"" + c.scene + "\"\n[flows]\npaths = [\"" + o.flow +
