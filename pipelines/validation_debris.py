@@ -2,6 +2,7 @@
 """The debris numbers of docs/validation.md from a statistics CSV folder.
 
 Usage: python3 -m pipelines.validation_debris runs/stats-real-0.04 [--set control]
+           [--sweep runs/sweep-real-0.04.nc]
 
 Reads the tables `flotsam stats --csv DIR` writes (members.csv, regions.csv,
 sections.csv, distance.csv) and prints, per body and model variant, for one parameter
@@ -12,7 +13,8 @@ set (the control by default: the paper's ten debris runs, one per flow):
   - when the body starts to move (5 mm from its start; median and range), and the
     same rotation, direction and r counted from motion start instead (labelled: a
     variant, not the paper's definition);
-  - where the bodies are at 300 s (region counts, Figs. 7 and 9);
+  - where the bodies are at 300 s (region counts, Figs. 7 and 9; with --sweep also the
+    positions, linear between samples);
   - passage position and speed at each section (Figs. 14 and 15);
   - R(t) of each other parameter set against the control (Fig. 17): the mean and the
     largest |R| over the times where it is defined.
@@ -63,6 +65,8 @@ def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv_dir", help="the folder of `flotsam stats --csv`")
     ap.add_argument("--set", default="control", help="parameter set label (default: control)")
+    ap.add_argument("--sweep", help="the sweep file, for the positions at --at seconds")
+    ap.add_argument("--at", type=float, default=300.0, help="time of the positions, from the first sample [s]")
     args = ap.parse_args(argv)
 
     members = read(os.path.join(args.csv_dir, "members.csv"))
@@ -70,6 +74,15 @@ def main(argv):
     sections = read(os.path.join(args.csv_dir, "sections.csv"))
     distance = read(os.path.join(args.csv_dir, "distance.csv"))
     groups = list(dict.fromkeys((m["body"], m["variant"]) for m in members))
+    positions = {}
+    if args.sweep:
+        import numpy as np
+        import xarray as xr
+        with xr.open_dataset(args.sweep, decode_times=False) as d:
+            t = d["time"].values - d["time"].values[0]
+            for k, member in enumerate(d["member_id"].values):
+                positions[str(int(member))] = (float(np.interp(args.at, t, d["x"].values[k])),
+                                               float(np.interp(args.at, t, d["y"].values[k])))
 
     for body, variant in groups:
         rows = [m for m in members if (m["body"], m["variant"]) == (body, variant) and m["param_label"] == args.set]
@@ -87,10 +100,12 @@ def main(argv):
         after_direction = [number(m["motion_direction_deg"]) for m in rows]
         print(f"  variant, counted from motion start: largest rotation in 30 s {spread(after, '°')}; direction "
               f"{spread(after_direction, '°')}; r = {pearson(after, after_direction):.2f}")
-        print("  per flow (rotation, direction, motion start, region at 300 s):")
+        print("  per flow (rotation, direction, motion start, region at 300 s, position at --at):")
         for m in rows:
+            where = positions.get(m["member"])
             print(f"    r{int(m['flow']):02d}: {number(m['max_rotation_from_start_deg']):+7.1f}°  "
-                  f"{number(m['movement_direction_deg']):+7.1f}°  {number(m['motion_start_s']):6.1f} s  {m['region_at_arrival'] or '-'}")
+                  f"{number(m['movement_direction_deg']):+7.1f}°  {number(m['motion_start_s']):6.1f} s  "
+                  f"{m['region_at_arrival'] or '-':12s}" + (f"  ({where[0]:.2f}, {where[1]:.2f}) m" if where else ""))
         counts = [r for r in regions if (r["body"], r["variant"], r["param_label"]) == (body, variant, args.set)]
         print("  at 300 s: " + ", ".join(f"{r['region']} {r['count']}/{r['members']}" for r in counts))
         for s in sections:
