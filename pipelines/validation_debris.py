@@ -67,6 +67,9 @@ def main(argv):
     ap.add_argument("--set", default="control", help="parameter set label (default: control)")
     ap.add_argument("--sweep", help="the sweep file, for the positions at --at seconds")
     ap.add_argument("--at", type=float, default=300.0, help="time of the positions, from the first sample [s]")
+    ap.add_argument("--reach-x", type=float, default=3.6,
+                    help="with --sweep: when a body first reaches this x (default 3.6 m, the basin's east shore on the "
+                         "real layout; the paper's FD bodies reach it at about 80 s) [m]")
     args = ap.parse_args(argv)
 
     members = read(os.path.join(args.csv_dir, "members.csv"))
@@ -81,8 +84,10 @@ def main(argv):
         with xr.open_dataset(args.sweep, decode_times=False) as d:
             t = d["time"].values - d["time"].values[0]
             for k, member in enumerate(d["member_id"].values):
-                positions[str(int(member))] = (float(np.interp(args.at, t, d["x"].values[k])),
-                                               float(np.interp(args.at, t, d["y"].values[k])))
+                x = d["x"].values[k]
+                reached = np.nonzero(x >= args.reach_x)[0]
+                positions[str(int(member))] = (float(np.interp(args.at, t, x)), float(np.interp(args.at, t, d["y"].values[k])),
+                                               float(t[reached[0]]) if reached.size else math.nan)
 
     for body, variant in groups:
         rows = [m for m in members if (m["body"], m["variant"]) == (body, variant) and m["param_label"] == args.set]
@@ -105,7 +110,10 @@ def main(argv):
             where = positions.get(m["member"])
             print(f"    r{int(m['flow']):02d}: {number(m['max_rotation_from_start_deg']):+7.1f}°  "
                   f"{number(m['movement_direction_deg']):+7.1f}°  {number(m['motion_start_s']):6.1f} s  "
-                  f"{m['region_at_arrival'] or '-':12s}" + (f"  ({where[0]:.2f}, {where[1]:.2f}) m" if where else ""))
+                  f"{m['region_at_arrival'] or '-':12s}" +
+                  (f"  ({where[0]:.2f}, {where[1]:.2f}) m, x >= {args.reach_x:g} m at {where[2]:.0f} s" if where else ""))
+        if positions:
+            print(f"  first time at x >= {args.reach_x:g} m: {spread([positions[m['member']][2] for m in rows], ' s', 0)}")
         counts = [r for r in regions if (r["body"], r["variant"], r["param_label"]) == (body, variant, args.set)]
         print("  at 300 s: " + ", ".join(f"{r['region']} {r['count']}/{r['members']}" for r in counts))
         for s in sections:
