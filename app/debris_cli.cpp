@@ -112,11 +112,7 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
         start_names.emplace_back();
     }
 
-    // The step and the acceleration guard follow the bodies' scale (default_world_def).
-    debris::WorldDef wdef = o.world;
-    const debris::WorldDef scaled = debris::default_world_def(bodies);
-    if (dt_max_default) wdef.step.dt_max = scaled.step.dt_max;
-    wdef.flow.accel_depth = scaled.flow.accel_depth;
+    const debris::WorldDef wdef = debris::scaled_to_bodies(o.world, bodies, !dt_max_default);
     debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef);
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;

@@ -35,15 +35,15 @@ const Settings<FlowReaderDef>& flow_replay_settings() {
     return table;
 }
 
-WorldDef default_world_def(const std::vector<BodyDef>& bodies) {
-    WorldDef d = default_world_def();
-    if (bodies.empty()) return d;
+WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool dt_max_given) {
+    if (bodies.empty()) return def;
     double shortest = bodies.front().length;
     for (const auto& b : bodies) shortest = std::min(shortest, b.length);
     const double s = shortest / 0.25;  // [-]; 1 for the paper's box
-    d.step.dt_max *= std::sqrt(s);
-    d.flow.accel_depth *= s;  // the dry tolerance is the flow file's, set by the hydro run
-    return d;
+    const WorldDef d = default_world_def();
+    if (!dt_max_given) def.step.dt_max = d.step.dt_max * std::sqrt(s);
+    def.flow.accel_depth = d.flow.accel_depth * s;  // the dry tolerance is the flow file's, set by the hydro run
+    return def;
 }
 
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {

@@ -30,13 +30,14 @@ WorldDef default_world_def();
 const Settings<StepDef>& step_settings();               // dt-max, vertex-step-fraction, integrator
 const Settings<FlowReaderDef>& flow_replay_settings();  // time-interpolation
 
-// The defaults for these bodies: the settings that are lengths or times follow the
+// `def` with the settings that are lengths or times set for these bodies: they follow the
 // shortest body's length L by Froude's law, s = L / 0.25 m (the paper's box, for which
-// the defaults were set, gets them unchanged): the largest step (0.01 s) x sqrt(s), and
-// the flow reader's acceleration depth (1e-3 m) x s (the dry tolerance is the flow file's). A body
-// scaled by Froude (lengths x s, times x sqrt(s)) then takes the same steps in scaled
-// time, and a prototype-scale run is the flume's scaled (tests/froude_test.cpp).
-WorldDef default_world_def(const std::vector<BodyDef>& bodies);
+// the defaults were set, gets them unchanged): the largest step (0.01 s) x sqrt(s) unless
+// the user gave one, and the flow reader's acceleration depth (1e-3 m) x s (the dry
+// tolerance is the flow file's). A body scaled by Froude (lengths x s, times x sqrt(s))
+// then takes the same steps in scaled time, and a prototype-scale run is the flume's
+// scaled (tests/froude_test.cpp). Used by `flotsam debris` and by sweeps.
+WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool dt_max_given);
 
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);

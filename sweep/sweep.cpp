@@ -63,11 +63,9 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     debris::WorldDef wdef = spec.world;
     std::vector<debris::BodyDef> shapes;
     for (const auto& b : spec.bodies) shapes.push_back(b.def);
-    const debris::WorldDef scaled = debris::default_world_def(shapes);  // scale-dependent settings follow the bodies
-    if (!spec.dt_max_given) wdef.step.dt_max = scaled.step.dt_max;
-    wdef.flow.accel_depth = scaled.flow.accel_depth;
+    wdef = debris::scaled_to_bodies(wdef, shapes, spec.dt_max_given);  // scale-dependent settings follow the bodies
+    r.world = wdef;                                                    // as run (threads are not recorded)
     wdef.threads = def.threads;
-    r.world = spec.world;
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
     // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.

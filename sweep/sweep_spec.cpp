@@ -352,7 +352,7 @@ ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const 
         const double control = spec.control[p];
         if (table[p].is_factor() || !(control > 0)) continue;  // a factor scales every body alike
         v[p] = table[p].number(body.def) * (set[p] / control);
-        if (table[p].key == "restitution") v[p] = std::min(1.0, v[p]);
+        v[p] = std::min(v[p], table[p].range.max);  // a scaled restitution stays at most 1
     }
     return v;
 }

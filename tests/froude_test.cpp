@@ -86,7 +86,7 @@ FlowFigures read_flow(const std::string& path) {
 // The FD box through a flow: centre positions at `steps` + 1 output times.
 std::vector<std::array<double, 2>> fd_path(const std::string& flow, const Scene& scene, const debris::BodyDef& body,
                                            double interval, int steps) {
-    debris::WorldDef wdef = debris::default_world_def({body});  // as flotsam debris sets it up
+    debris::WorldDef wdef = debris::scaled_to_bodies(debris::default_world_def(), {body}, false);  // as flotsam debris sets it up
     wdef.threads = 1;
     std::vector<std::uint8_t> building;
     {
