@@ -187,7 +187,7 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str()
         ->check(in_range(Range::non_negative("s m^-1/3").below(1.0)));
     // Boundaries.
-    const std::string kinds = "wall, transmissive, level, discharge or pump";
+    const std::string kinds = "wall, transmissive, level, discharge or pump (zero-gradient: finite-volume study only)";
     sub->add_option("--west", o->west, "West boundary: " + kinds)->capture_default_str();
     sub->add_option("--east", o->east, "East boundary: " + kinds)->capture_default_str();
     sub->add_option("--south", o->south, "South boundary: " + kinds)->capture_default_str();

@@ -15,22 +15,27 @@ namespace flotsam::hydro {
 enum class Side { west, east, south, north };
 
 enum class BoundaryKind {
-    wall,          // slip wall: normal velocity mirrored, tangential kept
-    transmissive,  // free transmission: zero gradient, waves leave
-    level,         // water level from a series (see LevelMode)
-    discharge,     // inflow discharge from a series [m^3/s over the whole side]
-    pump,          // the public benchmark forcing: a wall with a mass source in the
-                   // first cells until pump_stop, then a level relaxing to still water
-    nested,        // ghost cells given by the other grid of a nested pair (hydro/nesting.hpp)
+    wall,           // slip wall: normal velocity mirrored, tangential kept
+    transmissive,   // free transmission: waves leave into still water of the side's
+                    // initial depth (outgoing Riemann invariant from inside, incoming
+                    // one of that still water), so no inflow feeds itself
+    zero_gradient,  // study only (finite volumes): ghosts copy the edge cell; an inflow
+                    // there keeps its own incoming invariant and can grow without bound
+    level,          // water level from a series (see LevelMode)
+    discharge,      // inflow discharge from a series [m^3/s over the whole side]
+    pump,           // the public benchmark forcing: a wall with a mass source in the
+                    // first cells until pump_stop, then a level relaxing to still water
+    nested,         // ghost cells given by the other grid of a nested pair (hydro/nesting.hpp)
 };
 // The kinds a user may give a side (`nested` is set by the nesting driver only).
-inline constexpr EnumNames<BoundaryKind, 6> boundary_kind_names{"boundary",
+inline constexpr EnumNames<BoundaryKind, 7> boundary_kind_names{"boundary",
                                                                 {{{BoundaryKind::wall, "wall"},
                                                                   {BoundaryKind::transmissive, "transmissive"},
                                                                   {BoundaryKind::level, "level"},
                                                                   {BoundaryKind::discharge, "discharge"},
                                                                   {BoundaryKind::pump, "pump"},
-                                                                  {BoundaryKind::transmissive, "open"}}}};
+                                                                  {BoundaryKind::transmissive, "open"},
+                                                                  {BoundaryKind::zero_gradient, "zero-gradient"}}}};
 constexpr const auto& enum_names(BoundaryKind) { return boundary_kind_names; }
 
 // A measured record (WG1) is the total level: the wave going in plus what the city sent

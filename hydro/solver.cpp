@@ -69,6 +69,14 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
                 }
         }
     }
+    // Each side's initial edge depths: the still water a transmissive side lets waves
+    // leave into (the leap-frog keeps the same).
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
+        const bool xs = is_x_side(s);
+        for (int k = 0; k < (xs ? grid_.ny : grid_.nx); ++k)
+            rest_depth_[int(s)].push_back(xs ? h_[at(s == Side::west ? 0 : grid_.nx - 1, k)]
+                                             : h_[at(k, s == Side::south ? 0 : grid_.ny - 1)]);
+    }
     track_transfer_ = def.west.kind == BoundaryKind::nested || def.east.kind == BoundaryKind::nested;
     for (auto* v : {&west_face_mass_, &east_face_mass_, &west_stage1_, &east_stage1_, &west_transfer_, &east_transfer_})
         v->assign(std::size_t(grid_.ny), 0.0);
@@ -184,21 +192,24 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
                     qt[ghost] = qt[src];
                     break;
                 }
-                case BoundaryKind::transmissive: {
+                case BoundaryKind::zero_gradient: {  // study only: lets inflow feed itself (docs/hydro.md)
                     const std::size_t src = cell(0);
                     h[ghost] = h[src];
                     qn[ghost] = qn[src];
                     qt[ghost] = qt[src];
                     break;
                 }
+                case BoundaryKind::transmissive:
                 case BoundaryKind::level:
                 case BoundaryKind::discharge: {
                     const std::size_t src = cell(0);
                     const double h_in = h[src];
                     const double un_in = sign * velocity(h_in, qn[src], def_.dry_depth);
                     const double ut_in = velocity(h_in, qt[src], def_.dry_depth);
+                    const double h0 =
+                        kind == BoundaryKind::transmissive ? rest_depth_[int(s)][std::size_t(k)] : std::max(0.0, -z_[src]);
                     double hb = 0.0, unb = 0.0;
-                    open_side_state(forcing, h_in, un_in, std::max(0.0, -z_[src]), g, def_.dry_depth, hb, unb);
+                    open_side_state(forcing, h_in, un_in, h0, g, def_.dry_depth, hb, unb);
                     h[ghost] = hb;
                     qn[ghost] = sign * hb * unb;
                     qt[ghost] = hb * ut_in;

@@ -14,6 +14,7 @@
 // stencil is exactly zero (dry land the water has not reached) are skipped, which
 // gives the same bits as computing them.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -152,11 +153,12 @@ private:
     bool state_changed_outside_ = true;    // bound_ unknown: scan whole rows
     mutable double max_wave_rate_ = -1.0;  // max(a_x/dx + a_y/dy) of the state [1/s]; < 0: not known
     // Cold data.
-    std::vector<double> z_;                    // bed [m], ghosts filled once
-    std::vector<double> g_n2_;                 // g * manning_n^2 per cell
-    Forcing forcing_;                          // boundary series and the pump
-    std::vector<std::size_t> pump_cells_;      // padded indices of the pump's source strip (forcing_'s), row by row
-    std::vector<std::size_t> pump_row_start_;  // the pump cells of interior row j: [start[j], start[j+1])
+    std::vector<double> z_;                          // bed [m], ghosts filled once
+    std::vector<double> g_n2_;                       // g * manning_n^2 per cell
+    Forcing forcing_;                                // boundary series and the pump
+    std::vector<std::size_t> pump_cells_;            // padded indices of the pump's source strip (forcing_'s), row by row
+    std::vector<std::size_t> pump_row_start_;        // the pump cells of interior row j: [start[j], start[j+1])
+    std::array<std::vector<double>, 4> rest_depth_;  // initial depth of each side's edge cells [m] (transmissive sides)
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
     struct NestedGhosts {
         double t0 = 0.0, t1 = 0.0;

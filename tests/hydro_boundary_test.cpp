@@ -107,3 +107,47 @@ TEST(LevelBoundary, SeriesThatEndsHandsOverToATransmissiveSide) {
     EXPECT_LT(handed_over, 0.1 * held);
     EXPECT_EQ(parse_enum<SeriesEnd>("transmissive", "--west-series-end"), SeriesEnd::transmissive);
 }
+
+namespace {
+
+// A 10 m channel, 1 m deep (c0 = 3.13 m/s), west wall, open east side; the water starts
+// flowing west at 0.5 m/s, so the east side begins as an inflow. Runs 60 s (19 crossings)
+// without friction; returns the level at the middle of the channel [m], and the largest
+// |u| in the channel [m/s] through `speed`.
+double channel_level_after_inflow(BoundaryKind east, double& speed) {
+    Scene scene;
+    scene.grid = Grid{100, 2, 0.1, 0.1, 0.05, 0.05};
+    scene.z.assign(scene.grid.size(), -1.0);
+    scene.u0.assign(scene.grid.size(), -0.5);
+    scene.v0.assign(scene.grid.size(), 0.0);
+    PhysicsDef d = default_physics_def();
+    d.default_manning_n = 0.0;
+    d.west.kind = BoundaryKind::wall;
+    d.east.kind = east;
+    Solver solver(scene, d);
+    while (solver.time() < 60.0 - 1e-9) solver.step(std::min(solver.stable_dt(), 60.0 - solver.time()));
+    speed = 0.0;
+    for (int i = 0; i < 100; ++i) speed = std::max(speed, std::abs(solver.x_velocity(i, 0)));
+    return solver.level(50, 0);
+}
+
+}  // namespace
+
+// A transmissive side lets waves leave into still water of the side's initial depth: an
+// inflow through it dies out, and the channel comes to rest at that water's level, 0 m
+// (the incoming Riemann invariant at the side is the still water's, u - 2c = -2 c0, so
+// the only state at rest is h = 1 m). A zero-gradient side (the study option, and
+// transmissive before this test) copies the edge cell, so the inflow keeps its own
+// incoming invariant: here the channel keeps what came in and rests 0.163 m high (in
+// 2-D, the full-scale Kainan flows' east basin kept filling, to 100 m in 300 s:
+// docs/hydro.md, "Boundaries").
+TEST(TransmissiveBoundary, InflowDiesOutAndTheLevelReturnsToStillWater) {
+    double speed_char = 0.0, speed_zero = 0.0;
+    const double level_char = channel_level_after_inflow(BoundaryKind::transmissive, speed_char);
+    const double level_zero = channel_level_after_inflow(BoundaryKind::zero_gradient, speed_zero);
+    std::printf("level at 60 s: transmissive %.6f m (largest |u| %.2e m/s), zero-gradient %.6f m (%.2e m/s)\n", level_char,
+                speed_char, level_zero, speed_zero);
+    EXPECT_NEAR(level_char, 0.0, 1e-3);
+    EXPECT_LT(speed_char, 1e-3);
+    EXPECT_GT(level_zero, 0.1);
+}
