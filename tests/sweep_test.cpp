@@ -203,6 +203,28 @@ TEST(SweepSpec, PatternListsFlowsSortedAndSampledDesignsAddTheControl) {
     }
 }
 
+// The real-scale demo's spec reads with today's keys (it once kept the old snake_case
+// spelling, which only the demo's sweep, minutes into the run, found).
+TEST(SweepSpec, FullScaleExampleReads) {
+    const auto dir = test::scratch_dir("sweep_full_scale_example");
+    const auto flows = two_flows(dir);
+    Scene scene;
+    scene.grid = grid;
+    scene.z.assign(grid.size(), -0.1);
+    scene.points = {{"FD", "start", 0.3, 0.3, 0.0},
+                    {"LD", "start", 0.6, 0.5, 90.0},
+                    {"CONTAINER", "start", 0.3, 0.5, 0.0},
+                    {"CAR", "start", 0.5, 0.3, 0.0}};
+    write_scene(dir + "/scene.nc", scene, "test");
+    const SweepSpec spec =
+        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/kainan_full_scale.toml", dir + "/scene.nc", flows);
+    ASSERT_EQ(spec.bodies.size(), 4u);
+    EXPECT_EQ(spec.bodies[2].name, "CONTAINER");
+    EXPECT_EQ(spec.perturbation.count, 4);
+    EXPECT_DOUBLE_EQ(spec.perturbation.position_std, 5.0);
+    EXPECT_DOUBLE_EQ(spec.end_time, 6640.0);
+}
+
 // The shipped example is the paper's sweep: FD and LD, both variants, nine sets.
 TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
     const auto dir = test::scratch_dir("sweep_example");
