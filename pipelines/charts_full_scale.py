@@ -104,7 +104,7 @@ def main():
     speed = stats["max_debris_speed_all"].values
     im = ax.imshow(np.ma.masked_invalid(speed), origin="lower", extent=ext_map, cmap="inferno_r", aspect="equal",
                    vmin=0, vmax=np.nanpercentile(speed, 99) if np.isfinite(speed).any() else 1)
-    fig.colorbar(im, ax=ax, shrink=0.8, label="largest debris speed [m/s]")
+    fig.colorbar(im, ax=list(axes), shrink=0.45, anchor=(0.0, 0.05), label="largest debris speed [m/s], panel (b)")
     if a.flows:
         depth = None
         for f in a.flows:
