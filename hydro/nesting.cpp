@@ -209,6 +209,18 @@ void NestedSolver::reflux() {
     }
 }
 
+double NestedSolver::stable_dt() const {
+    const double coarse = coarse_.stable_dt(), fine = fine_.stable_dt();
+    const double ratio = coarse / fine;
+    if (!(ratio > 1.0)) return coarse;
+    const double up = std::ceil(ratio - 1e-9), down = std::floor(ratio + 1e-9);
+    // Cell-updates per simulated second: the coarse cells once per coarse step, the
+    // fine cells once per sub-step.
+    const double nc = double(coarse_.grid().size()), nf = double(fine_.grid().size());
+    const double cost_coarse_step = (nc + up * nf) / coarse, cost_whole_fine = (nc + down * nf) / (down * fine);
+    return cost_whole_fine < cost_coarse_step ? down * fine : coarse;
+}
+
 void NestedSolver::step(double dt) {
     const double t0 = time_, t1 = time_ + dt;
     const GhostState from_fine = coarse_ghosts_from_fine();

@@ -140,3 +140,38 @@ TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
               }).find("--nest-x"),
               std::string::npos);
 }
+
+namespace {
+
+// Water at rest, h_coarse deep west of x = 1 m and h_fine deep east of it, 1 cm cells,
+// nested x4 at x = 1 m: the coarse grid's step is 0.45 dx_c / (2 sqrt(g h_coarse)), the
+// fine grid's 0.45 dx_f / (2 sqrt(g h_fine)) (square cells: a/dx + a/dy = 2 c / dx).
+double nested_step(double h_coarse, double h_fine, double& coarse, double& fine) {
+    Scene s;
+    s.grid = Grid{200, 8, 0.005, 0.005, 0.01, 0.01};
+    s.z.assign(s.grid.size(), 0.0);
+    for (int j = 0; j < s.grid.ny; ++j)
+        for (int i = 0; i < s.grid.nx; ++i) s.z[s.grid.index(i, j)] = s.grid.x(i) < 1.0 ? -h_coarse : -h_fine;
+    NestedSolver solver(s, test::closed_def(), {}, NestDef{1.0, 4});
+    const double g = default_physics_def().gravity;
+    coarse = 0.45 * 0.04 / (2.0 * std::sqrt(g * h_coarse));
+    fine = 0.45 * 0.01 / (2.0 * std::sqrt(g * h_fine));
+    return solver.stable_dt();
+}
+
+}  // namespace
+
+// The coarse step is a whole number of fine steps at their limit when that costs fewer
+// cell-updates per second: 25 x 2 coarse and 100 x 8 fine cells. At a ratio r of 2.07
+// (h_fine = (r / 4)^2 h_coarse) two fine steps at the limit (cost (50 + 2 x 800) / (2 dt_f))
+// beat three of dt_c / 3 ((50 + 3 x 800) / dt_c); they break even at r = 2.97, so at 2.99
+// the coarse step is kept.
+TEST(Nesting, CoarseStepIsWholeFineStepsWhereThatIsCheaper) {
+    double coarse = 0.0, fine = 0.0;
+    const double near_two = nested_step(1.0, 0.2678, coarse, fine);
+    EXPECT_NEAR(coarse / fine, 2.07, 0.001);
+    EXPECT_NEAR(near_two, 2.0 * fine, 1e-15);
+    const double near_three = nested_step(1.0, 0.558756, coarse, fine);
+    EXPECT_NEAR(coarse / fine, 2.99, 0.001);
+    EXPECT_NEAR(near_three, coarse, 1e-15);
+}
