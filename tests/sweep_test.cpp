@@ -203,21 +203,27 @@ TEST(SweepSpec, PatternListsFlowsSortedAndSampledDesignsAddTheControl) {
     }
 }
 
+// Reads sweep/examples/<name>.toml over a flat test scene with these points and `flows`.
+SweepSpec read_example_spec(const std::string& name, const std::string& dir, const std::vector<std::string>& flows,
+                            const std::vector<ScenePoint>& points) {
+    Scene scene;
+    scene.grid = grid;
+    scene.z.assign(grid.size(), -0.1);
+    scene.points = points;
+    write_scene(dir + "/scene.nc", scene, "test");
+    return read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/" + name + ".toml", dir + "/scene.nc", flows);
+}
+
 // The real-scale demo's spec reads with today's keys (it once kept the old snake_case
 // spelling, which only the demo's sweep, minutes into the run, found).
 TEST(SweepSpec, FullScaleExampleReads) {
     const auto dir = test::scratch_dir("sweep_full_scale_example");
     const auto flows = two_flows(dir);
-    Scene scene;
-    scene.grid = grid;
-    scene.z.assign(grid.size(), -0.1);
-    scene.points = {{"FD", "start", 0.3, 0.3, 0.0},
-                    {"LD", "start", 0.6, 0.5, 90.0},
-                    {"CONTAINER", "start", 0.3, 0.5, 0.0},
-                    {"CAR", "start", 0.5, 0.3, 0.0}};
-    write_scene(dir + "/scene.nc", scene, "test");
-    const SweepSpec spec =
-        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/kainan_full_scale.toml", dir + "/scene.nc", flows);
+    const SweepSpec spec = read_example_spec("kainan_full_scale", dir, flows,
+                                             {{"FD", "start", 0.3, 0.3, 0.0},
+                                              {"LD", "start", 0.6, 0.5, 90.0},
+                                              {"CONTAINER", "start", 0.3, 0.5, 0.0},
+                                              {"CAR", "start", 0.5, 0.3, 0.0}});
     ASSERT_EQ(spec.bodies.size(), 4u);
     EXPECT_EQ(spec.bodies[2].name, "CONTAINER");
     EXPECT_EQ(spec.perturbation.count, 4);
@@ -229,13 +235,9 @@ TEST(SweepSpec, FullScaleExampleReads) {
 TEST(SweepSpec, ExampleSpecIsThePapersSweep) {
     const auto dir = test::scratch_dir("sweep_example");
     const auto flows = two_flows(dir);
-    Scene scene;
-    scene.grid = grid;
-    scene.z.assign(grid.size(), -0.1);
-    scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}, {"WG2", "gauge", 0.1, 0.1, 0.0}};
-    write_scene(dir + "/scene.nc", scene, "test");
     const SweepSpec spec =
-        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity.toml", dir + "/scene.nc", flows);
+        read_example_spec("paper_sensitivity", dir, flows,
+                          {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}, {"WG2", "gauge", 0.1, 0.1, 0.0}});
     ASSERT_EQ(spec.bodies.size(), 2u);
     EXPECT_EQ(spec.bodies[1].name, "LD");
     EXPECT_DOUBLE_EQ(spec.bodies[1].x, 0.6);
@@ -272,13 +274,8 @@ TEST(SweepDesign, DragFactorScalesBothDragCoefficients) {
 TEST(SweepSpec, PaperDesignSpecHasSevenSets) {
     const auto dir = test::scratch_dir("sweep_example7");
     const auto flows = two_flows(dir);
-    Scene scene;
-    scene.grid = grid;
-    scene.z.assign(grid.size(), -0.1);
-    scene.points = {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}};
-    write_scene(dir + "/scene.nc", scene, "test");
     const SweepSpec spec =
-        read_sweep_spec(std::string(FLOTSAM_SOURCE_DIR) + "/sweep/examples/paper_sensitivity_7.toml", dir + "/scene.nc", flows);
+        read_example_spec("paper_sensitivity_7", dir, flows, {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}});
     ASSERT_EQ(spec.params.size(), 7u);
     const std::vector<std::string> labels = {"control", "cdx1.5", "cd/1.5", "cmx1.5", "cm/1.5", "mux1.5", "mu/1.5"};
     for (std::size_t k = 0; k < 7; ++k) EXPECT_EQ(spec.params[k].label, labels[k]);
