@@ -24,6 +24,7 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
     load.force =
         (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
     const int ns = def.samples_per_face;
+    const FlowReader::TimeStencil at_t = flow.at_time(t);
     for (int face = 0; face < 4; ++face) {
         const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
         const double sign = (face % 2 == 0) ? 1.0 : -1.0;
@@ -34,7 +35,7 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
         const double segment = face_length / ns;
         for (int q = 0; q < ns; ++q) {
             const Vec2 r = offset * n + ((q + 0.5) / ns - 0.5) * face_length * tangent;
-            const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, t);
+            const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, at_t);
             const double wetted = std::min(b.draft, fp.depth);
             if (wetted <= 0.0) continue;
             const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);
