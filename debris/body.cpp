@@ -82,6 +82,7 @@ BodyParams make_body_params(const BodyDef& def, double water_density) {
     p.radius_sq = (def.length * def.length + def.width * def.width) / 12.0;
     p.inertia = p.mass * p.radius_sq;
     p.step_height = def.step_tolerance * p.draft;
+    p.half_diagonal = 0.5 * std::hypot(def.length, def.width);
     return p;
 }
 

@@ -82,6 +82,7 @@ struct BodyParams {
     double plan_area = 0.0;    // L B [m²]
     double radius_sq = 0.0;    // (L² + B²) / 12, I / m [m²]
     double step_height = 0.0;  // step_tolerance × draft [m]
+    double half_diagonal = 0.0;  // ½ √(L² + B²): the farthest a corner is from the centre [m]
 };
 BodyParams make_body_params(const BodyDef& def, double water_density);  // throws on bad values
 

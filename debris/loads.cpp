@@ -15,8 +15,12 @@ Inertia effective_inertia(const BodyParams& b, double submerged_volume, double r
 
 FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
                      double t, double rho) {
+    return fluid_load(flow, b, m, Box::make(m.centre, m.theta, b.def.length, b.def.width), centre, submerged, t, rho);
+}
+
+FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const Box& box, const FlowPointAccel& centre,
+                     double submerged, double t, double rho) {
     const BodyDef& def = b.def;
-    const Box box = Box::make(m.centre, m.theta, def.length, def.width);
     // Velocity of the body point at r from the centre: translation, rotation about the
     // centre, and rotation about the pivot while the axis is shifted.
     auto point_velocity = [&](Vec2 r) { return m.velocity + spin(m.omega, r) + spin(m.pivot_rate, r - m.pivot_arm); };
