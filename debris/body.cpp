@@ -45,7 +45,8 @@ const Settings<BodyDef>& body_model_settings() {
          "yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12 (false: the paper's m (L^2 + B^2)/12, Eq. 2)",
          {},
          &BodyDef::added_yaw_inertia},
-        {"samples-per-face", "1", "drag sample points per side face", Range::count(1, 16), &BodyDef::samples_per_face},
+        {"samples-per-face", "1", "drag sample points per side face", Range::count(1, max_samples_per_face),
+         &BodyDef::samples_per_face},
         {"step-tolerance", "1", "ground above the bottom by more than this x draft blocks", Range::closed(0.0, 10.0),
          &BodyDef::step_tolerance},
     };

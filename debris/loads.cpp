@@ -28,6 +28,8 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
     load.force =
         (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
     const int ns = def.samples_per_face;
+    double along[max_samples_per_face];  // sample q's place along a face, from its middle, in face lengths [-]
+    for (int q = 0; q < ns; ++q) along[q] = (q + 0.5) / ns - 0.5;
     const FlowReader::TimeStencil at_t = flow.at_time(t);
     for (int face = 0; face < 4; ++face) {
         const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
@@ -38,7 +40,7 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
         const double face_length = long_normal ? def.width : def.length;
         const double segment = face_length / ns;
         for (int q = 0; q < ns; ++q) {
-            const Vec2 r = offset * n + ((q + 0.5) / ns - 0.5) * face_length * tangent;
+            const Vec2 r = offset * n + along[q] * face_length * tangent;
             const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, at_t);
             const double wetted = std::min(b.draft, fp.depth);
             if (wetted <= 0.0) continue;
