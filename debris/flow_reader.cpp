@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "common/error.hpp"
+#include "debris/kernels.hpp"
 #include "formats/flow_file.hpp"
 
 namespace flotsam::debris {
@@ -56,13 +57,6 @@ double read_dry_depth(const nc::File& f) {
              "the dry tolerance must be a positive depth [m], got " + std::to_string(*value));
     return *value;
 }
-
-// Independent divisions as one packed instruction: each lane is the correctly rounded
-// quotient, the same bits as the scalar a / b, but the divider's latency is paid once.
-using Pair = double __attribute__((vector_size(16)));
-using Quad = double __attribute__((vector_size(32)));
-inline Pair divide(Pair a, Pair b) { return a / b; }
-inline Quad divide(Quad a, Quad b) { return a / b; }
 
 }  // namespace
 
@@ -204,8 +198,10 @@ void FlowReader::set_window(const CellWindow& w) {
 
 CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) const {
     // The bilinear stencil of x uses nodes floor(fx) and floor(fx) + 1.
-    const int i0 = int(std::floor((x0 - grid_.x0) / grid_.dx)), i1 = int(std::floor((x1 - grid_.x0) / grid_.dx)) + 2;
-    const int j0 = int(std::floor((y0 - grid_.y0) / grid_.dy)), j1 = int(std::floor((y1 - grid_.y0) / grid_.dy)) + 2;
+    const Double4 f =
+        Double4{x0 - grid_.x0, x1 - grid_.x0, y0 - grid_.y0, y1 - grid_.y0} / Double4{grid_.dx, grid_.dx, grid_.dy, grid_.dy};
+    const int i0 = int(std::floor(f[0])), i1 = int(std::floor(f[1])) + 2;
+    const int j0 = int(std::floor(f[2])), j1 = int(std::floor(f[3])) + 2;
     return CellWindow{std::clamp(i0, 0, grid_.nx - 2), std::clamp(i1, 2, grid_.nx), std::clamp(j0, 0, grid_.ny - 2),
                       std::clamp(j1, 2, grid_.ny)};
 }
@@ -237,7 +233,7 @@ struct FlowReader::Stencil {
 
 FlowReader::Stencil FlowReader::stencil(double x, double y, const TimeStencil& ts) const {
     Stencil s;
-    const Pair f = divide(Pair{x - grid_.x0, y - grid_.y0}, Pair{grid_.dx, grid_.dy});
+    const Double2 f = Double2{x - grid_.x0, y - grid_.y0} / Double2{grid_.dx, grid_.dy};  // one packed division
     const double fx = f[0], fy = f[1];
     const int wnx = window_.i1 - window_.i0, wny = window_.j1 - window_.j0;
     int i = int(std::floor(fx)) - window_.i0, j = int(std::floor(fy)) - window_.j0;
@@ -305,7 +301,7 @@ FlowPoint FlowReader::sample(double x, double y, const TimeStencil& ts) const {
     FlowPoint p;
     p.depth = at(h_);
     if (p.depth >= dry_depth_) {
-        const Pair uv = divide(Pair{at(qx_), at(qy_)}, Pair{p.depth, p.depth});
+        const Double2 uv = Double2{at(qx_), at(qy_)} / Double2{p.depth, p.depth};
         p.u = uv[0];
         p.v = uv[1];
     }
@@ -330,14 +326,14 @@ FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     p.depth = h.val;
     if (h.val < dry_depth_) return p;
     const Interp qx = interp(qx_), qy = interp(qy_);
-    const Pair uv = divide(Pair{qx.val, qy.val}, Pair{h.val, h.val});
+    const Double2 uv = Double2{qx.val, qy.val} / Double2{h.val, h.val};
     p.u = uv[0];
     p.v = uv[1];
     if (h.val < def_.accel_depth) return p;
     // u = q / h, so ∂u = (∂q − u ∂h) / h for each of ∂t, ∂x, ∂y.
-    const Quad d4 = divide(Quad{qx.ddt - p.u * h.ddt, qx.ddx - p.u * h.ddx, qx.ddy - p.u * h.ddy, qy.ddt - p.v * h.ddt},
-                           Quad{h.val, h.val, h.val, h.val});
-    const Pair d2 = divide(Pair{qy.ddx - p.v * h.ddx, qy.ddy - p.v * h.ddy}, Pair{h.val, h.val});
+    const Double4 d4 = Double4{qx.ddt - p.u * h.ddt, qx.ddx - p.u * h.ddx, qx.ddy - p.u * h.ddy, qy.ddt - p.v * h.ddt} /
+                       Double4{h.val, h.val, h.val, h.val};
+    const Double2 d2 = Double2{qy.ddx - p.v * h.ddx, qy.ddy - p.v * h.ddy} / Double2{h.val, h.val};
     const double ut = d4[0], ux = d4[1], uy = d4[2], vt = d4[3], vx = d2[0], vy = d2[1];
     p.du_dt = ut + p.u * ux + p.v * uy;
     p.dv_dt = vt + p.u * vx + p.v * vy;
