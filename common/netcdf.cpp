@@ -1,5 +1,6 @@
 #include "common/netcdf.hpp"
 
+#include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -10,6 +11,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
+#include <set>
 #include <utility>
 
 #include "common/error.hpp"
@@ -70,15 +73,37 @@ int walk_structure(const char* path) {
 
 }  // namespace
 
+namespace {
+
+// A file as it is on disk now: its identity and its last change. An empty key: stat failed.
+std::string file_version_key(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return "";
+    return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) + ":" + std::to_string(st.st_size) + ":" +
+           std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ":" + std::to_string(st.st_ctim.tv_sec) +
+           "." + std::to_string(st.st_ctim.tv_nsec);
+}
+
+}  // namespace
+
 // libhdf5 can crash or hang on a corrupted file (docs/reliability.md). Its structure is
 // therefore walked first in a child process: a crash or a hang there is reported as a
-// corrupted file, never takes flotsam down. FLOTSAM_NO_PROBE=1 skips it.
+// corrupted file, never takes flotsam down. FLOTSAM_NO_PROBE=1 skips it. A file that
+// passed is not probed again while it is unchanged (same device, inode, size, mtime and
+// ctime): a sweep opens each flow several times, and each probe forks the whole process.
 void probe_structure(const std::string& path) {
     static const bool off = [] {
         const char* e = std::getenv("FLOTSAM_NO_PROBE");
         return e && *e && std::string(e) != "0";
     }();
     if (off) return;
+    static std::mutex passed_mutex;
+    static std::set<std::string> passed;
+    const std::string key = file_version_key(path);
+    {
+        const std::lock_guard<std::mutex> lock(passed_mutex);
+        if (!key.empty() && passed.count(key)) return;
+    }
     std::fflush(nullptr);
     const pid_t child = ::fork();
     if (child < 0) return;  // cannot probe: read as usual
@@ -99,6 +124,10 @@ void probe_structure(const std::string& path) {
         fail(path, "",
              std::string("corrupted: libhdf5 crashed reading the file's structure (") + ::strsignal(WTERMSIG(status)) +
                  "); the file cannot be read");
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !key.empty()) {
+        const std::lock_guard<std::mutex> lock(passed_mutex);
+        passed.insert(key);
+    }
 }
 
 File File::open_read(const std::string& path) {

@@ -45,7 +45,8 @@ const Settings<BodyDef>& body_model_settings() {
          "yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12 (false: the paper's m (L^2 + B^2)/12, Eq. 2)",
          {},
          &BodyDef::added_yaw_inertia},
-        {"samples-per-face", "1", "drag sample points per side face", Range::count(1, 16), &BodyDef::samples_per_face},
+        {"samples-per-face", "1", "drag sample points per side face", Range::count(1, max_samples_per_face),
+         &BodyDef::samples_per_face},
         {"step-tolerance", "1", "ground above the bottom by more than this x draft blocks", Range::closed(0.0, 10.0),
          &BodyDef::step_tolerance},
     };
@@ -82,6 +83,7 @@ BodyParams make_body_params(const BodyDef& def, double water_density) {
     p.radius_sq = (def.length * def.length + def.width * def.width) / 12.0;
     p.inertia = p.mass * p.radius_sq;
     p.step_height = def.step_tolerance * p.draft;
+    p.half_diagonal = 0.5 * std::hypot(def.length, def.width);
     return p;
 }
 

@@ -38,6 +38,9 @@ inline constexpr EnumNames<AddedMass, 2> added_mass_names{
     "added-mass treatment", {{{AddedMass::implicit, "implicit"}, {AddedMass::explicit_, "explicit"}}}};
 constexpr const auto& enum_names(AddedMass) { return added_mass_names; }
 
+// The most drag sample points along one face (the range of BodyDef::samples_per_face).
+inline constexpr int max_samples_per_face = 16;
+
 struct BodyDef {
     std::string name;                // label in outputs (e.g. the scene point "FD")
     double x = 0.0;                  // initial centre [m]
@@ -57,7 +60,7 @@ struct BodyDef {
     AddedMass added_mass = AddedMass::implicit;
     bool added_yaw_inertia = false;  // yaw inertia I + ρ C_a V_s (L² + B²)/12 instead of Eq. 2's I (an extension) [-]
     bool axis_shift = true;          // LC only: rotate about the contact centroid (paper Eqs. 6-10)
-    int samples_per_face = 4;        // drag sample points along each side face [-]
+    int samples_per_face = 4;        // drag sample points along each side face, 1 to max_samples_per_face [-]
     double step_tolerance =
         0.2;  // a cell the body moves into blocks where its ground rises above the body's bottom by more than this × draft (docs/debris.md, "Ground and obstacles") [-]
 };
@@ -76,12 +79,13 @@ const Settings<BodyDef>& body_variant_settings();      // contact, collision
 // Derived once from a BodyDef.
 struct BodyParams {
     BodyDef def;
-    double mass = 0.0;         // m = s.g. ρ L B D [kg]
-    double draft = 0.0;        // d = m / (ρ L B) [m]
-    double inertia = 0.0;      // I = m (L² + B²) / 12 about the vertical axis through the centre [kg m²]
-    double plan_area = 0.0;    // L B [m²]
-    double radius_sq = 0.0;    // (L² + B²) / 12, I / m [m²]
-    double step_height = 0.0;  // step_tolerance × draft [m]
+    double mass = 0.0;           // m = s.g. ρ L B D [kg]
+    double draft = 0.0;          // d = m / (ρ L B) [m]
+    double inertia = 0.0;        // I = m (L² + B²) / 12 about the vertical axis through the centre [kg m²]
+    double plan_area = 0.0;      // L B [m²]
+    double radius_sq = 0.0;      // (L² + B²) / 12, I / m [m²]
+    double step_height = 0.0;    // step_tolerance × draft [m]
+    double half_diagonal = 0.0;  // ½ √(L² + B²): the farthest a corner is from the centre [m]
 };
 BodyParams make_body_params(const BodyDef& def, double water_density);  // throws on bad values
 

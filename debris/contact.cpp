@@ -26,8 +26,9 @@ void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams&
     if (!(flow.min_depth(cells) < b.draft)) return;  // no point under the body can be shallower than the draft
     footprint.clear();
     footprint_patches(box, grid, footprint);
+    const FlowReader::TimeStencil at_t = flow.at_time(t);
     for (const auto& fp : footprint) {
-        const double h = flow.depth(fp.centroid.x, fp.centroid.y, t);
+        const double h = flow.depth(fp.centroid.x, fp.centroid.y, at_t);
         if (h < b.draft)
             out.push_back(
                 {fp.centroid - xg, fp.area, friction_capacity(def.mu, fp.area / b.plan_area, b.mass, rho, b.plan_area, h, g)});

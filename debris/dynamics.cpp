@@ -51,7 +51,7 @@ Loads integrate_loads(const StepContext& ctx, const BodyParams& b, const BodySta
     const double rho = ctx.def.water_density, t = s.time;
     const Inertia& eff = st.eff;
     Loads out;
-    out.load = fluid_load(ctx.flow, b, st.now, st.centre, st.submerged, t, rho);
+    out.load = fluid_load(ctx.flow, b, st.now, st.box, st.centre, st.submerged, t, rho);
     Vec2 explicit_force;
     double explicit_torque = 0.0;
     if (b.def.added_mass == AddedMass::explicit_) {
@@ -84,9 +84,9 @@ Loads integrate_loads(const StepContext& ctx, const BodyParams& b, const BodySta
 // Commit: the new velocities, pose (Eq. 10: x^(n+1) = x^n + Δx_g + Δx_sub) and flags.
 // Heun moves with the mean of the old and new velocities (second order), Euler with the
 // new one (semi-implicit: a body friction has stopped does not move). Returns the largest
-// displacement of a corner [m].
+// displacement of a corner [m]; `pose` is the footprint at the new pose.
 double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const StepStart& st, const Velocities& next,
-              const AxisShift& a, bool grounded, double dt) {
+              const AxisShift& a, bool grounded, double dt, Box& pose) {
     if (b.def.added_mass == AddedMass::explicit_) {
         s.ax_prev = (next.V.x - st.now.velocity.x) / dt;
         s.ay_prev = (next.V.y - st.now.velocity.y) / dt;
@@ -107,7 +107,8 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
     s.theta += dt * omega_move + a.turn;
 
     const auto before = st.box.corners();
-    const auto after = Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width).corners();
+    pose = Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width);
+    const auto after = pose.corners();
     double travel = 0.0;
     for (int k = 0; k < 4; ++k) travel = std::max(travel, norm(after[k] - before[k]));
 
@@ -125,11 +126,11 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
 // afloat, on the highest ground under its footprint (`start`) where that is higher. So
 // the ground under the footprint is never a wall. Where no ground within reach is above
 // η_c − d + step, the resting height cannot change the outcome and is not computed.
-void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start,
+void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start, const Box& pose,
              StepScratch& scratch) {
     const double afloat = ctx.obstacles.ground(start.now.centre.x, start.now.centre.y) + start.centre.depth - b.draft;
     double bottom = afloat;
-    if (ctx.obstacles.ground_above(Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width), afloat + b.step_height))
+    if (ctx.obstacles.ground_above(pose, afloat + b.step_height))
         bottom = std::max(afloat, ctx.obstacles.highest_ground(start.box, footprint_overlap));
     const Inertia& eff = start.eff;
     const CollisionOutcome hit = resolve_collisions(ctx.obstacles, b, b.def.collision, eff.mass, eff.inertia, bottom,
@@ -161,8 +162,9 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     const Friction friction = apply_friction(scratch.patches, loads.trial, st.eff, dt);
     const AxisShift shift = axis_shift(b, s, scratch.patches, loads.load, friction.after.omega, friction.capacity, st.eff, dt);
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;
-    const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt);
-    collide(ctx, b, s, stats, st, scratch);
+    Box pose;
+    const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt, pose);
+    collide(ctx, b, s, stats, st, pose, scratch);
     s.centre_vx = (s.x - x0) / dt;
     s.centre_vy = (s.y - y0) / dt;
     s.time = t + dt;
@@ -170,7 +172,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
 }
 
 double stable_step(const StepContext& ctx, const BodyParams& b, const BodyState& s) {
-    const double half_diagonal = 0.5 * std::hypot(b.def.length, b.def.width);
+    const double half_diagonal = b.half_diagonal;
     // Fastest corner: |V| + |ω| r for rotation about the centre; a pivot about a point
     // inside the footprint moves a corner at most |ω_sub| × 2 r.
     const double vertex_speed = std::hypot(s.vx, s.vy) + (std::fabs(s.omega) + 2.0 * std::fabs(s.pivot_rate)) * half_diagonal;
@@ -182,7 +184,7 @@ double stable_step(const StepContext& ctx, const BodyParams& b, const BodyState&
 double window_pad(const StepContext& ctx, const BodyParams& b) {
     const Grid& g = ctx.obstacles.grid();
     const double reach = ctx.def.vertex_step_fraction * std::min(g.dx, g.dy);
-    return 0.5 * std::hypot(b.def.length, b.def.width) + 2.0 * reach + 2.0 * std::max(g.dx, g.dy);
+    return b.half_diagonal + 2.0 * reach + 2.0 * std::max(g.dx, g.dy);
 }
 
 bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double t_end, StepScratch& scratch) {

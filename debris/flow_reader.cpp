@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "common/error.hpp"
+#include "debris/kernels.hpp"
 #include "formats/flow_file.hpp"
 
 namespace flotsam::debris {
@@ -131,6 +132,13 @@ void FlowReader::hold(const std::size_t (&need)[4]) {
     const int r0 = cubic ? 0 : 1, r1 = cubic ? 4 : 3;
     Frame held[4];
     for (int r = 0; r < 4; ++r) held[r] = std::move(frames_[r]);
+    // A held frame that no role needs lends its arrays to a frame read anew: reading then
+    // neither allocates nor touches fresh pages.
+    bool spare[4];
+    for (int q = 0; q < 4; ++q) {
+        spare[q] = true;
+        for (int r = r0; r < r1; ++r) spare[q] = spare[q] && held[q].index != need[r];
+    }
     for (int r = r0; r < r1; ++r) {
         Frame& f = frames_[r];
         f.index = no_frame;
@@ -141,7 +149,15 @@ void FlowReader::hold(const std::size_t (&need)[4]) {
                 f = std::move(held[q]);
                 held[q].index = no_frame;
             }
-        if (f.index == no_frame) load(f, need[r]);
+        if (f.index != no_frame) continue;
+        for (int q = 0; q < 4; ++q)
+            if (spare[q] && held[q].h.capacity() > 0) {
+                f = std::move(held[q]);
+                f.index = no_frame;
+                spare[q] = false;
+                break;
+            }
+        load(f, need[r]);
     }
     for (int r = 0; r < 4; ++r) {
         role_slot_[r] = cubic ? r : std::clamp(r, 1, 2);
@@ -182,10 +198,27 @@ void FlowReader::set_window(const CellWindow& w) {
 
 CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) const {
     // The bilinear stencil of x uses nodes floor(fx) and floor(fx) + 1.
-    const int i0 = int(std::floor((x0 - grid_.x0) / grid_.dx)), i1 = int(std::floor((x1 - grid_.x0) / grid_.dx)) + 2;
-    const int j0 = int(std::floor((y0 - grid_.y0) / grid_.dy)), j1 = int(std::floor((y1 - grid_.y0) / grid_.dy)) + 2;
+    const Double4 f =
+        Double4{x0 - grid_.x0, x1 - grid_.x0, y0 - grid_.y0, y1 - grid_.y0} / Double4{grid_.dx, grid_.dx, grid_.dy, grid_.dy};
+    const int i0 = int(std::floor(f[0])), i1 = int(std::floor(f[1])) + 2;
+    const int j0 = int(std::floor(f[2])), j1 = int(std::floor(f[3])) + 2;
     return CellWindow{std::clamp(i0, 0, grid_.nx - 2), std::clamp(i1, 2, grid_.nx), std::clamp(j0, 0, grid_.ny - 2),
                       std::clamp(j1, 2, grid_.ny)};
+}
+
+FlowReader::TimeStencil FlowReader::at_time(double t) const {
+    TimeStencil ts;
+    const double t0 = times_[role(1).index], t1 = times_[role(2).index];
+    if (t1 > t0) {
+        ts.a = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
+        if (t >= t0 && t <= t1) ts.inv_dt = 1.0 / (t1 - t0);
+        if (def_.time_interpolation == TimeInterpolation::cubic) {
+            const double tp = times_[role(0).index], tn = times_[role(3).index];
+            ts.cubic_weights = catmull_rom_time_weights(ts.a, ts.inv_dt, (t1 - t0) / (t1 - tp), (t1 - t0) / (tn - t0));
+            ts.cubic = true;
+        }
+    }
+    return ts;
 }
 
 struct FlowReader::Stencil {
@@ -194,13 +227,14 @@ struct FlowReader::Stencil {
     double a = 0.0;                                // linear: weight of frame k+1
     double inv_dt = 0.0;                           // 1 / frame interval, 0 where the flow is held
     bool cubic[4] = {false, false, false, false};  // node c uses the cubic (it passed the guard)
-    TimeWeights cubic_weights;                     // set where the cubic interpolant is on
+    const TimeWeights* cubic_weights = nullptr;    // set where the cubic interpolant is on
     bool inside_x = true, inside_y = true;         // false where the point was clamped to the grid
 };
 
-FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
+FlowReader::Stencil FlowReader::stencil(double x, double y, const TimeStencil& ts) const {
     Stencil s;
-    const double fx = (x - grid_.x0) / grid_.dx, fy = (y - grid_.y0) / grid_.dy;
+    const Double2 f = Double2{x - grid_.x0, y - grid_.y0} / Double2{grid_.dx, grid_.dy};  // one packed division
+    const double fx = f[0], fy = f[1];
     const int wnx = window_.i1 - window_.i0, wny = window_.j1 - window_.j0;
     int i = int(std::floor(fx)) - window_.i0, j = int(std::floor(fy)) - window_.j0;
     s.inside_x = i >= 0 && i <= wnx - 2;
@@ -213,17 +247,13 @@ FlowReader::Stencil FlowReader::stencil(double x, double y, double t) const {
     s.n[1] = s.n[0] + 1;
     s.n[2] = s.n[0] + std::size_t(wnx);
     s.n[3] = s.n[2] + 1;
-    const double t0 = times_[role(1).index], t1 = times_[role(2).index];
-    if (t1 > t0) {
-        s.a = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
-        if (t >= t0 && t <= t1) s.inv_dt = 1.0 / (t1 - t0);
-        if (def_.time_interpolation == TimeInterpolation::cubic) {
-            const double tp = times_[role(0).index], tn = times_[role(3).index];
-            s.cubic_weights = catmull_rom_time_weights(s.a, s.inv_dt, (t1 - t0) / (t1 - tp), (t1 - t0) / (tn - t0));
-            for (int c = 0; c < 4; ++c) {
-                const double h[4] = {h_.role[0][s.n[c]], h_.role[1][s.n[c]], h_.role[2][s.n[c]], h_.role[3][s.n[c]]};
-                s.cubic[c] = cubic_depth_admissible(apply_time_weights(s.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth_);
-            }
+    s.a = ts.a;
+    s.inv_dt = ts.inv_dt;
+    if (ts.cubic) {
+        s.cubic_weights = &ts.cubic_weights;
+        for (int c = 0; c < 4; ++c) {
+            const double h[4] = {h_.role[0][s.n[c]], h_.role[1][s.n[c]], h_.role[2][s.n[c]], h_.role[3][s.n[c]]};
+            s.cubic[c] = cubic_depth_admissible(apply_time_weights(ts.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth_);
         }
     }
     return s;
@@ -246,24 +276,24 @@ inline double bilinear(const double (&v)[4], const S& s) {
 template <class S, class F>
 inline double value_in_time(const S& s, const F& f, int c) {
     const std::size_t n = s.n[c];
-    if (s.cubic[c]) return apply_time_weights(s.cubic_weights.w, f.role[0][n], f.role[1][n], f.role[2][n], f.role[3][n]);
+    if (s.cubic[c]) return apply_time_weights(s.cubic_weights->w, f.role[0][n], f.role[1][n], f.role[2][n], f.role[3][n]);
     return linear_in_time(s.a, f.role[1][n], f.role[2][n]);
 }
 template <class S, class F>
 inline double rate_in_time(const S& s, const F& f, int c) {
     const std::size_t n = s.n[c];
-    if (s.cubic[c]) return apply_time_weights(s.cubic_weights.dw, f.role[0][n], f.role[1][n], f.role[2][n], f.role[3][n]);
+    if (s.cubic[c]) return apply_time_weights(s.cubic_weights->dw, f.role[0][n], f.role[1][n], f.role[2][n], f.role[3][n]);
     return linear_rate(s.inv_dt, f.role[1][n], f.role[2][n]);
 }
 
-double FlowReader::depth(double x, double y, double t) const {
-    const Stencil s = stencil(x, y, t);
+double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
+    const Stencil s = stencil(x, y, ts);
     const double v[4] = {value_in_time(s, h_, 0), value_in_time(s, h_, 1), value_in_time(s, h_, 2), value_in_time(s, h_, 3)};
     return bilinear(v, s);
 }
 
-FlowPoint FlowReader::sample(double x, double y, double t) const {
-    const Stencil s = stencil(x, y, t);
+FlowPoint FlowReader::sample(double x, double y, const TimeStencil& ts) const {
+    const Stencil s = stencil(x, y, ts);
     auto at = [&](const Field& f) {
         const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
         return bilinear(v, s);
@@ -271,14 +301,15 @@ FlowPoint FlowReader::sample(double x, double y, double t) const {
     FlowPoint p;
     p.depth = at(h_);
     if (p.depth >= dry_depth_) {
-        p.u = at(qx_) / p.depth;
-        p.v = at(qy_) / p.depth;
+        const Double2 uv = Double2{at(qx_), at(qy_)} / Double2{p.depth, p.depth};
+        p.u = uv[0];
+        p.v = uv[1];
     }
     return p;
 }
 
 FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
-    const Stencil s = stencil(x, y, t);
+    const Stencil s = stencil(x, y, at_time(t));
     const double gx = s.inside_x ? 1.0 / grid_.dx : 0.0, gy = s.inside_y ? 1.0 / grid_.dy : 0.0;
     auto interp = [&](const Field& f) {
         const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
@@ -295,12 +326,15 @@ FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     p.depth = h.val;
     if (h.val < dry_depth_) return p;
     const Interp qx = interp(qx_), qy = interp(qy_);
-    p.u = qx.val / h.val;
-    p.v = qy.val / h.val;
+    const Double2 uv = Double2{qx.val, qy.val} / Double2{h.val, h.val};
+    p.u = uv[0];
+    p.v = uv[1];
     if (h.val < def_.accel_depth) return p;
     // u = q / h, so ∂u = (∂q − u ∂h) / h for each of ∂t, ∂x, ∂y.
-    const double ut = (qx.ddt - p.u * h.ddt) / h.val, ux = (qx.ddx - p.u * h.ddx) / h.val, uy = (qx.ddy - p.u * h.ddy) / h.val;
-    const double vt = (qy.ddt - p.v * h.ddt) / h.val, vx = (qy.ddx - p.v * h.ddx) / h.val, vy = (qy.ddy - p.v * h.ddy) / h.val;
+    const Double4 d4 = Double4{qx.ddt - p.u * h.ddt, qx.ddx - p.u * h.ddx, qx.ddy - p.u * h.ddy, qy.ddt - p.v * h.ddt} /
+                       Double4{h.val, h.val, h.val, h.val};
+    const Double2 d2 = Double2{qy.ddx - p.v * h.ddx, qy.ddy - p.v * h.ddy} / Double2{h.val, h.val};
+    const double ut = d4[0], ux = d4[1], uy = d4[2], vt = d4[3], vx = d2[0], vy = d2[1];
     p.du_dt = ut + p.u * ux + p.v * uy;
     p.dv_dt = vt + p.u * vx + p.v * vy;
     return p;

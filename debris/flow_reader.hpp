@@ -108,9 +108,22 @@ public:
 
     // Samples at time t in the prepared interval (clamped into it). The point must lie
     // in the window (cells_for of it contained in window()); outside, values are clamped.
-    FlowPoint sample(double x, double y, double t) const;
+    FlowPoint sample(double x, double y, double t) const { return sample(x, y, at_time(t)); }
     FlowPointAccel sample_accel(double x, double y, double t) const;
-    double depth(double x, double y, double t) const;
+    double depth(double x, double y, double t) const { return depth(x, y, at_time(t)); }
+
+    // What sampling at time t needs of the time axis (the frames' weights), worked out
+    // once for many points at the same t; valid until the next prepare() or set_window().
+    struct TimeStencil {
+        double a = 0.0;             // linear: weight of frame k+1 [-]
+        double inv_dt = 0.0;        // 1 / frame interval, 0 where the flow is held [1/s]
+        bool cubic = false;         // the cubic interpolant is on (its guard is per node)
+        TimeWeights cubic_weights;  // set where it is
+    };
+    TimeStencil at_time(double t) const;
+    // The same as sample(x, y, t) and depth(x, y, t) for ts = at_time(t), to the bit.
+    FlowPoint sample(double x, double y, const TimeStencil& ts) const;
+    double depth(double x, double y, const TimeStencil& ts) const;
     // Smallest stored depth over cells `w` in the two frames around t: a lower bound of
     // the interpolated depth anywhere inside those cells' stencils (for the cubic too,
     // by its guard).
@@ -128,7 +141,7 @@ private:
         const float* role[4] = {nullptr, nullptr, nullptr, nullptr};
     };
     struct Stencil;
-    Stencil stencil(double x, double y, double t) const;
+    Stencil stencil(double x, double y, const TimeStencil& ts) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
     void hold(const std::size_t (&need)[4]);
     void load(Frame& f, std::size_t frame);

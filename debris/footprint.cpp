@@ -58,8 +58,16 @@ void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPa
         // The footprint cut to this row of cells, then to each cell of the row.
         const Poly row = clip(clip(body, 1, yc - hy, -1.0), 1, yc + hy, 1.0);
         if (row.n < 3) continue;
+        // A cell wholly beside the row's part of the footprint clips to nothing: skipped
+        // before clipping (strictly beside: a cell touching it still goes through the clip).
+        double row_x0 = row.p[0].x, row_x1 = row.p[0].x;
+        for (int k = 1; k < row.n; ++k) {
+            row_x0 = std::min(row_x0, row.p[k].x);
+            row_x1 = std::max(row_x1, row.p[k].x);
+        }
         for (int i = i0; i <= i1; ++i) {
             const double xc = grid.x(i);
+            if (xc + hx < row_x0 || xc - hx > row_x1) continue;
             const Vec2 cc{xc, yc};
             FootprintPatch patch;
             // Fast path: a cell whose four corners are inside the footprint is covered whole.

@@ -28,6 +28,12 @@ inline Vec2 rotate(Vec2 a, double angle) {
     const double c = std::cos(angle), s = std::sin(angle);
     return {c * a.x - s * a.y, s * a.x + c * a.y};
 }
+// Two or four numbers at once (GCC/Clang vector types), for independent divisions in hot
+// loops: a packed division gives each lane the correctly rounded quotient, the same bits
+// as the scalar a / b, and the divider's latency is paid once.
+using Double2 = double __attribute__((vector_size(16)));
+using Double4 = double __attribute__((vector_size(32)));
+
 // a / |a|, or zero below `eps` (no direction: a point that does not slide).
 inline Vec2 unit_or_zero(Vec2 a, double eps) {
     const double n = norm(a);

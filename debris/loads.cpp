@@ -15,8 +15,12 @@ Inertia effective_inertia(const BodyParams& b, double submerged_volume, double r
 
 FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
                      double t, double rho) {
+    return fluid_load(flow, b, m, Box::make(m.centre, m.theta, b.def.length, b.def.width), centre, submerged, t, rho);
+}
+
+FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const Box& box, const FlowPointAccel& centre,
+                     double submerged, double t, double rho) {
     const BodyDef& def = b.def;
-    const Box box = Box::make(m.centre, m.theta, def.length, def.width);
     // Velocity of the body point at r from the centre: translation, rotation about the
     // centre, and rotation about the pivot while the axis is shifted.
     auto point_velocity = [&](Vec2 r) { return m.velocity + spin(m.omega, r) + spin(m.pivot_rate, r - m.pivot_arm); };
@@ -24,6 +28,9 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
     load.force =
         (rho * submerged * def.cm) * Vec2{centre.du_dt, centre.dv_dt};  // Froude-Krylov + added-mass part of the fluid acceleration
     const int ns = def.samples_per_face;
+    double along[max_samples_per_face];  // sample q's place along a face, from its middle, in face lengths [-]
+    for (int q = 0; q < ns; ++q) along[q] = (q + 0.5) / ns - 0.5;
+    const FlowReader::TimeStencil at_t = flow.at_time(t);
     for (int face = 0; face < 4; ++face) {
         const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
         const double sign = (face % 2 == 0) ? 1.0 : -1.0;
@@ -33,8 +40,8 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
         const double face_length = long_normal ? def.width : def.length;
         const double segment = face_length / ns;
         for (int q = 0; q < ns; ++q) {
-            const Vec2 r = offset * n + ((q + 0.5) / ns - 0.5) * face_length * tangent;
-            const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, t);
+            const Vec2 r = offset * n + along[q] * face_length * tangent;
+            const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, at_t);
             const double wetted = std::min(b.draft, fp.depth);
             if (wetted <= 0.0) continue;
             const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);

@@ -10,6 +10,7 @@
 // The torque T' is Σ (p − x_g) × F over the face samples (no friction).
 #pragma once
 #include "debris/body.hpp"
+#include "debris/box.hpp"
 #include "debris/flow_reader.hpp"
 #include "debris/kernels.hpp"
 
@@ -36,6 +37,9 @@ struct FluidLoad {
 // the centre (for Du/Dt); submerged: V_s = L B min(d, h_c) [m³]; rho: ρw [kg/m³].
 FluidLoad fluid_load(const FlowReader& flow, const BodyParams& body, const Motion& motion, const FlowPointAccel& centre,
                      double submerged, double t, double rho);
+// The same, given the footprint at the motion's pose (Box::make of its centre and heading).
+FluidLoad fluid_load(const FlowReader& flow, const BodyParams& body, const Motion& motion, const Box& box,
+                     const FlowPointAccel& centre, double submerged, double t, double rho);
 
 // Effective mass and yaw inertia: the body plus, when implicit, the added mass ρ C_a V_s
 // [kg]. The yaw inertia is the paper's (Eq. 2, I = m (L² + B²)/12) unless the body asks

@@ -51,10 +51,11 @@ Penetration penetration(const Box& box, Vec2 c, double hx, double hy) {
 
 ObstacleMap::CellRange ObstacleMap::cells_touching(const Box& box, int pad) const {
     const double ex = box.extent_x(), ey = box.extent_y();
-    return CellRange{int(std::floor((box.centre.x - ex - grid_.x0) / grid_.dx + 0.5)) - pad,
-                     int(std::floor((box.centre.x + ex - grid_.x0) / grid_.dx + 0.5)) + pad,
-                     int(std::floor((box.centre.y - ey - grid_.y0) / grid_.dy + 0.5)) - pad,
-                     int(std::floor((box.centre.y + ey - grid_.y0) / grid_.dy + 0.5)) + pad};
+    const Double4 f = Double4{box.centre.x - ex - grid_.x0, box.centre.x + ex - grid_.x0, box.centre.y - ey - grid_.y0,
+                              box.centre.y + ey - grid_.y0} /
+                      Double4{grid_.dx, grid_.dx, grid_.dy, grid_.dy};  // one packed division
+    return CellRange{int(std::floor(f[0] + 0.5)) - pad, int(std::floor(f[1] + 0.5)) + pad, int(std::floor(f[2] + 0.5)) - pad,
+                     int(std::floor(f[3] + 0.5)) + pad};
 }
 
 double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {

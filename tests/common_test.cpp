@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/sha256.hpp"
 #include "common/timeseries.hpp"
 #include "formats/scene.hpp"
@@ -71,4 +73,21 @@ TEST(Scene, RoundTripAndErrors) {
     EXPECT_FALSE(r.regions[0].contains(0.5, 2.5));
     EXPECT_TRUE(r.synthetic);
     EXPECT_NE(error_of([&] { read_scene(dir + "/missing.nc"); }).find("missing.nc"), std::string::npos);
+}
+
+// A file whose structure passed the probe is not probed again while unchanged, but one
+// replaced at the same path is: here by a copy that makes libhdf5 itself crash
+// (docs/reliability.md), which must still come back as a named error, never a crash.
+TEST(NetcdfProbe, AFileReplacedAfterItsProbeIsProbedAgain) {
+    const auto dir = test::scratch_dir("nc_probe");
+    Scene s;
+    s.grid = Grid{4, 3, 0.0, 0.0, 1.0, 1.0};
+    s.z.assign(12, 0.0);
+    const std::string path = dir + "/f.nc";
+    write_scene(path, s, "test");
+    for (int k = 0; k < 2; ++k) EXPECT_EQ(read_scene(path).grid.nx, 4);  // probed once, then not
+    std::filesystem::copy_file(std::string(FLOTSAM_SOURCE_DIR) + "/tests/data/corrupt/flow_libhdf5_segfault.nc", path,
+                               std::filesystem::copy_options::overwrite_existing);
+    const std::string msg = error_of([&] { nc::File::open_read(path); });
+    EXPECT_NE(msg.find("f.nc: corrupted: libhdf5 crashed reading the file's structure"), std::string::npos) << msg;
 }

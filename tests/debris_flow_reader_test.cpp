@@ -220,6 +220,63 @@ TEST(FlowReader, SubWindowGivesTheSameValues) {
     EXPECT_EQ(a.du_dt, b.du_dt);
 }
 
+// The replay as a sweep drives it: time advances frame by frame, frames read anew reuse
+// the arrays of frames no longer needed, and every third sample the window moves to
+// follow a point that crosses the grid: it starts at the window's south-west edge (its
+// own stencil cells are the window's first ones), moves across it and out of it. Every sample, at the point and at its
+// neighbours inside the window, equals to the bit what a fresh reader of the whole grid
+// gives, for both interpolants, through the per-time stencil (TimeStencil) too.
+TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
+    const auto dir = test::scratch_dir("fr_moving");
+    const std::vector<double> times = {0.0, 1.0, 2.0, 3.0, 4.5, 6.0};
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
+        [](double x, double y, double t) {
+            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
+            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
+        });
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
+        FlowReaderDef def;
+        def.time_interpolation = interp;
+        FlowReader moving(path, def);
+        int compared = 0;
+        for (int k = 0; k <= 120; ++k) {
+            const double t = 0.05 * k;
+            // From the south-west corner to the north-east one and beyond the grid's edge.
+            const double x = -1.02 + 0.0175 * k, y = 1.99 + 0.0052 * k;
+            if (k % 3 == 0) moving.set_window(moving.cells_for(x, x + 0.1, y, y + 0.06));
+            moving.prepare(t);
+            FlowReader fresh(path, def);
+            fresh.prepare(t);
+            const FlowReader::TimeStencil ts = moving.at_time(t);
+            const CellWindow w = moving.window();
+            for (const double dx : {0.0, 0.03, -0.04})
+                for (const double dy : {0.0, 0.02, -0.01}) {
+                    const double px = x + dx, py = y + dy;
+                    const CellWindow need = moving.cells_for(px, px, py, py);
+                    if (!w.contains(need)) continue;  // only points the window serves
+                    const FlowPointAccel a = moving.sample_accel(px, py, t), b = fresh.sample_accel(px, py, t);
+                    EXPECT_EQ(a.depth, b.depth) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.u, b.u) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.v, b.v) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.du_dt, b.du_dt) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.dv_dt, b.dv_dt) << enum_name(interp) << " t " << t;
+                    const FlowPoint c = moving.sample(px, py, ts), d = fresh.sample(px, py, t);
+                    EXPECT_EQ(c.depth, d.depth);
+                    EXPECT_EQ(c.u, d.u);
+                    EXPECT_EQ(c.v, d.v);
+                    EXPECT_EQ(moving.depth(px, py, ts), fresh.depth(px, py, t));
+                    EXPECT_EQ(moving.min_depth(need), fresh.min_depth(need));
+                    ++compared;
+                }
+        }
+        EXPECT_GT(compared, 300) << enum_name(interp);
+        // A window's move reads the frames held (2 linear, 4 cubic) again; otherwise each
+        // frame is read once: 41 moves and 6 frames.
+        EXPECT_LE(moving.frames_loaded(), 41u * (interp == TimeInterpolation::cubic ? 4u : 2u) + 6u) << enum_name(interp);
+    }
+}
+
 TEST(FlowReader, RejectsAFileThatIsNotAFlow) {
     const auto dir = test::scratch_dir("fr_bad");
     Scene s;
