@@ -207,6 +207,9 @@ std::string apply_scene_hydro_defaults(CLI::App* sub, const std::string& scene_p
     const std::string text = f.att_text(NC_GLOBAL, "flotsam_hydro_defaults").value_or("");
     std::string applied;
     std::istringstream in(text);
+    // The leap-frog runs on one grid: a scene's recommended nesting is for finite volumes.
+    const CLI::Option* scheme = sub->get_option_no_throw("--scheme");
+    const bool one_grid = scheme && scheme->count() > 0 && scheme->as<std::string>() == "leapfrog";
     for (std::string line; std::getline(in, line);) {
         const auto eq = line.find(" = ");
         if (eq == std::string::npos) fail(scene_path, "attribute 'flotsam_hydro_defaults'", "bad line '" + line + "'");
@@ -214,6 +217,7 @@ std::string apply_scene_hydro_defaults(CLI::App* sub, const std::string& scene_p
         CLI::Option* opt = sub->get_option_no_throw("--" + key);
         if (!opt) fail(scene_path, "attribute 'flotsam_hydro_defaults'", "names an unknown hydro option '" + key + "'");
         if (opt->count() > 0) continue;  // the command line (or --config) wins
+        if (one_grid && key.rfind("nest-", 0) == 0) continue;
         opt->add_result(value);
         opt->run_callback();
         applied += (applied.empty() ? "" : ", ") + key + " = " + value;

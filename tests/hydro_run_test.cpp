@@ -341,3 +341,26 @@ TEST(HydroRun, RunupOutputsByHand) {
     EXPECT_TRUE(std::isnan(dry.elevation));
     EXPECT_TRUE(std::isnan(dry.x));
 }
+
+// A scene's recommended nesting (the Kainan layout recommends nest-ratio 4) is for finite
+// volumes: with --scheme leapfrog the run takes the scene's other recommendations and
+// one grid, instead of refusing to start.
+TEST(HydroCli, LeapfrogOnASceneThatRecommendsNesting) {
+    const std::string real = test::shared_data("city-topography-from-figure.nc");
+    if (real.empty()) GTEST_SKIP() << "../shared/data/city-topography-from-figure.nc not found";
+    const std::string dir = test::scratch_dir("leapfrog_scene_nesting");
+    std::string out;
+    ASSERT_EQ(test::run_cli("scene import --dem " + real + " --resolution 0.16 --out " + dir + "/real.nc", &out), 0) << out;
+    ASSERT_EQ(test::run_cli("hydro --scene " + dir +
+                                "/real.nc --west pump --scheme leapfrog --duration 2 --output-interval 1 --out " + dir + "/lf.nc",
+                            &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("recommended settings"), std::string::npos) << out;
+    EXPECT_EQ(out.find("nest-ratio"), std::string::npos) << out;
+    ASSERT_EQ(test::run_cli(
+                  "hydro --scene " + dir + "/real.nc --west pump --duration 2 --output-interval 1 --out " + dir + "/fv.nc", &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("nest-ratio = 4"), std::string::npos) << out;
+}
