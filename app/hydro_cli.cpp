@@ -89,11 +89,14 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     if (!o.run.quiet)
         std::fprintf(stderr,
                      "%s: %s after %ld steps in %.1f s wall (%.1f s processor), %.3g cell-updates/s (%.0f%% dry land skipped), "
-                     "volume %.6g -> %.6g m^3%s%s\n",
+                     "volume %.6g -> %.6g m^3%s%s%s\n",
                      o.run.label.c_str(), r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)",
                      r.steps, r.wall_seconds, r.cpu_seconds, r.cell_updates_per_second, 100.0 * r.dry_skipped_fraction,
                      r.volume_start, r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "",
-                     r.outflow_limits ? (", outflow limited in " + std::to_string(r.outflow_limits) + " cell-steps").c_str() : "");
+                     r.outflow_limits ? (", outflow limited in " + std::to_string(r.outflow_limits) + " cell-steps").c_str() : "",
+                     r.positivity_redos
+                         ? (", " + std::to_string(r.positivity_redos) + " steps redone at cfl 0.45 for positive depths").c_str()
+                         : "");
 }
 
 }  // namespace
@@ -157,7 +160,9 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--order", fv.order, "1: first order; 2: MUSCL + Heun (default)")
         ->check(CLI::IsMember({1, 2}))
         ->capture_default_str();
-    sub->add_option("--cfl", fv.cfl, "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 0.5")
+    sub->add_option("--cfl", fv.cfl,
+                    "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 1; above 0.5 a step that would make a depth "
+                    "negative is redone at 0.45")
         ->capture_default_str()
         ->check(in_range(Range::positive().up_to(1.0)));
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")
@@ -173,9 +178,9 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--friction", o->friction,
                     "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
         ->capture_default_str();
-    sub->add_flag(
-        "--study-past-stability-limit", s.study_past_stability_limit,
-        "Stability study only: accept --cfl above 0.5 and let the leap-frog run past Courant number 1 (to see the failure)");
+    sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
+                  "Stability study only: accept --cfl above 1, step above 0.5 without the positivity redo, and let the leap-frog "
+                  "run past Courant number 1 (to see the failure)");
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
         ->capture_default_str()

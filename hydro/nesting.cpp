@@ -133,6 +133,7 @@ void NestedSolver::set_time(double t) {
 SolverStats NestedSolver::stats() const {
     SolverStats s = coarse_.stats();
     s.negative_depth_fixes += fine_.stats().negative_depth_fixes;
+    s.positivity_redos += fine_.stats().positivity_redos;
     s.min_depth_seen = std::min(s.min_depth_seen, fine_.stats().min_depth_seen);
     s.cell_stages += fine_.stats().cell_stages;
     s.cell_stages_dry += fine_.stats().cell_stages_dry;

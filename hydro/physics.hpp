@@ -20,8 +20,9 @@ struct PhysicsDef {
     PumpDef pump;  // the west side's, when it is a pump
     // Limits on the step, for both schemes.
     double max_dt = 0.05;  // [s] upper bound on the step
-    // Study only, never for a real run: accept cfl above 0.5 (finite volumes) and let the
-    // leap-frog run on past its Courant limit instead of failing, to show the failures.
+    // Study only, never for a real run: accept cfl above 1 (finite volumes) and run steps
+    // above 0.5 without the positivity redo, and let the leap-frog run on past its Courant
+    // limit instead of failing, to show the failures.
     bool study_past_stability_limit = false;
 };
 // West: a level series; east: transmissive; south and north: walls.
@@ -35,6 +36,7 @@ struct SolverStats {
     double cell_stages = 0.0;       // interior cells x stages stepped
     double cell_stages_dry = 0.0;   // of which skipped as dry land (all of the stencil exactly zero)
     long outflow_limits = 0;        // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
+    long positivity_redos = 0;      // finite volumes at cfl > 0.5: steps redone at cfl 0.45 (they clamped a depth)
 };
 
 }  // namespace flotsam::hydro

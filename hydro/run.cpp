@@ -547,6 +547,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     res.volume_start = o.state.volume_start;
     res.volume_end = solver.volume();
     res.negative_depth_fixes = solver.stats().negative_depth_fixes;
+    res.positivity_redos = solver.stats().positivity_redos;
     res.outflow_limits = solver.stats().outflow_limits;
     res.dry_skipped_fraction = solver.stats().cell_stages_dry / std::max(solver.stats().cell_stages, 1.0);
     if (!res.completed) {

@@ -81,7 +81,8 @@ struct RunResult {
     double dry_skipped_fraction = 0.0;            // of the cell updates, skipped as dry land (solver.hpp)
     double volume_start = 0.0, volume_end = 0.0;  // [m^3]
     long negative_depth_fixes = 0;
-    long outflow_limits = 0;  // leap-frog: cell-steps whose outflow was scaled down
+    long positivity_redos = 0;  // steps redone at cfl 0.45 (cfl > 0.5 only)
+    long outflow_limits = 0;    // leap-frog: cell-steps whose outflow was scaled down
     std::size_t file_bytes = 0;
 };
 

@@ -42,7 +42,8 @@ struct ColumnRange {
 
 // The settings only the finite-volume scheme has (the physics: PhysicsDef).
 struct FiniteVolumeDef {
-    double cfl = 0.45;           // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0
+    double cfl = 0.45;           // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0 by itself; up to 1:
+                                 // a step that would clamp a negative depth is redone (Solver::step)
     double limiter_theta = 1.3;  // 1 = minmod ... 2 = monotonised central
     int order = 2;               // 1: first order in space and time; 2: MUSCL + Heun
     // Skip cells whose whole stencil is exactly dry (h = hu = hv = 0): the same result,
@@ -153,11 +154,15 @@ private:
     bool state_changed_outside_ = true;    // bound_ unknown: scan whole rows
     mutable double max_wave_rate_ = -1.0;  // max(a_x/dx + a_y/dy) of the state [1/s]; < 0: not known
     // Cold data.
-    std::vector<double> z_;                          // bed [m], ghosts filled once
-    std::vector<double> g_n2_;                       // g * manning_n^2 per cell
-    Forcing forcing_;                                // boundary series and the pump
-    std::vector<std::size_t> pump_cells_;            // padded indices of the pump's source strip (forcing_'s), row by row
-    std::vector<std::size_t> pump_row_start_;        // the pump cells of interior row j: [start[j], start[j+1])
+    std::vector<double> z_;                    // bed [m], ghosts filled once
+    std::vector<double> g_n2_;                 // g * manning_n^2 per cell
+    Forcing forcing_;                          // boundary series and the pump
+    std::vector<std::size_t> pump_cells_;      // padded indices of the pump's source strip (forcing_'s), row by row
+    std::vector<std::size_t> pump_row_start_;  // the pump cells of interior row j: [start[j], start[j+1])
+    // Steps above the positivity bound (cfl > 0.5): the state before the step, restored
+    // and stepped again at cfl 0.45 when the step clamped a negative depth.
+    std::vector<double> saved_h_, saved_hu_, saved_hv_, saved_west_transfer_, saved_east_transfer_;
+    void step_once(double dt);
     std::array<std::vector<double>, 4> rest_depth_;  // initial depth of each side's edge cells [m] (transmissive sides)
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
     struct NestedGhosts {
