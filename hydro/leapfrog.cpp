@@ -25,16 +25,16 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const 
       def_(def),
       lf_(leapfrog),
       forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
-    for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north})
+    for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north}) {
         if (b->kind == BoundaryKind::zero_gradient)
             fail("", "--scheme leapfrog",
                  "a zero-gradient side is a finite-volume study option (on a C-grid it would freeze the boundary "
                  "discharge): use transmissive");
-    for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north})
         if (b->kind == BoundaryKind::nested)
             fail("", "--scheme leapfrog",
                  "nested grids (--nest-ratio > 1) are written for the finite-volume scheme: use --scheme fv with "
                  "--nest-ratio, or --nest-ratio 1 with --scheme leapfrog");
+    }
     if (!(leapfrog.courant > 0.0)) fail("", "--courant", "must be positive");
     if (!def.study_past_stability_limit && leapfrog.courant > 1.0)
         fail("", "--courant", "must be at most 1 (the leap-frog's linear stability limit)");
