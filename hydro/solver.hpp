@@ -42,7 +42,7 @@ struct ColumnRange {
 
 // The settings only the finite-volume scheme has (the physics: PhysicsDef).
 struct FiniteVolumeDef {
-    double cfl = 0.45;           // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0 by itself; up to 1:
+    double cfl = 0.8;            // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0 by itself; up to 1:
                                  // a step that would clamp a negative depth is redone (Solver::step)
     double limiter_theta = 1.3;  // 1 = minmod ... 2 = monotonised central
     int order = 2;               // 1: first order in space and time; 2: MUSCL + Heun
