@@ -173,6 +173,8 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--threads", opts->world.threads, "OpenMP threads over bodies (0: default)")
         ->capture_default_str()
         ->check(in_range(Range::count(0, 4096)));
+    sub->add_flag("!--no-read-ahead", opts->world.read_ahead,
+                  "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)");
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
     sub->add_option("--body", opts->body_type,
                     "a body from the catalogue (docs/debris.md): its dimensions, mass and coefficients, unless given as "

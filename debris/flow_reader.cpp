@@ -7,6 +7,7 @@
 #include <ctime>
 #include <optional>
 
+#include "common/background_task.hpp"
 #include "common/error.hpp"
 #include "debris/kernels.hpp"
 #include "formats/flow_file.hpp"
@@ -96,11 +97,11 @@ double FlowReader::next_frame_time(double t) const {
     return it == times_.end() ? times_.back() : *it;
 }
 
-void FlowReader::load(Frame& f, std::size_t frame) {
-    const auto start_clock = std::chrono::steady_clock::now();
+double FlowReader::read_frame(Frame& f, std::size_t frame, const CellWindow& w) const {
     const double start_cpu = thread_cpu_seconds();
-    const std::size_t ni = std::size_t(window_.i1 - window_.i0), nj = std::size_t(window_.j1 - window_.j0), n = ni * nj;
-    const std::vector<std::size_t> start = {frame, std::size_t(window_.j0), std::size_t(window_.i0)}, count = {1, nj, ni};
+    const std::size_t ni = std::size_t(w.i1 - w.i0), nj = std::size_t(w.j1 - w.j0), n = ni * nj;
+    const std::vector<std::size_t> start = {frame, std::size_t(w.j0), std::size_t(w.i0)}, count = {1, nj, ni};
+    f.index = no_frame;
     f.h.resize(n);
     f.qx.resize(n);
     f.qy.resize(n);
@@ -111,7 +112,7 @@ void FlowReader::load(Frame& f, std::size_t frame) {
         const float h = f.h[k], u = f.qx[k], v = f.qy[k];
         // A stored flow has 0 where dry, never NaN, a fill value or a negative depth.
         if (!(h >= 0.0f && h < 1.1e4f && std::fabs(u) < 1e3f && std::fabs(v) < 1e3f)) {
-            const std::size_t i = std::size_t(window_.i0) + k % ni, j = std::size_t(window_.j0) + k / ni;
+            const std::size_t i = std::size_t(w.i0) + k % ni, j = std::size_t(w.j0) + k / ni;
             const char* what = !(h >= 0.0f && h < 1.1e4f) ? "h" : !(std::fabs(u) < 1e3f) ? "u" : "v";
             const float value = what[0] == 'h' ? h : what[0] == 'u' ? u : v;
             fail(path(), "frame " + std::to_string(frame) + ", cell (i " + std::to_string(i) + ", j " + std::to_string(j) + ")",
@@ -122,9 +123,86 @@ void FlowReader::load(Frame& f, std::size_t frame) {
         f.qy[k] *= h;
     }
     f.index = frame;
-    ++frames_loaded_;
+    return thread_cpu_seconds() - start_cpu;
+}
+
+void FlowReader::load(Frame& f, std::size_t frame) {
+    const auto start_clock = std::chrono::steady_clock::now();
+    if (!take_read_ahead(f, frame)) {
+        wait_read_ahead();  // one netCDF caller at a time; a frame read ahead stays for a later role
+        load_cpu_seconds_ += read_frame(f, frame, window_);
+        ++frames_loaded_;
+    }
     load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
-    load_cpu_seconds_ += thread_cpu_seconds() - start_cpu;
+}
+
+// The read-ahead thread and what it hands over. Between task.start() and task.wait()
+// only the thread touches `frame` and `cpu_seconds`.
+struct FlowReader::ReadAhead {
+    Frame frame;                    // the frame read
+    CellWindow window;              // the window it is read on
+    double cpu_seconds = 0.0;       // CPU time of the read [s]
+    std::size_t wanted = no_frame;  // the frame started and not yet taken or dropped; no_frame: none
+    BackgroundTask task;            // last: destroyed (its job waited for) first
+};
+
+FlowReader::~FlowReader() {
+    if (ahead_) ahead_->task.wait();  // its job writes into *ahead_ and reads the file
+}
+
+// Never moved with a read under way: World::advance_to finishes each read it starts.
+FlowReader::FlowReader(FlowReader&&) noexcept = default;
+
+void FlowReader::read_ahead(double t) {
+    if (!loaded_) return;
+    std::size_t need[4];
+    frames_needed(t, need);
+    std::size_t next = no_frame;
+    for (int r = 0; r < 4 && next == no_frame; ++r) {
+        bool held = false;
+        for (int q = 0; q < 4; ++q) held = held || role(q).index == need[r];
+        if (!held) next = need[r];
+    }
+    if (next == no_frame) return;
+    if (!ahead_) ahead_ = std::make_unique<ReadAhead>();
+    if (ahead_->wanted == next && ahead_->window == window_) return;  // under way already
+    drop_read_ahead();
+    ReadAhead* a = ahead_.get();
+    a->wanted = next;
+    a->window = window_;
+    a->cpu_seconds = 0.0;
+    a->task.start([this, a, next] { a->cpu_seconds = read_frame(a->frame, next, a->window); });
+}
+
+void FlowReader::wait_read_ahead() {
+    if (ahead_ && ahead_->wanted != no_frame) ahead_->task.wait();
+}
+
+void FlowReader::finish_read_ahead() {
+    const auto start_clock = std::chrono::steady_clock::now();
+    wait_read_ahead();  // the frame (or its error) stays for prepare()
+    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+}
+
+bool FlowReader::take_read_ahead(Frame& f, std::size_t frame) {
+    if (!ahead_ || ahead_->wanted != frame || !(ahead_->window == window_)) return false;
+    ahead_->wanted = no_frame;
+    ++frames_loaded_;
+    load_cpu_seconds_ += ahead_->cpu_seconds;
+    // A frame that fails its checks is reported where it is needed, as without
+    // read-ahead; one never needed is never reported.
+    if (const std::exception_ptr error = ahead_->task.wait()) std::rethrow_exception(error);
+    std::swap(f, ahead_->frame);  // f's arrays are the next read's
+    ++frames_read_ahead_;
+    return true;
+}
+
+void FlowReader::drop_read_ahead() {
+    if (!ahead_ || ahead_->wanted == no_frame) return;
+    ahead_->task.wait();  // an error here is of a frame not needed
+    ahead_->wanted = no_frame;
+    ++frames_loaded_;
+    load_cpu_seconds_ += ahead_->cpu_seconds;
 }
 
 void FlowReader::hold(const std::size_t (&need)[4]) {
@@ -168,13 +246,21 @@ void FlowReader::hold(const std::size_t (&need)[4]) {
     loaded_ = true;
 }
 
-void FlowReader::prepare(double t) {
+void FlowReader::frames_needed(double t, std::size_t (&need)[4]) const {
     const std::size_t n = times_.size();
     std::size_t k = std::size_t(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
     k = k == 0 ? 0 : k - 1;
     const std::size_t k1 = std::min(k + 1, n - 1);
     const bool cubic = def_.time_interpolation == TimeInterpolation::cubic;
-    const std::size_t need[4] = {cubic && k > 0 ? k - 1 : k, k, k1, cubic ? std::min(k1 + 1, n - 1) : k1};
+    need[0] = cubic && k > 0 ? k - 1 : k;
+    need[1] = k;
+    need[2] = k1;
+    need[3] = cubic ? std::min(k1 + 1, n - 1) : k1;
+}
+
+void FlowReader::prepare(double t) {
+    std::size_t need[4];
+    frames_needed(t, need);
     if (loaded_) {
         bool same = true;
         for (int r = 0; r < 4; ++r) same = same && role(r).index == need[r];
@@ -189,6 +275,7 @@ void FlowReader::set_window(const CellWindow& w) {
     c.i1 = std::max(c.i1, c.i0 + 2);
     c.j1 = std::max(c.j1, c.j0 + 2);
     if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
+    drop_read_ahead();  // read on the old window
     window_ = c;
     if (!loaded_) return;
     const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};

@@ -277,6 +277,89 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
     }
 }
 
+// Read-ahead, as a World runs it: after each prepare(t) the next frame is read on the
+// other thread while samples are taken; now and then the window moves (dropping a frame
+// read on the old window), at times just as a new frame is needed. Every sample equals
+// to the bit what a reader that reads each frame itself gives, for both interpolants,
+// and the frames read ahead are the ones used.
+TEST(FlowReader, ReadAheadGivesTheSameBitsAsReadingInTurn) {
+    const auto dir = test::scratch_dir("fr_ahead");
+    const std::vector<double> times = {0.0, 1.0, 2.0, 3.0, 4.5, 6.0};
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
+        [](double x, double y, double t) {
+            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
+            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
+        });
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
+        FlowReaderDef def;
+        def.time_interpolation = interp;
+        FlowReader in_turn(path, def), ahead(path, def);
+        int compared = 0;
+        for (int k = 0; k <= 120; ++k) {
+            const double t = 0.05 * k;
+            const double x = -1.02 + 0.0175 * k, y = 1.99 + 0.0052 * k;
+            if (k % 30 == 0) {  // frames are first needed at k = 20, 40, 60, 90, 120
+                const CellWindow w = ahead.cells_for(x - 0.6, x + 0.6, y - 0.2, y + 0.2);
+                in_turn.set_window(w);
+                ahead.set_window(w);
+            }
+            in_turn.prepare(t);
+            ahead.prepare(t);
+            ahead.read_ahead(ahead.next_frame_time(t));
+            for (const double dx : {0.0, 0.03, -0.04})
+                for (const double dy : {0.0, 0.02, -0.01}) {
+                    const double px = x + dx, py = y + dy;
+                    const CellWindow need = ahead.cells_for(px, px, py, py);
+                    if (!ahead.window().contains(need)) continue;
+                    const FlowPointAccel a = ahead.sample_accel(px, py, t), b = in_turn.sample_accel(px, py, t);
+                    EXPECT_EQ(a.depth, b.depth) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.u, b.u) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.v, b.v) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.du_dt, b.du_dt) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.dv_dt, b.dv_dt) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(ahead.min_depth(need), in_turn.min_depth(need));
+                    ++compared;
+                }
+            if (k % 2) ahead.finish_read_ahead();  // else prepare() takes a read maybe still under way
+        }
+        EXPECT_GT(compared, 500) << enum_name(interp);
+        // Each frame first needed without a window move at the same step came from the
+        // other thread (k = 20 and 40; the cubic needs frames 3 and 4 there: both), and
+        // only reads dropped by a move are extra.
+        EXPECT_GE(ahead.frames_read_ahead(), 2u) << enum_name(interp);
+        EXPECT_LE(ahead.frames_loaded(), in_turn.frames_loaded() + 4u) << enum_name(interp);
+    }
+}
+
+// A frame that fails the reader's checks is reported when it is needed, as without
+// read-ahead: not while it is read ahead, and never if the window moves first.
+TEST(FlowReader, ABadFrameReadAheadIsReportedWhereItIsNeeded) {
+    const auto dir = test::scratch_dir("fr_ahead_bad");
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0, 2.0}, [](double, double) { return -0.5; },
+        [](double x, double, double t) {
+            const bool bad = t == 2.0 && x > 0.5;
+            return test::FlowState{bad ? std::nanf("") : 0.3f, 0.1f, 0.0f};
+        });
+    FlowReader r(path);
+    r.prepare(0.5);
+    r.read_ahead(1.0);  // frame 2
+    r.finish_read_ahead();
+    EXPECT_EQ(r.sample(0.0, 2.2, 0.5).depth, 0.3f);
+    const std::string msg = error_of([&] { r.prepare(1.0); });
+    EXPECT_NE(msg.find("f.nc"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("frame 2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("h = nan"), std::string::npos) << msg;
+
+    FlowReader moved(path);
+    moved.prepare(0.5);
+    moved.read_ahead(1.0);
+    moved.set_window(moved.cells_for(-0.9, -0.2, 2.1, 2.4));  // west of the bad cells
+    EXPECT_NO_THROW(moved.prepare(1.0));
+    EXPECT_EQ(moved.sample(-0.5, 2.2, 1.5).depth, 0.3f);
+}
+
 TEST(FlowReader, RejectsAFileThatIsNotAFlow) {
     const auto dir = test::scratch_dir("fr_bad");
     Scene s;
