@@ -373,26 +373,61 @@ inline double rate_in_time(const S& s, const F& f, int c) {
     return linear_rate(s.inv_dt, f.role[1][n], f.role[2][n]);
 }
 
-double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
-    const Stencil s = stencil(x, y, ts);
-    const double v[4] = {value_in_time(s, h_, 0), value_in_time(s, h_, 1), value_in_time(s, h_, 2), value_in_time(s, h_, 3)};
+// One field at the stencil's point: in time at each node, then bilinear in space.
+template <class S, class F>
+inline double value_at(const S& s, const F& f) {
+    const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
     return bilinear(v, s);
 }
 
-FlowPoint FlowReader::sample(double x, double y, const TimeStencil& ts) const {
-    const Stencil s = stencil(x, y, ts);
-    auto at = [&](const Field& f) {
-        const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
-        return bilinear(v, s);
-    };
-    FlowPoint p;
-    p.depth = at(h_);
-    if (p.depth >= dry_depth_) {
-        const Double2 uv = Double2{at(qx_), at(qy_)} / Double2{p.depth, p.depth};
-        p.u = uv[0];
-        p.v = uv[1];
+namespace {
+// Points sampled together: their stencils and divisions are independent, so the
+// processor overlaps them instead of waiting on each in turn.
+constexpr int points_in_flight = 8;
+}  // namespace
+
+double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
+    double h = 0.0;
+    const Vec2 p{x, y};
+    depth(&p, 1, ts, &h);
+    return h;
+}
+
+void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out) const {
+    for (int k0 = 0; k0 < n; k0 += points_in_flight) {
+        const int m = std::min(points_in_flight, n - k0);
+        Stencil s[points_in_flight];
+        for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
+        for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], h_);
     }
-    return p;
+}
+
+FlowPoint FlowReader::sample(double x, double y, const TimeStencil& ts) const {
+    FlowPoint out;
+    const Vec2 p{x, y};
+    sample(&p, 1, ts, &out);
+    return out;
+}
+
+void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* out) const {
+    for (int k0 = 0; k0 < n; k0 += points_in_flight) {
+        const int m = std::min(points_in_flight, n - k0);
+        Stencil s[points_in_flight];
+        double qx[points_in_flight], qy[points_in_flight];
+        for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
+        for (int k = 0; k < m; ++k) {
+            out[k0 + k] = FlowPoint{value_at(s[k], h_), 0.0, 0.0};
+            qx[k] = value_at(s[k], qx_);
+            qy[k] = value_at(s[k], qy_);
+        }
+        for (int k = 0; k < m; ++k) {
+            FlowPoint& q = out[k0 + k];
+            if (q.depth < dry_depth_) continue;
+            const Double2 uv = Double2{qx[k], qy[k]} / Double2{q.depth, q.depth};
+            q.u = uv[0];
+            q.v = uv[1];
+        }
+    }
 }
 
 FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {

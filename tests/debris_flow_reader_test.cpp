@@ -225,7 +225,8 @@ TEST(FlowReader, SubWindowGivesTheSameValues) {
 // follow a point that crosses the grid: it starts at the window's south-west edge (its
 // own stencil cells are the window's first ones), moves across it and out of it. Every sample, at the point and at its
 // neighbours inside the window, equals to the bit what a fresh reader of the whole grid
-// gives, for both interpolants, through the per-time stencil (TimeStencil) too.
+// gives, for both interpolants, through the per-time stencil (TimeStencil) too, and
+// sampled all together.
 TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
     const auto dir = test::scratch_dir("fr_moving");
     const std::vector<double> times = {0.0, 1.0, 2.0, 3.0, 4.5, 6.0};
@@ -250,11 +251,13 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
             fresh.prepare(t);
             const FlowReader::TimeStencil ts = moving.at_time(t);
             const CellWindow w = moving.window();
+            std::vector<Vec2> served;  // sampled together below
             for (const double dx : {0.0, 0.03, -0.04})
                 for (const double dy : {0.0, 0.02, -0.01}) {
                     const double px = x + dx, py = y + dy;
                     const CellWindow need = moving.cells_for(px, px, py, py);
                     if (!w.contains(need)) continue;  // only points the window serves
+                    served.push_back({px, py});
                     const FlowPointAccel a = moving.sample_accel(px, py, t), b = fresh.sample_accel(px, py, t);
                     EXPECT_EQ(a.depth, b.depth) << enum_name(interp) << " t " << t;
                     EXPECT_EQ(a.u, b.u) << enum_name(interp) << " t " << t;
@@ -269,6 +272,19 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
                     EXPECT_EQ(moving.min_depth(need), fresh.min_depth(need));
                     ++compared;
                 }
+            // Many points at once (sample(p, n, ...), depth(p, n, ...)) give the same bits.
+            const int n = int(served.size());
+            std::vector<FlowPoint> at(served.size());
+            std::vector<double> depth(served.size());
+            moving.sample(served.data(), n, ts, at.data());
+            moving.depth(served.data(), n, ts, depth.data());
+            for (int q = 0; q < n; ++q) {
+                const FlowPoint one = fresh.sample(served[q].x, served[q].y, t);
+                EXPECT_EQ(at[q].depth, one.depth);
+                EXPECT_EQ(at[q].u, one.u);
+                EXPECT_EQ(at[q].v, one.v);
+                EXPECT_EQ(depth[q], one.depth);
+            }
         }
         EXPECT_GT(compared, 300) << enum_name(interp);
         // A window's move reads the frames held (2 linear, 4 cubic) again; otherwise each
