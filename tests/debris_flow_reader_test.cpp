@@ -15,6 +15,16 @@ using namespace flotsam::debris;
 
 namespace {
 const Grid grid{20, 12, -1.0, 2.0, 0.1, 0.05};
+
+// A flow that varies in x, y and t on unevenly spaced frames, wet everywhere.
+std::string uneven_flow(const std::string& path) {
+    return test::write_flow(
+        path, grid, {0.0, 1.0, 2.0, 3.0, 4.5, 6.0}, [](double, double) { return -0.5; },
+        [](double x, double y, double t) {
+            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
+            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
+        });
+}
 }  // namespace
 
 // Fields linear in x, y and t are reproduced exactly (to float storage) by linear-in-
@@ -229,13 +239,7 @@ TEST(FlowReader, SubWindowGivesTheSameValues) {
 // sampled all together.
 TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
     const auto dir = test::scratch_dir("fr_moving");
-    const std::vector<double> times = {0.0, 1.0, 2.0, 3.0, 4.5, 6.0};
-    const auto path = test::write_flow(
-        dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
-        [](double x, double y, double t) {
-            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
-            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
-        });
+    const auto path = uneven_flow(dir + "/f.nc");
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
         FlowReaderDef def;
         def.time_interpolation = interp;
@@ -300,13 +304,7 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
 // and the frames read ahead are the ones used.
 TEST(FlowReader, ReadAheadGivesTheSameBitsAsReadingInTurn) {
     const auto dir = test::scratch_dir("fr_ahead");
-    const std::vector<double> times = {0.0, 1.0, 2.0, 3.0, 4.5, 6.0};
-    const auto path = test::write_flow(
-        dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
-        [](double x, double y, double t) {
-            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
-            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
-        });
+    const auto path = uneven_flow(dir + "/f.nc");
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
         FlowReaderDef def;
         def.time_interpolation = interp;
