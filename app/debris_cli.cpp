@@ -140,7 +140,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     if (!o.quiet) {  // for cost charts (pipelines/accuracy_debris.py); CPU time of all threads
         const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC, reading = world.flow().load_cpu_seconds();
         std::fprintf(stderr,
-                     "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
+                     "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall waiting "
+                     "for them)\n",
                      world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
     }
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
