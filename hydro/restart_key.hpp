@@ -19,7 +19,7 @@ struct RunDef;
 // One "name = value" per line, sorted by name.
 std::string restart_key(const RunDef& run, const PhysicsDef& solver);
 
-// "cfl: 0.45 in the checkpoint, 0.4 now; scene sha256: ... " — the settings whose values
+// "cfl: 0.8 in the checkpoint, 0.4 now; scene sha256: ... " — the settings whose values
 // differ between two keys (empty when the keys are equal).
 std::string differing_settings(const std::string& checkpoint_key, const std::string& current_key);
 

@@ -33,8 +33,9 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
     rows_ = std::size_t(grid_.ny + 2 * kGhost);
     const std::size_t n = stride_ * rows_;
-    for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &z_, &g_n2_}) v->assign(n, 0.0);
-    for (auto* v : {&bound_, &bound1_, &state_nonzero_, &base_nonzero_, &active_}) v->assign(std::size_t(grid_.ny), ColumnRange{});
+    for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &h2_, &hu2_, &hv2_, &z_, &g_n2_}) v->assign(n, 0.0);
+    for (auto* v : {&bound_, &bound1_, &bound2_, &state_nonzero_, &base_nonzero_, &active_})
+        v->assign(std::size_t(grid_.ny), ColumnRange{});
     depth_nonzero_.assign(rows_, ColumnRange{});
 
     for (int j = 0; j < grid_.ny; ++j)
@@ -559,9 +560,12 @@ void Solver::stage(Stage which, double dt, double t) {
     std::vector<double>& h = corrector ? h1_ : h_;
     std::vector<double>& hu = corrector ? hu1_ : hu_;
     std::vector<double>& hv = corrector ? hv1_ : hv_;
-    std::vector<double>& h_out = corrector ? h_ : h1_;
-    std::vector<double>& hu_out = corrector ? hu_ : hu1_;
-    std::vector<double>& hv_out = corrector ? hv_ : hv1_;
+    // The corrector writes U^{n+1} into h2_, not over U^n: step_once swaps the two, and a
+    // step redone for positivity (step) finds U^n in h2_ without a copy.
+    std::vector<double>& h_out = corrector ? h2_ : h1_;
+    std::vector<double>& hu_out = corrector ? hu2_ : hu1_;
+    std::vector<double>& hv_out = corrector ? hv2_ : hv1_;
+    const std::vector<ColumnRange>& out_bound = corrector ? bound2_ : bound1_;
     fill_ghosts(h, hu, hv, t);
     const double pump_rate = forcing_.pump_rate(t);  // [m/s] over the source strip
     const bool pumping = pump_rate != 0.0;
@@ -621,9 +625,9 @@ void Solver::stage(Stage which, double dt, double t) {
             slopes(j + 1);
             faces(j + 1);
             const ColumnRange cols = active(j);
-            if (!corrector)  // U1 is exactly zero outside the columns computed now
-                for (std::vector<double>* a : {&h_out, &hu_out, &hv_out})
-                    clear_outside(row_out(*a, j), bound1_[std::size_t(j)], cols);
+            // The output is exactly zero outside the columns computed now (as U^n is there
+            // in the corrector: its nonzero cells are active).
+            for (std::vector<double>* a : {&h_out, &hu_out, &hv_out}) clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
             west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
             if (cols.empty()) continue;
             const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost);
@@ -644,7 +648,7 @@ void Solver::stage(Stage which, double dt, double t) {
     }
     stats_.negative_depth_fixes += fixes;
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
-    (corrector ? bound_ : bound1_) = active_;
+    (corrector ? bound2_ : bound1_) = active_;
     if (last) max_wave_rate_ = amax;
 }
 
@@ -688,16 +692,21 @@ void Solver::step(double dt) {
     const double t0 = time_;
     const long fixes_before = stats_.negative_depth_fixes;
     const double min_before = stats_.min_depth_seen;
-    saved_h_ = h_;
-    saved_hu_ = hu_;
-    saved_hv_ = hv_;
     saved_west_transfer_ = west_transfer_;
     saved_east_transfer_ = east_transfer_;
     step_once(dt);
     if (stats_.negative_depth_fixes == fixes_before) return;
-    h_.swap(saved_h_);
-    hu_.swap(saved_hu_);
-    hv_.swap(saved_hv_);
+    // Back to U^n, which step_once left in h2_ (second order; first order copies).
+    if (fv_.order == 2) {
+        h_.swap(h2_);
+        hu_.swap(hu2_);
+        hv_.swap(hv2_);
+        bound_.swap(bound2_);
+    } else {
+        h_ = h2_;
+        hu_ = hu2_;
+        hv_ = hv2_;
+    }
     west_transfer_.swap(saved_west_transfer_);
     east_transfer_.swap(saved_east_transfer_);
     stats_.negative_depth_fixes = fixes_before;
@@ -720,6 +729,9 @@ void Solver::step_once(double dt) {
                 west_transfer_[j] += dt * west_face_mass_[j];
                 east_transfer_[j] += dt * east_face_mass_[j];
             }
+        h2_.swap(h_);  // U^n, for a step redone for positivity
+        hu2_.swap(hu_);
+        hv2_.swap(hv_);
         h_ = h1_;
         hu_ = hu1_;
         hv_ = hv1_;
@@ -731,6 +743,13 @@ void Solver::step_once(double dt) {
             east_stage1_ = east_face_mass_;
         }
         stage(Stage::corrector, dt, time_ + dt);
+        // U^{n+1} (in h2_, nonzero within bound2_) becomes the state; U^n goes to h2_,
+        // nonzero within bound_, or anywhere in a row if it was changed outside step().
+        h_.swap(h2_);
+        hu_.swap(hu2_);
+        hv_.swap(hv2_);
+        bound_.swap(bound2_);
+        if (state_changed_outside_) std::fill(bound2_.begin(), bound2_.end(), ColumnRange{0, grid_.nx});
         if (track_transfer_)
             for (std::size_t j = 0; j < west_transfer_.size(); ++j) {
                 west_transfer_[j] += 0.5 * dt * (west_stage1_[j] + west_face_mass_[j]);

@@ -42,7 +42,7 @@ struct ColumnRange {
 
 // The settings only the finite-volume scheme has (the physics: PhysicsDef).
 struct FiniteVolumeDef {
-    double cfl = 0.45;           // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0 by itself; up to 1:
+    double cfl = 0.8;            // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0 by itself; up to 1:
                                  // a step that would clamp a negative depth is redone (Solver::step)
     double limiter_theta = 1.3;  // 1 = minmod ... 2 = monotonised central
     int order = 2;               // 1: first order in space and time; 2: MUSCL + Heun
@@ -143,13 +143,14 @@ private:
     // Hot state.
     std::vector<double> h_, hu_, hv_;
     std::vector<double> h1_, hu1_, hv1_;      // Heun's intermediate stage
+    std::vector<double> h2_, hu2_, hv2_;      // the corrector's output, swapped with h_ after it
     std::vector<std::vector<double>> work_;   // per thread: the row buffers of stage()
     std::vector<double> cumulative_columns_;  // columns to compute below each row (splits rows over threads)
     // Skipping dry land (solver.cpp). Per interior row: the columns outside which h_
-    // (bound_) and h1_ (bound1_) are exactly zero; those of the stage's input (and
-    // base) with a nonzero h, hu or hv; the columns to compute. Per padded row: the
-    // columns of the input with a nonzero depth.
-    std::vector<ColumnRange> bound_, bound1_, state_nonzero_, base_nonzero_, active_;
+    // (bound_), h1_ (bound1_) and h2_ (bound2_) are exactly zero; those of the stage's
+    // input (and base) with a nonzero h, hu or hv; the columns to compute. Per padded
+    // row: the columns of the input with a nonzero depth.
+    std::vector<ColumnRange> bound_, bound1_, bound2_, state_nonzero_, base_nonzero_, active_;
     std::vector<ColumnRange> depth_nonzero_;
     bool state_changed_outside_ = true;    // bound_ unknown: scan whole rows
     mutable double max_wave_rate_ = -1.0;  // max(a_x/dx + a_y/dy) of the state [1/s]; < 0: not known
@@ -159,9 +160,10 @@ private:
     Forcing forcing_;                          // boundary series and the pump
     std::vector<std::size_t> pump_cells_;      // padded indices of the pump's source strip (forcing_'s), row by row
     std::vector<std::size_t> pump_row_start_;  // the pump cells of interior row j: [start[j], start[j+1])
-    // Steps above the positivity bound (cfl > 0.5): the state before the step, restored
-    // and stepped again at cfl 0.45 when the step clamped a negative depth.
-    std::vector<double> saved_h_, saved_hu_, saved_hv_, saved_west_transfer_, saved_east_transfer_;
+    // Steps above the positivity bound (cfl > 0.5): the boundary transfers before the
+    // step (the state before it is in h2_ after it), restored and stepped again at cfl
+    // 0.45 when the step clamped a negative depth.
+    std::vector<double> saved_west_transfer_, saved_east_transfer_;
     void step_once(double dt);
     std::array<std::vector<double>, 4> rest_depth_;  // initial depth of each side's edge cells [m] (transmissive sides)
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.

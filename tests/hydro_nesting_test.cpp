@@ -144,8 +144,9 @@ TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
 namespace {
 
 // Water at rest, h_coarse deep west of x = 1 m and h_fine deep east of it, 1 cm cells,
-// nested x4 at x = 1 m: the coarse grid's step is 0.45 dx_c / (2 sqrt(g h_coarse)), the
-// fine grid's 0.45 dx_f / (2 sqrt(g h_fine)) (square cells: a/dx + a/dy = 2 c / dx).
+// nested x4 at x = 1 m: the coarse grid's step is cfl dx_c / (2 sqrt(g h_coarse)), the
+// fine grid's cfl dx_f / (2 sqrt(g h_fine)) (square cells: a/dx + a/dy = 2 c / dx), at
+// the default cfl.
 double nested_step(double h_coarse, double h_fine, double& coarse, double& fine) {
     Scene s;
     s.grid = Grid{200, 8, 0.005, 0.005, 0.01, 0.01};
@@ -154,8 +155,9 @@ double nested_step(double h_coarse, double h_fine, double& coarse, double& fine)
         for (int i = 0; i < s.grid.nx; ++i) s.z[s.grid.index(i, j)] = s.grid.x(i) < 1.0 ? -h_coarse : -h_fine;
     NestedSolver solver(s, test::closed_def(), {}, NestDef{1.0, 4});
     const double g = default_physics_def().gravity;
-    coarse = 0.45 * 0.04 / (2.0 * std::sqrt(g * h_coarse));
-    fine = 0.45 * 0.01 / (2.0 * std::sqrt(g * h_fine));
+    const double cfl = FiniteVolumeDef{}.cfl;
+    coarse = cfl * 0.04 / (2.0 * std::sqrt(g * h_coarse));
+    fine = cfl * 0.01 / (2.0 * std::sqrt(g * h_fine));
     return solver.stable_dt();
 }
 

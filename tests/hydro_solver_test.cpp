@@ -118,7 +118,7 @@ TEST(Solver, SkippingDryLandChangesNoBit) {
             solver->x_discharge_data()[solver->at(60, 25)] = -1e-3;
         const std::string what = std::string(c.pump ? "pump" : "flood") + ", order " + std::to_string(c.order);
         int differing = 0;
-        for (int n = 1; n <= 400; ++n) {
+        for (int n = 1; n <= 220; ++n) {  // while the flood still has dry land ahead of it
             const double dt = computing.stable_dt();
             ASSERT_EQ(skipping.stable_dt(), dt);
             skipping.step(dt);
