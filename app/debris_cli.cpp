@@ -140,7 +140,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     if (!o.quiet) {  // for cost charts (pipelines/accuracy_debris.py); CPU time of all threads
         const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC, reading = world.flow().load_cpu_seconds();
         std::fprintf(stderr,
-                     "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall)\n",
+                     "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall waiting "
+                     "for them)\n",
                      world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
     }
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
@@ -173,6 +174,8 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--threads", opts->world.threads, "OpenMP threads over bodies (0: default)")
         ->capture_default_str()
         ->check(in_range(Range::count(0, 4096)));
+    sub->add_flag("!--no-read-ahead", opts->world.read_ahead,
+                  "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)");
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
     sub->add_option("--body", opts->body_type,
                     "a body from the catalogue (docs/debris.md): its dimensions, mass and coefficients, unless given as "

@@ -18,6 +18,7 @@ struct SweepOptions {
     std::string spec, out = "sweep.nc", summary, shard = "0/1", scene;
     std::vector<std::string> flows;
     int threads = 0;
+    bool no_read_ahead = false;
     bool quiet = false;
 };
 
@@ -41,6 +42,7 @@ void run_sweep_command(const SweepOptions& o) {
     sweep::SweepRunDef def;
     def.shard = sweep::parse_shard(o.shard);
     def.threads = o.threads;
+    def.read_ahead = !o.no_read_ahead;
     def.quiet = o.quiet;
     sweep::SweepRunStats st;
     const sweep::SweepResult r = sweep::run_sweep(spec, def, &st);
@@ -92,6 +94,8 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     sweep_cmd->add_option("--threads", so->threads, "OpenMP threads over members (0: default)")
         ->capture_default_str()
         ->check(in_range(Range::count(0, 4096)));
+    sweep_cmd->add_flag("--no-read-ahead", so->no_read_ahead,
+                        "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)");
     sweep_cmd->add_option("--scene", so->scene, "scene file (overrides the spec's [sweep] scene)")->check(CLI::ExistingFile);
     sweep_cmd->add_option("--flow", so->flows, "flow file (repeatable; replaces the spec's [flows])")->check(CLI::ExistingFile);
     sweep_cmd->add_flag("--quiet", so->quiet, "no progress lines");

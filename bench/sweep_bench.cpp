@@ -5,7 +5,11 @@
 // frames read, and the time in I/O (reading frames, writing outputs) against compute.
 // Not a test: timings belong here. The floor: under 5 minutes on 2 cores at 2 cm.
 //
-//   build/sweep_bench [--threads N] [--out DIR] SCENE FLOW [FLOW ...]
+//   build/sweep_bench [--threads N] [--no-read-ahead] [--out DIR] SCENE FLOW [FLOW ...]
+//
+// --threads N: the stepping threads; with read-ahead (the default, as in `flotsam sweep`)
+// one more thread reads the next frame meanwhile, and "frame reading" is the time the
+// stepping waited for frames.
 //
 // With fewer than ten flows the given ones are reused in turn (each reuse opens and
 // reads the file again, as a different flow would be read); the output says so.
@@ -25,19 +29,22 @@ using namespace flotsam;
 
 int main(int argc, char** argv) {
     int threads = 2;
+    bool read_ahead = true;
     std::string dir = (std::filesystem::temp_directory_path() / "flotsam-sweep-bench").string();
     std::vector<std::string> args;
     for (int k = 1; k < argc; ++k) {
         const std::string a = argv[k];
         if (a == "--threads" && k + 1 < argc)
             threads = std::atoi(argv[++k]);
+        else if (a == "--no-read-ahead")
+            read_ahead = false;
         else if (a == "--out" && k + 1 < argc)
             dir = argv[++k];
         else
             args.push_back(a);
     }
     if (args.size() < 2) {
-        std::fprintf(stderr, "usage: sweep_bench [--threads N] [--out DIR] SCENE FLOW [FLOW ...]\n");
+        std::fprintf(stderr, "usage: sweep_bench [--threads N] [--no-read-ahead] [--out DIR] SCENE FLOW [FLOW ...]\n");
         return 2;
     }
     const std::string scene = args[0];
@@ -59,6 +66,7 @@ int main(int argc, char** argv) {
         const sweep::SweepSpec spec = sweep::read_sweep_spec(spec_path);
         sweep::SweepRunDef def;
         def.threads = threads;
+        def.read_ahead = read_ahead;
         def.quiet = true;
         sweep::SweepRunStats st;
         const sweep::SweepResult r = sweep::run_sweep(spec, def, &st);
@@ -76,7 +84,8 @@ int main(int argc, char** argv) {
         std::printf("  members: %d = %zu flows x %zu bodies x %zu variants x %zu parameter sets; %zu output times (%.0f s)\n",
                     st.members, spec.flows.size(), spec.bodies.size(), spec.variants.size(), spec.params.size(), r.time.size(),
                     r.time.back());
-        std::printf("  threads: %d (OpenMP max %d)\n", threads, omp_get_max_threads());
+        std::printf("  threads: %d stepping (OpenMP max %d)%s\n", threads, omp_get_max_threads(),
+                    read_ahead ? " + 1 reading ahead" : ", no read-ahead");
         std::printf("  wall time: %.1f s (run %.1f s, writing outputs %.1f s)\n", wall, run, write);
         std::printf("  body-runs/s: %.2f (one 420 s body-run: %.3f s of wall time)\n", st.members / wall, wall / st.members);
         std::printf("  body steps: %ld (%.0f steps/s over compute time)\n", st.steps, double(st.steps) / compute);
@@ -84,6 +93,8 @@ int main(int argc, char** argv) {
                     double(st.frames_loaded) / double(st.flows_opened));
         std::printf("  I/O: %.1f s (%.0f %%) = frame reading %.1f s + output writing %.1f s; compute %.1f s (%.0f %%)\n", io,
                     100 * io / wall, st.io_seconds, write, compute, 100 * compute / wall);
+        std::printf("  reading CPU time: %.1f s (%s)\n", st.read_cpu_seconds,
+                    read_ahead ? "mostly on the read-ahead thread, beside the stepping" : "on the stepping thread");
         std::printf("  floor (paper sweep under 300 s on 2 cores at 2 cm): %s\n", wall < 300 ? "met" : "NOT met");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "sweep_bench: %s\n", e.what());

@@ -32,11 +32,11 @@ double deepest(const std::vector<ObstacleContact>& cs) {
 }  // namespace
 
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
-                                    double inertia, double bottom, int max_passes, BodyState& state,
+                                    double inertia, double bottom, int max_passes, BodyState& state, const Box& footprint,
                                     std::vector<ObstacleContact>& contacts) {
     CollisionOutcome out;
     contacts.clear();
-    obstacles.find_contacts(pose(state, body), bottom, body.step_height, contacts);
+    obstacles.find_contacts(footprint, bottom, body.step_height, contacts);
     if (contacts.empty()) return out;
     out.touched = true;
     state.pivot_rate = 0.0;

@@ -134,7 +134,7 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
         bottom = std::max(afloat, ctx.obstacles.highest_ground(start.box, footprint_overlap));
     const Inertia& eff = start.eff;
     const CollisionOutcome hit = resolve_collisions(ctx.obstacles, b, b.def.collision, eff.mass, eff.inertia, bottom,
-                                                    ctx.def.max_collision_passes, s, scratch.contacts);
+                                                    ctx.def.max_collision_passes, s, pose, scratch.contacts);
     if (!hit.touched) return;
     s.flags |= flag_colliding;
     ++stats.collisions;

@@ -7,6 +7,7 @@
 #include <ctime>
 #include <optional>
 
+#include "common/background_task.hpp"
 #include "common/error.hpp"
 #include "debris/kernels.hpp"
 #include "formats/flow_file.hpp"
@@ -58,6 +59,22 @@ double read_dry_depth(const nc::File& f) {
     return *value;
 }
 
+// The chunk cache of a field to one frame's chunks over the whole grid. A frame is read
+// once (its chunks are not wanted again), so a larger cache only costs time: libhdf5
+// walks its list of cached chunks for each chunk it adds once the cache is full, and with
+// netCDF's default cache (16 MB, a thousand 64 x 64 tiles) that walk took 4 % of the
+// 4 cm sweep bench. Chunks spanning several frames are cached whole.
+void size_chunk_cache(const nc::File& f, int var) {
+    int storage = 0;
+    std::size_t chunk[3] = {0, 0, 0};
+    f.check(nc_inq_var_chunking(f.id(), var, &storage, chunk), "chunking of '" + f.var_name(var) + "'");
+    if (storage != NC_CHUNKED) return;
+    const std::vector<std::size_t> shape = f.shape(var);
+    const std::size_t tiles = ((shape[1] + chunk[1] - 1) / chunk[1]) * ((shape[2] + chunk[2] - 1) / chunk[2]);
+    const std::size_t bytes = tiles * chunk[0] * chunk[1] * chunk[2] * sizeof(double);  // the widest numeric type
+    f.check(nc_set_var_chunk_cache(f.id(), var, bytes, 1009, 0.75f), "chunk cache of '" + f.var_name(var) + "'");
+}
+
 }  // namespace
 
 FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file_(nc::File::open_read(path)), def_(def) {
@@ -89,6 +106,7 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
             fail(path, "variable '" + file_.var_name(v) + "'", "shape does not match (time, y, x) of the coordinates");
     dry_depth_ = read_dry_depth(file_);
     window_ = CellWindow{0, grid_.nx, 0, grid_.ny};
+    for (int v : {var_h_, var_u_, var_v_}) size_chunk_cache(file_, v);
 }
 
 double FlowReader::next_frame_time(double t) const {
@@ -96,11 +114,11 @@ double FlowReader::next_frame_time(double t) const {
     return it == times_.end() ? times_.back() : *it;
 }
 
-void FlowReader::load(Frame& f, std::size_t frame) {
-    const auto start_clock = std::chrono::steady_clock::now();
+double FlowReader::read_frame(Frame& f, std::size_t frame, const CellWindow& w) const {
     const double start_cpu = thread_cpu_seconds();
-    const std::size_t ni = std::size_t(window_.i1 - window_.i0), nj = std::size_t(window_.j1 - window_.j0), n = ni * nj;
-    const std::vector<std::size_t> start = {frame, std::size_t(window_.j0), std::size_t(window_.i0)}, count = {1, nj, ni};
+    const std::size_t ni = std::size_t(w.i1 - w.i0), nj = std::size_t(w.j1 - w.j0), n = ni * nj;
+    const std::vector<std::size_t> start = {frame, std::size_t(w.j0), std::size_t(w.i0)}, count = {1, nj, ni};
+    f.index = no_frame;
     f.h.resize(n);
     f.qx.resize(n);
     f.qy.resize(n);
@@ -111,7 +129,7 @@ void FlowReader::load(Frame& f, std::size_t frame) {
         const float h = f.h[k], u = f.qx[k], v = f.qy[k];
         // A stored flow has 0 where dry, never NaN, a fill value or a negative depth.
         if (!(h >= 0.0f && h < 1.1e4f && std::fabs(u) < 1e3f && std::fabs(v) < 1e3f)) {
-            const std::size_t i = std::size_t(window_.i0) + k % ni, j = std::size_t(window_.j0) + k / ni;
+            const std::size_t i = std::size_t(w.i0) + k % ni, j = std::size_t(w.j0) + k / ni;
             const char* what = !(h >= 0.0f && h < 1.1e4f) ? "h" : !(std::fabs(u) < 1e3f) ? "u" : "v";
             const float value = what[0] == 'h' ? h : what[0] == 'u' ? u : v;
             fail(path(), "frame " + std::to_string(frame) + ", cell (i " + std::to_string(i) + ", j " + std::to_string(j) + ")",
@@ -122,9 +140,86 @@ void FlowReader::load(Frame& f, std::size_t frame) {
         f.qy[k] *= h;
     }
     f.index = frame;
-    ++frames_loaded_;
+    return thread_cpu_seconds() - start_cpu;
+}
+
+void FlowReader::load(Frame& f, std::size_t frame) {
+    const auto start_clock = std::chrono::steady_clock::now();
+    if (!take_read_ahead(f, frame)) {
+        wait_read_ahead();  // one netCDF caller at a time; a frame read ahead stays for a later role
+        load_cpu_seconds_ += read_frame(f, frame, window_);
+        ++frames_loaded_;
+    }
     load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
-    load_cpu_seconds_ += thread_cpu_seconds() - start_cpu;
+}
+
+// The read-ahead thread and what it hands over. Between task.start() and task.wait()
+// only the thread touches `frame` and `cpu_seconds`.
+struct FlowReader::ReadAhead {
+    Frame frame;                    // the frame read
+    CellWindow window;              // the window it is read on
+    double cpu_seconds = 0.0;       // CPU time of the read [s]
+    std::size_t wanted = no_frame;  // the frame started and not yet taken or dropped; no_frame: none
+    BackgroundTask task;            // last: destroyed (its job waited for) first
+};
+
+FlowReader::~FlowReader() {
+    if (ahead_) ahead_->task.wait();  // its job writes into *ahead_ and reads the file
+}
+
+// Never moved with a read under way: World::advance_to finishes each read it starts.
+FlowReader::FlowReader(FlowReader&&) noexcept = default;
+
+void FlowReader::read_ahead(double t) {
+    if (!loaded_) return;
+    std::size_t need[4];
+    frames_needed(t, need);
+    std::size_t next = no_frame;
+    for (int r = 0; r < 4 && next == no_frame; ++r) {
+        bool held = false;
+        for (int q = 0; q < 4; ++q) held = held || role(q).index == need[r];
+        if (!held) next = need[r];
+    }
+    if (next == no_frame) return;
+    if (!ahead_) ahead_ = std::make_unique<ReadAhead>();
+    if (ahead_->wanted == next && ahead_->window == window_) return;  // under way already
+    drop_read_ahead();
+    ReadAhead* a = ahead_.get();
+    a->wanted = next;
+    a->window = window_;
+    a->cpu_seconds = 0.0;
+    a->task.start([this, a, next] { a->cpu_seconds = read_frame(a->frame, next, a->window); });
+}
+
+void FlowReader::wait_read_ahead() {
+    if (ahead_ && ahead_->wanted != no_frame) ahead_->task.wait();
+}
+
+void FlowReader::finish_read_ahead() {
+    const auto start_clock = std::chrono::steady_clock::now();
+    wait_read_ahead();  // the frame (or its error) stays for prepare()
+    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+}
+
+bool FlowReader::take_read_ahead(Frame& f, std::size_t frame) {
+    if (!ahead_ || ahead_->wanted != frame || !(ahead_->window == window_)) return false;
+    ahead_->wanted = no_frame;
+    ++frames_loaded_;
+    load_cpu_seconds_ += ahead_->cpu_seconds;
+    // A frame that fails its checks is reported where it is needed, as without
+    // read-ahead; one never needed is never reported.
+    if (const std::exception_ptr error = ahead_->task.wait()) std::rethrow_exception(error);
+    std::swap(f, ahead_->frame);  // f's arrays are the next read's
+    ++frames_read_ahead_;
+    return true;
+}
+
+void FlowReader::drop_read_ahead() {
+    if (!ahead_ || ahead_->wanted == no_frame) return;
+    ahead_->task.wait();  // an error here is of a frame not needed
+    ahead_->wanted = no_frame;
+    ++frames_loaded_;
+    load_cpu_seconds_ += ahead_->cpu_seconds;
 }
 
 void FlowReader::hold(const std::size_t (&need)[4]) {
@@ -166,15 +261,41 @@ void FlowReader::hold(const std::size_t (&need)[4]) {
         qy_.role[r] = role(r).qy.data();
     }
     loaded_ = true;
+    update_depth_floor();
 }
 
-void FlowReader::prepare(double t) {
+void FlowReader::update_depth_floor() {
+    const std::size_t nx = std::size_t(window_.i1 - window_.i0), ny = std::size_t(window_.j1 - window_.j0);
+    // The smaller of the two frames at each node, its smallest over 3 nodes along x, then
+    // over 3 rows along y.
+    std::vector<float> both(nx * ny), along_x(nx * ny, 0.0f);
+    for (std::size_t k = 0; k < nx * ny; ++k) both[k] = std::min(h_.role[1][k], h_.role[2][k]);
+    for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t i = 1; i + 1 < nx; ++i) {
+            const float* row = both.data() + j * nx;
+            along_x[j * nx + i] = std::min({row[i - 1], row[i], row[i + 1]});
+        }
+    depth_floor_.assign(nx * ny, 0.0f);
+    for (std::size_t j = 1; j + 1 < ny; ++j)
+        for (std::size_t i = 1; i + 1 < nx; ++i)
+            depth_floor_[j * nx + i] = std::min({along_x[(j - 1) * nx + i], along_x[j * nx + i], along_x[(j + 1) * nx + i]});
+}
+
+void FlowReader::frames_needed(double t, std::size_t (&need)[4]) const {
     const std::size_t n = times_.size();
     std::size_t k = std::size_t(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
     k = k == 0 ? 0 : k - 1;
     const std::size_t k1 = std::min(k + 1, n - 1);
     const bool cubic = def_.time_interpolation == TimeInterpolation::cubic;
-    const std::size_t need[4] = {cubic && k > 0 ? k - 1 : k, k, k1, cubic ? std::min(k1 + 1, n - 1) : k1};
+    need[0] = cubic && k > 0 ? k - 1 : k;
+    need[1] = k;
+    need[2] = k1;
+    need[3] = cubic ? std::min(k1 + 1, n - 1) : k1;
+}
+
+void FlowReader::prepare(double t) {
+    std::size_t need[4];
+    frames_needed(t, need);
     if (loaded_) {
         bool same = true;
         for (int r = 0; r < 4; ++r) same = same && role(r).index == need[r];
@@ -189,6 +310,7 @@ void FlowReader::set_window(const CellWindow& w) {
     c.i1 = std::max(c.i1, c.i0 + 2);
     c.j1 = std::max(c.j1, c.j0 + 2);
     if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
+    drop_read_ahead();  // read on the old window
     window_ = c;
     if (!loaded_) return;
     const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};
@@ -286,34 +408,102 @@ inline double rate_in_time(const S& s, const F& f, int c) {
     return linear_rate(s.inv_dt, f.role[1][n], f.role[2][n]);
 }
 
-double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
-    const Stencil s = stencil(x, y, ts);
-    const double v[4] = {value_in_time(s, h_, 0), value_in_time(s, h_, 1), value_in_time(s, h_, 2), value_in_time(s, h_, 3)};
+namespace {
+using Float4 = float __attribute__((vector_size(16)));
+}  // namespace
+
+// One frame's field at the stencil's four nodes (00, 10, 01, 11), as doubles.
+template <class S>
+inline Double4 at_nodes(const float* field, const S& s) {
+    return __builtin_convertvector((Float4{field[s.n[0]], field[s.n[1]], field[s.n[2]], field[s.n[3]]}), Double4);
+}
+
+// The values (and d/dt) in time of one field at the four nodes. Where the interpolant is
+// linear at every node (no cubic), the four nodes go as one vector.
+template <class S, class F>
+inline void values_in_time(const S& s, const F& f, double (&v)[4]) {
+    if (!s.cubic_weights) {
+        const Double4 l = linear_in_time(s.a, at_nodes(f.role[1], s), at_nodes(f.role[2], s));
+        for (int c = 0; c < 4; ++c) v[c] = l[c];
+    } else {
+        for (int c = 0; c < 4; ++c) v[c] = value_in_time(s, f, c);
+    }
+}
+template <class S, class F>
+inline void rates_in_time(const S& s, const F& f, double (&rate)[4]) {
+    if (!s.cubic_weights) {
+        const Double4 l = linear_rate(s.inv_dt, at_nodes(f.role[1], s), at_nodes(f.role[2], s));
+        for (int c = 0; c < 4; ++c) rate[c] = l[c];
+    } else {
+        for (int c = 0; c < 4; ++c) rate[c] = rate_in_time(s, f, c);
+    }
+}
+
+// One field at the stencil's point: in time at each node, then bilinear in space.
+template <class S, class F>
+inline double value_at(const S& s, const F& f) {
+    double v[4];
+    values_in_time(s, f, v);
     return bilinear(v, s);
 }
 
-FlowPoint FlowReader::sample(double x, double y, const TimeStencil& ts) const {
-    const Stencil s = stencil(x, y, ts);
-    auto at = [&](const Field& f) {
-        const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
-        return bilinear(v, s);
-    };
-    FlowPoint p;
-    p.depth = at(h_);
-    if (p.depth >= dry_depth_) {
-        const Double2 uv = Double2{at(qx_), at(qy_)} / Double2{p.depth, p.depth};
-        p.u = uv[0];
-        p.v = uv[1];
+namespace {
+// Points sampled together: their stencils and divisions are independent, so the
+// processor overlaps them instead of waiting on each in turn.
+constexpr int points_in_flight = 8;
+}  // namespace
+
+double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
+    double h = 0.0;
+    const Vec2 p{x, y};
+    depth(&p, 1, ts, &h);
+    return h;
+}
+
+void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out) const {
+    for (int k0 = 0; k0 < n; k0 += points_in_flight) {
+        const int m = std::min(points_in_flight, n - k0);
+        Stencil s[points_in_flight];
+        for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
+        for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], h_);
     }
-    return p;
+}
+
+FlowPoint FlowReader::sample(double x, double y, const TimeStencil& ts) const {
+    FlowPoint out;
+    const Vec2 p{x, y};
+    sample(&p, 1, ts, &out);
+    return out;
+}
+
+void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* out) const {
+    for (int k0 = 0; k0 < n; k0 += points_in_flight) {
+        const int m = std::min(points_in_flight, n - k0);
+        Stencil s[points_in_flight];
+        double qx[points_in_flight], qy[points_in_flight];
+        for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
+        for (int k = 0; k < m; ++k) {
+            out[k0 + k] = FlowPoint{value_at(s[k], h_), 0.0, 0.0};
+            qx[k] = value_at(s[k], qx_);
+            qy[k] = value_at(s[k], qy_);
+        }
+        for (int k = 0; k < m; ++k) {
+            FlowPoint& q = out[k0 + k];
+            if (q.depth < dry_depth_) continue;
+            const Double2 uv = Double2{qx[k], qy[k]} / Double2{q.depth, q.depth};
+            q.u = uv[0];
+            q.v = uv[1];
+        }
+    }
 }
 
 FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     const Stencil s = stencil(x, y, at_time(t));
     const double gx = s.inside_x ? 1.0 / grid_.dx : 0.0, gy = s.inside_y ? 1.0 / grid_.dy : 0.0;
     auto interp = [&](const Field& f) {
-        const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
-        const double rate[4] = {rate_in_time(s, f, 0), rate_in_time(s, f, 1), rate_in_time(s, f, 2), rate_in_time(s, f, 3)};
+        double v[4], rate[4];
+        values_in_time(s, f, v);
+        rates_in_time(s, f, rate);
         Interp r;
         r.val = bilinear(v, s);
         r.ddx = ((1.0 - s.wy) * (v[1] - v[0]) + s.wy * (v[3] - v[2])) * gx;

@@ -13,17 +13,26 @@
 // tolerance (dry_depth(): the file's dry_depth_m, formats/flow_file.hpp) the velocity is
 // zero, as in the run that wrote it.
 //
+// Read-ahead (optional, World's read_ahead): read_ahead(t) starts reading, on one
+// background thread, the frame that prepare(t) will need and does not hold; prepare()
+// then takes it instead of reading it. The frame read is the same (same file, frame and
+// window, same code), so results are the same to the bit with it or without. The netCDF
+// library is not thread-safe: while a read is under way, the caller makes no other
+// netCDF call (finish_read_ahead() first; World::advance_to does so before returning).
+//
 // Before the first frame and past the last one the flow is held (steady, ∂/∂t = 0).
 // Outside the grid the edge values are held. Sampling is const and thread-safe; loading
 // (prepare, set_window) is not and belongs between parallel sweeps.
 #pragma once
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/enum_names.hpp"
 #include "common/grid.hpp"
 #include "common/netcdf.hpp"
+#include "debris/kernels.hpp"
 #include "debris/time_kernels.hpp"
 
 namespace flotsam::debris {
@@ -62,6 +71,7 @@ struct FlowPointAccel : FlowPoint {
 struct CellWindow {
     int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
     bool contains(const CellWindow& w) const { return w.i0 >= i0 && w.i1 <= i1 && w.j0 >= j0 && w.j1 <= j1; }
+    bool operator==(const CellWindow&) const = default;
 };
 
 class FlowReader {
@@ -70,6 +80,9 @@ public:
     // dims (time, y, x), z(y, x), x, y, time increasing. Errors name the file and the
     // missing piece.
     explicit FlowReader(const std::string& path, const FlowReaderDef& def = default_flow_reader_def());
+    ~FlowReader();                      // waits for a read under way
+    FlowReader(FlowReader&&) noexcept;  // not with a read under way
+    FlowReader& operator=(FlowReader&&) = delete;
 
     const Grid& grid() const { return grid_; }
     // Moves the frame of positions: the x, y given to the sampling calls (and grid()) are
@@ -97,14 +110,22 @@ public:
     // bracketing pair, and for the cubic one frame either side. Moving on by one frame
     // reads one new frame; each frame is read once while time advances.
     void prepare(double t);
-    // Restricts loading to cells `w` (clamped to the grid); reloads the current frames.
+    // Starts reading, in the background, the first frame that prepare(t) needs and does
+    // not hold (none: nothing to do). A read under way for another frame is dropped.
+    void read_ahead(double t);
+    // Waits for a read under way; the frame stays for prepare(). After it the caller may
+    // use netCDF again.
+    void finish_read_ahead();
+    // Restricts loading to cells `w` (clamped to the grid); reloads the current frames
+    // (and drops a frame read ahead on the old window).
     void set_window(const CellWindow& w);
     const CellWindow& window() const { return window_; }
     // The cells a box [x0, x1] × [y0, y1] needs for sampling (bilinear stencils included).
     CellWindow cells_for(double x0, double x1, double y0, double y1) const;
-    std::size_t frames_loaded() const { return frames_loaded_; }
-    double load_seconds() const { return load_seconds_; }          // wall time spent reading frames [s]
-    double load_cpu_seconds() const { return load_cpu_seconds_; }  // CPU time of the reading thread in it [s]
+    std::size_t frames_loaded() const { return frames_loaded_; }          // frames read, read ahead ones included
+    std::size_t frames_read_ahead() const { return frames_read_ahead_; }  // of them, read ahead and used
+    double load_seconds() const { return load_seconds_; }          // wall time the caller spent reading or waiting for frames [s]
+    double load_cpu_seconds() const { return load_cpu_seconds_; }  // CPU time of the reading, on whichever thread [s]
 
     // Samples at time t in the prepared interval (clamped into it). The point must lie
     // in the window (cells_for of it contained in window()); outside, values are clamped.
@@ -124,10 +145,23 @@ public:
     // The same as sample(x, y, t) and depth(x, y, t) for ts = at_time(t), to the bit.
     FlowPoint sample(double x, double y, const TimeStencil& ts) const;
     double depth(double x, double y, const TimeStencil& ts) const;
+    // The same for the n points p[k], into out[k], to the bit; faster than one by one (the
+    // points' stencils and divisions overlap).
+    void sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* out) const;
+    void depth(const Vec2* p, int n, const TimeStencil& ts, double* out) const;
     // Smallest stored depth over cells `w` in the two frames around t: a lower bound of
     // the interpolated depth anywhere inside those cells' stencils (for the cubic too,
     // by its guard).
     double min_depth(const CellWindow& w) const;
+    // A lower bound of the interpolated depth at t anywhere within half a cell of node
+    // (i, j) (grid indices; for the cubic too, by its guard): the smallest stored depth of
+    // the 3 x 3 nodes around it in the two frames around t; 0 on the window's border and
+    // outside it. Kept for the whole window as frames are loaded.
+    double depth_floor(int i, int j) const {
+        const int wi = i - window_.i0, wj = j - window_.j0, wnx = window_.i1 - window_.i0;
+        if (wi < 0 || wj < 0 || wi >= wnx || wj >= window_.j1 - window_.j0) return 0.0;
+        return double(depth_floor_[std::size_t(wj) * std::size_t(wnx) + std::size_t(wi)]);
+    }
 
 private:
     static constexpr std::size_t no_frame = std::size_t(-1);
@@ -141,10 +175,21 @@ private:
         const float* role[4] = {nullptr, nullptr, nullptr, nullptr};
     };
     struct Stencil;
+    struct ReadAhead;  // the background thread and the frame it reads
     Stencil stencil(double x, double y, const TimeStencil& ts) const;
+    // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].
+    void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
     void hold(const std::size_t (&need)[4]);
     void load(Frame& f, std::size_t frame);
+    // Reads frame `frame` on window `w` into f; returns the CPU time it took [s]. Touches
+    // only f and the file (the read-ahead thread runs it).
+    double read_frame(Frame& f, std::size_t frame, const CellWindow& w) const;
+    // Moves the frame read ahead into f if it is frame `frame` on the current window.
+    bool take_read_ahead(Frame& f, std::size_t frame);
+    void wait_read_ahead();  // for a read under way, untimed
+    void drop_read_ahead();  // waits for a read under way and forgets it
+    void update_depth_floor();
     const Frame& role(int r) const { return frames_[role_slot_[r]]; }
 
     nc::File file_;
@@ -158,6 +203,7 @@ private:
     CellWindow window_;
     bool loaded_ = false;
     std::size_t frames_loaded_ = 0;
+    std::size_t frames_read_ahead_ = 0;
     double load_seconds_ = 0.0;
     double load_cpu_seconds_ = 0.0;
     // Roles 0..3: frames k−1, k, k+1, k+2 around t (k, k+1 bracket t; a missing one is
@@ -165,7 +211,9 @@ private:
     // 0 → 1, 3 → 2 (their weights are zero).
     Frame frames_[4];
     int role_slot_[4] = {0, 1, 2, 3};
-    Field h_, qx_, qy_;  // the roles' arrays, set when frames are loaded
+    Field h_, qx_, qy_;                 // the roles' arrays, set when frames are loaded
+    std::vector<float> depth_floor_;    // on the window, see depth_floor()
+    std::unique_ptr<ReadAhead> ahead_;  // made by the first read_ahead()
 };
 
 }  // namespace flotsam::debris

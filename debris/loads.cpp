@@ -30,25 +30,35 @@ FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& 
     const int ns = def.samples_per_face;
     double along[max_samples_per_face];  // sample q's place along a face, from its middle, in face lengths [-]
     for (int q = 0; q < ns; ++q) along[q] = (q + 0.5) / ns - 0.5;
-    const FlowReader::TimeStencil at_t = flow.at_time(t);
-    for (int face = 0; face < 4; ++face) {
+    // The sample points of all faces first, sampled together; then their drag in turn.
+    Vec2 normal[4];                       // outward unit normal of each face
+    double segment[4];                    // length of a face's segment [m]
+    Vec2 r_at[4 * max_samples_per_face];  // sample point relative to the centre [m]
+    Vec2 p_at[4 * max_samples_per_face];  // sample point [m]
+    for (int face = 0, k = 0; face < 4; ++face) {
         const bool long_normal = face < 2;  // faces across the long axis (length B) have normal ±axis_long
         const double sign = (face % 2 == 0) ? 1.0 : -1.0;
-        const Vec2 n = sign * (long_normal ? box.axis_long : box.axis_wide);
+        normal[face] = sign * (long_normal ? box.axis_long : box.axis_wide);
         const Vec2 tangent = long_normal ? box.axis_wide : box.axis_long;
         const double offset = long_normal ? box.half_length : box.half_width;
         const double face_length = long_normal ? def.width : def.length;
-        const double segment = face_length / ns;
-        for (int q = 0; q < ns; ++q) {
-            const Vec2 r = offset * n + along[q] * face_length * tangent;
-            const FlowPoint fp = flow.sample(m.centre.x + r.x, m.centre.y + r.y, at_t);
-            const double wetted = std::min(b.draft, fp.depth);
-            if (wetted <= 0.0) continue;
-            const Vec2 u_rel = Vec2{fp.u, fp.v} - point_velocity(r);
-            const Vec2 dF = face_drag(u_rel, n, segment * wetted, def.cd1, def.cd2, rho);
-            load.force += dF;
-            load.torque += cross(r, dF);
+        segment[face] = face_length / ns;
+        for (int q = 0; q < ns; ++q, ++k) {
+            r_at[k] = offset * normal[face] + along[q] * face_length * tangent;
+            p_at[k] = Vec2{m.centre.x + r_at[k].x, m.centre.y + r_at[k].y};
         }
+    }
+    FlowPoint flow_at[4 * max_samples_per_face];
+    flow.sample(p_at, 4 * ns, flow.at_time(t), flow_at);
+    for (int k = 0; k < 4 * ns; ++k) {
+        const int face = k / ns;
+        const double wetted = std::min(b.draft, flow_at[k].depth);
+        if (wetted <= 0.0) continue;
+        const Vec2 r = r_at[k];
+        const Vec2 u_rel = Vec2{flow_at[k].u, flow_at[k].v} - point_velocity(r);
+        const Vec2 dF = face_drag(u_rel, normal[face], segment[face] * wetted, def.cd1, def.cd2, rho);
+        load.force += dF;
+        load.torque += cross(r, dF);
     }
     return load;
 }

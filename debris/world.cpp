@@ -127,6 +127,7 @@ void World::advance_to(double t) {
         const double t_next = next > time_ ? std::min(t, next) : t;  // past the last frame the flow is held
         if (!window_fitted_) fit_window();
         flow_.prepare(time_);
+        if (def_.read_ahead) flow_.read_ahead(t_next);  // what prepare(t_next) will read
         const StepContext ctx{flow_, obstacles_, def_.step};
         std::fill(active.begin(), active.end(), 1);
         for (;;) {
@@ -141,9 +142,11 @@ void World::advance_to(double t) {
             }
             if (std::none_of(active.begin(), active.end(), [](char a) { return a != 0; })) break;
             fit_window();  // some body left the loaded window: move it (reloads the same two frames)
+            if (def_.read_ahead) flow_.read_ahead(t_next);
         }
         time_ = t_next;
     }
+    flow_.finish_read_ahead();  // no netCDF call of ours outlives this one
 }
 
 }  // namespace flotsam::debris

@@ -66,6 +66,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     wdef = debris::scaled_to_bodies(wdef, shapes, spec.dt_max_given);  // scale-dependent settings follow the bodies
     r.world = wdef;                                                    // as run (threads are not recorded)
     wdef.threads = def.threads;
+    wdef.read_ahead = def.read_ahead;
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
     // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.
@@ -117,6 +118,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         st.flows_opened += 1;
         st.frames_loaded += world.flow().frames_loaded();
         st.io_seconds += world.flow().load_seconds();
+        st.read_cpu_seconds += world.flow().load_cpu_seconds();
     }
     st.members = int(r.members.size());
     st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

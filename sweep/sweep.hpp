@@ -11,16 +11,18 @@
 namespace flotsam::sweep {
 
 struct SweepRunDef {
-    Shard shard;         // which block of members to run
-    int threads = 0;     // OpenMP threads over members; 0: the OpenMP default
-    bool quiet = false;  // no progress lines
+    Shard shard;             // which block of members to run
+    int threads = 0;         // OpenMP threads over members; 0: the OpenMP default
+    bool read_ahead = true;  // one more thread reads the next frame meanwhile (debris::WorldDef::read_ahead)
+    bool quiet = false;      // no progress lines
 };
 
 // What the run cost, for reports and the benchmark.
 struct SweepRunStats {
     std::size_t flows_opened = 0;
     std::size_t frames_loaded = 0;  // frame reads, over all flows (a refitted window re-reads its pair)
-    double io_seconds = 0.0;        // wall time reading frames [s]
+    double io_seconds = 0.0;        // wall time the stepping waited for frames (read, or being read ahead) [s]
+    double read_cpu_seconds = 0.0;  // CPU time of the reading, on whichever thread [s]
     double wall_seconds = 0.0;      // the whole run, without writing the outputs [s]
     long steps = 0;                 // body steps, all members
     int members = 0;                // members run

@@ -15,6 +15,16 @@ using namespace flotsam::debris;
 
 namespace {
 const Grid grid{20, 12, -1.0, 2.0, 0.1, 0.05};
+
+// A flow that varies in x, y and t on unevenly spaced frames, wet everywhere.
+std::string uneven_flow(const std::string& path) {
+    return test::write_flow(
+        path, grid, {0.0, 1.0, 2.0, 3.0, 4.5, 6.0}, [](double, double) { return -0.5; },
+        [](double x, double y, double t) {
+            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
+            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
+        });
+}
 }  // namespace
 
 // Fields linear in x, y and t are reproduced exactly (to float storage) by linear-in-
@@ -225,16 +235,11 @@ TEST(FlowReader, SubWindowGivesTheSameValues) {
 // follow a point that crosses the grid: it starts at the window's south-west edge (its
 // own stencil cells are the window's first ones), moves across it and out of it. Every sample, at the point and at its
 // neighbours inside the window, equals to the bit what a fresh reader of the whole grid
-// gives, for both interpolants, through the per-time stencil (TimeStencil) too.
+// gives, for both interpolants, through the per-time stencil (TimeStencil) too, and
+// sampled all together.
 TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
     const auto dir = test::scratch_dir("fr_moving");
-    const std::vector<double> times = {0.0, 1.0, 2.0, 3.0, 4.5, 6.0};
-    const auto path = test::write_flow(
-        dir + "/f.nc", grid, times, [](double, double) { return -0.5; },
-        [](double x, double y, double t) {
-            const double h = 0.05 + 0.04 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t) + 0.03 * t;
-            return test::FlowState{float(std::max(0.0, h)), float(x * y + 0.2 * t), float(std::cos(x - t) - y)};
-        });
+    const auto path = uneven_flow(dir + "/f.nc");
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
         FlowReaderDef def;
         def.time_interpolation = interp;
@@ -250,11 +255,13 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
             fresh.prepare(t);
             const FlowReader::TimeStencil ts = moving.at_time(t);
             const CellWindow w = moving.window();
+            std::vector<Vec2> served;  // sampled together below
             for (const double dx : {0.0, 0.03, -0.04})
                 for (const double dy : {0.0, 0.02, -0.01}) {
                     const double px = x + dx, py = y + dy;
                     const CellWindow need = moving.cells_for(px, px, py, py);
                     if (!w.contains(need)) continue;  // only points the window serves
+                    served.push_back({px, py});
                     const FlowPointAccel a = moving.sample_accel(px, py, t), b = fresh.sample_accel(px, py, t);
                     EXPECT_EQ(a.depth, b.depth) << enum_name(interp) << " t " << t;
                     EXPECT_EQ(a.u, b.u) << enum_name(interp) << " t " << t;
@@ -269,11 +276,136 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
                     EXPECT_EQ(moving.min_depth(need), fresh.min_depth(need));
                     ++compared;
                 }
+            // Many points at once (sample(p, n, ...), depth(p, n, ...)) give the same bits.
+            const int n = int(served.size());
+            std::vector<FlowPoint> at(served.size());
+            std::vector<double> depth(served.size());
+            moving.sample(served.data(), n, ts, at.data());
+            moving.depth(served.data(), n, ts, depth.data());
+            for (int q = 0; q < n; ++q) {
+                const FlowPoint one = fresh.sample(served[q].x, served[q].y, t);
+                EXPECT_EQ(at[q].depth, one.depth);
+                EXPECT_EQ(at[q].u, one.u);
+                EXPECT_EQ(at[q].v, one.v);
+                EXPECT_EQ(depth[q], one.depth);
+            }
         }
         EXPECT_GT(compared, 300) << enum_name(interp);
         // A window's move reads the frames held (2 linear, 4 cubic) again; otherwise each
         // frame is read once: 41 moves and 6 frames.
         EXPECT_LE(moving.frames_loaded(), 41u * (interp == TimeInterpolation::cubic ? 4u : 2u) + 6u) << enum_name(interp);
+    }
+}
+
+// Read-ahead, as a World runs it: after each prepare(t) the next frame is read on the
+// other thread while samples are taken; now and then the window moves (dropping a frame
+// read on the old window), at times just as a new frame is needed. Every sample equals
+// to the bit what a reader that reads each frame itself gives, for both interpolants,
+// and the frames read ahead are the ones used.
+TEST(FlowReader, ReadAheadGivesTheSameBitsAsReadingInTurn) {
+    const auto dir = test::scratch_dir("fr_ahead");
+    const auto path = uneven_flow(dir + "/f.nc");
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
+        FlowReaderDef def;
+        def.time_interpolation = interp;
+        FlowReader in_turn(path, def), ahead(path, def);
+        int compared = 0;
+        for (int k = 0; k <= 120; ++k) {
+            const double t = 0.05 * k;
+            const double x = -1.02 + 0.0175 * k, y = 1.99 + 0.0052 * k;
+            if (k % 30 == 0) {  // frames are first needed at k = 20, 40, 60, 90, 120
+                const CellWindow w = ahead.cells_for(x - 0.6, x + 0.6, y - 0.2, y + 0.2);
+                in_turn.set_window(w);
+                ahead.set_window(w);
+            }
+            in_turn.prepare(t);
+            ahead.prepare(t);
+            ahead.read_ahead(ahead.next_frame_time(t));
+            for (const double dx : {0.0, 0.03, -0.04})
+                for (const double dy : {0.0, 0.02, -0.01}) {
+                    const double px = x + dx, py = y + dy;
+                    const CellWindow need = ahead.cells_for(px, px, py, py);
+                    if (!ahead.window().contains(need)) continue;
+                    const FlowPointAccel a = ahead.sample_accel(px, py, t), b = in_turn.sample_accel(px, py, t);
+                    EXPECT_EQ(a.depth, b.depth) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.u, b.u) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.v, b.v) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.du_dt, b.du_dt) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(a.dv_dt, b.dv_dt) << enum_name(interp) << " t " << t;
+                    EXPECT_EQ(ahead.min_depth(need), in_turn.min_depth(need));
+                    ++compared;
+                }
+            if (k % 2) ahead.finish_read_ahead();  // else prepare() takes a read maybe still under way
+        }
+        EXPECT_GT(compared, 500) << enum_name(interp);
+        // Each frame first needed without a window move at the same step came from the
+        // other thread (k = 20 and 40; the cubic needs frames 3 and 4 there: both), and
+        // only reads dropped by a move are extra.
+        EXPECT_GE(ahead.frames_read_ahead(), 2u) << enum_name(interp);
+        EXPECT_LE(ahead.frames_loaded(), in_turn.frames_loaded() + 4u) << enum_name(interp);
+    }
+}
+
+// A frame that fails the reader's checks is reported when it is needed, as without
+// read-ahead: not while it is read ahead, and never if the window moves first.
+TEST(FlowReader, ABadFrameReadAheadIsReportedWhereItIsNeeded) {
+    const auto dir = test::scratch_dir("fr_ahead_bad");
+    const auto path = test::write_flow(
+        dir + "/f.nc", grid, {0.0, 1.0, 2.0}, [](double, double) { return -0.5; },
+        [](double x, double, double t) {
+            const bool bad = t == 2.0 && x > 0.5;
+            return test::FlowState{bad ? std::nanf("") : 0.3f, 0.1f, 0.0f};
+        });
+    FlowReader r(path);
+    r.prepare(0.5);
+    r.read_ahead(1.0);  // frame 2
+    r.finish_read_ahead();
+    EXPECT_EQ(r.sample(0.0, 2.2, 0.5).depth, 0.3f);
+    const std::string msg = error_of([&] { r.prepare(1.0); });
+    EXPECT_NE(msg.find("f.nc"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("frame 2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("h = nan"), std::string::npos) << msg;
+
+    FlowReader moved(path);
+    moved.prepare(0.5);
+    moved.read_ahead(1.0);
+    moved.set_window(moved.cells_for(-0.9, -0.2, 2.1, 2.4));  // west of the bad cells
+    EXPECT_NO_THROW(moved.prepare(1.0));
+    EXPECT_EQ(moved.sample(-0.5, 2.2, 1.5).depth, 0.3f);
+}
+
+// depth_floor(i, j), which lets local contact skip cells deeper than the draft, is the
+// smallest stored depth of the 3 x 3 nodes around (i, j) in the two frames around t, and
+// no depth sampled within half a cell of the node (its edges included) is below it, for
+// either interpolant, on a moved window.
+TEST(FlowReader, DepthFloorBoundsTheDepthWithinHalfACell) {
+    const auto dir = test::scratch_dir("fr_floor");
+    const auto path = uneven_flow(dir + "/f.nc");
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
+        FlowReaderDef def;
+        def.time_interpolation = interp;
+        FlowReader r(path, def), whole(path, def);
+        r.set_window(r.cells_for(-0.6, 0.3, 2.1, 2.5));
+        const CellWindow w = r.window();
+        int checked = 0;
+        for (const double t : {0.3, 1.0, 2.7, 4.0, 5.9}) {
+            r.prepare(t);
+            whole.prepare(t);
+            EXPECT_EQ(r.depth_floor(w.i0, w.j0 + 3), 0.0);  // the window's border
+            EXPECT_EQ(r.depth_floor(w.i0 - 2, w.j0 + 3), 0.0);
+            for (int j = w.j0 + 1; j < w.j1 - 1; ++j)
+                for (int i = w.i0 + 1; i < w.i1 - 1; ++i) {
+                    const double floor = r.depth_floor(i, j);
+                    EXPECT_EQ(floor, whole.min_depth(CellWindow{i - 1, i + 2, j - 1, j + 2}));
+                    for (const double fx : {-0.5, -0.31, 0.0, 0.27, 0.5})
+                        for (const double fy : {-0.5, -0.12, 0.0, 0.44, 0.5}) {
+                            const double x = grid.x(i) + fx * grid.dx, y = grid.y(j) + fy * grid.dy;
+                            EXPECT_GE(r.depth(x, y, t), floor) << enum_name(interp) << " t " << t << " node " << i << ", " << j;
+                            ++checked;
+                        }
+                }
+        }
+        EXPECT_GT(checked, 2000) << enum_name(interp);
     }
 }
 

@@ -41,13 +41,15 @@ std::string hash_positions(const World& w) {
 
 }  // namespace
 
-TEST(DebrisRun, SameTrajectoriesWithOneAndTwoThreads) {
+// The read-ahead thread (on by default) changes nothing either.
+TEST(DebrisRun, SameTrajectoriesOnOneAndTwoThreadsWithAndWithoutReadAhead) {
     const auto dir = test::scratch_dir("run_threads");
     const auto path = varied_flow(dir + "/f.nc");
     std::vector<std::string> hashes;
-    for (int threads : {1, 2, 1}) {
+    for (const auto& [threads, read_ahead] : {std::pair{1, true}, {2, true}, {1, false}, {2, false}}) {
         WorldDef def = default_world_def();
         def.threads = threads;
+        def.read_ahead = read_ahead;
         World w(path, {}, def);
         for (int k = 0; k < 8; ++k) {
             BodyDef b = default_body_def();
@@ -70,6 +72,7 @@ TEST(DebrisRun, SameTrajectoriesWithOneAndTwoThreads) {
     }
     EXPECT_EQ(hashes[0], hashes[1]);
     EXPECT_EQ(hashes[0], hashes[2]);
+    EXPECT_EQ(hashes[0], hashes[3]);
 }
 
 TEST(DebrisRun, CliWritesTheSameTrajectoryFileTwice) {
