@@ -627,7 +627,8 @@ void Solver::stage(Stage which, double dt, double t) {
             const ColumnRange cols = active(j);
             // The output is exactly zero outside the columns computed now (as U^n is there
             // in the corrector: its nonzero cells are active).
-            for (std::vector<double>* a : {&h_out, &hu_out, &hv_out}) clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
+            for (std::vector<double>* a : {&h_out, &hu_out, &hv_out})
+                clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
             west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
             if (cols.empty()) continue;
             const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost);

@@ -127,8 +127,9 @@ TEST(Fronts, RitterFrontIsNotHeldBackByTheDryTolerance) {
             d.dry_depth = 1e-9;
             return Solver(s, d);
         });
-        std::printf("Ritter h0 = %.3f m, 400 cells: front %.4f m, L1 %.4e m^2 at the default tolerance; %.4f m, %.4e m^2 at 1e-9 m\n",
-                    h0, loose.front, loose.l1, tight.front, tight.l1);
+        std::printf(
+            "Ritter h0 = %.3f m, 400 cells: front %.4f m, L1 %.4e m^2 at the default tolerance; %.4f m, %.4e m^2 at 1e-9 m\n", h0,
+            loose.front, loose.l1, tight.front, tight.l1);
         EXPECT_GE(loose.front, tight.front) << h0;
         EXPECT_LE(loose.l1, 1.001 * tight.l1) << h0;
     }
