@@ -25,12 +25,8 @@ void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams&
     const CellWindow cells =
         flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
     if (!(flow.min_depth(cells) < b.draft)) return;  // no point under the body can be shallower than the draft
-    // A cell whose depth cannot fall below the draft gives no patch: skipped before
-    // clipping (the margin is far above the round-off of the interpolation). At 4 cm two
-    // thirds of the cells of a footprint that reaches shallow water are such cells.
-    const auto may_touch = [&](int i, int j) { return flow.depth_floor(i, j) * (1.0 - 1e-9) < b.draft; };
     footprint.clear();
-    footprint_patches(box, grid, footprint, may_touch);
+    footprint_patches(box, grid, footprint);
     const FlowReader::TimeStencil at_t = flow.at_time(t);
     // The depths at the patches' centroids, sampled a block of patches at a time.
     constexpr int block = 64;

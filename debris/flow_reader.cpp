@@ -261,24 +261,6 @@ void FlowReader::hold(const std::size_t (&need)[4]) {
         qy_.role[r] = role(r).qy.data();
     }
     loaded_ = true;
-    update_depth_floor();
-}
-
-void FlowReader::update_depth_floor() {
-    const std::size_t nx = std::size_t(window_.i1 - window_.i0), ny = std::size_t(window_.j1 - window_.j0);
-    // The smaller of the two frames at each node, its smallest over 3 nodes along x, then
-    // over 3 rows along y.
-    std::vector<float> both(nx * ny), along_x(nx * ny, 0.0f);
-    for (std::size_t k = 0; k < nx * ny; ++k) both[k] = std::min(h_.role[1][k], h_.role[2][k]);
-    for (std::size_t j = 0; j < ny; ++j)
-        for (std::size_t i = 1; i + 1 < nx; ++i) {
-            const float* row = both.data() + j * nx;
-            along_x[j * nx + i] = std::min({row[i - 1], row[i], row[i + 1]});
-        }
-    depth_floor_.assign(nx * ny, 0.0f);
-    for (std::size_t j = 1; j + 1 < ny; ++j)
-        for (std::size_t i = 1; i + 1 < nx; ++i)
-            depth_floor_[j * nx + i] = std::min({along_x[(j - 1) * nx + i], along_x[j * nx + i], along_x[(j + 1) * nx + i]});
 }
 
 void FlowReader::frames_needed(double t, std::size_t (&need)[4]) const {

@@ -153,15 +153,6 @@ public:
     // the interpolated depth anywhere inside those cells' stencils (for the cubic too,
     // by its guard).
     double min_depth(const CellWindow& w) const;
-    // A lower bound of the interpolated depth at t anywhere within half a cell of node
-    // (i, j) (grid indices; for the cubic too, by its guard): the smallest stored depth of
-    // the 3 x 3 nodes around it in the two frames around t; 0 on the window's border and
-    // outside it. Kept for the whole window as frames are loaded.
-    double depth_floor(int i, int j) const {
-        const int wi = i - window_.i0, wj = j - window_.j0, wnx = window_.i1 - window_.i0;
-        if (wi < 0 || wj < 0 || wi >= wnx || wj >= window_.j1 - window_.j0) return 0.0;
-        return double(depth_floor_[std::size_t(wj) * std::size_t(wnx) + std::size_t(wi)]);
-    }
 
 private:
     static constexpr std::size_t no_frame = std::size_t(-1);
@@ -189,7 +180,6 @@ private:
     bool take_read_ahead(Frame& f, std::size_t frame);
     void wait_read_ahead();  // for a read under way, untimed
     void drop_read_ahead();  // waits for a read under way and forgets it
-    void update_depth_floor();
     const Frame& role(int r) const { return frames_[role_slot_[r]]; }
 
     nc::File file_;
@@ -212,7 +202,6 @@ private:
     Frame frames_[4];
     int role_slot_[4] = {0, 1, 2, 3};
     Field h_, qx_, qy_;                 // the roles' arrays, set when frames are loaded
-    std::vector<float> depth_floor_;    // on the window, see depth_floor()
     std::unique_ptr<ReadAhead> ahead_;  // made by the first read_ahead()
 };
 

@@ -44,8 +44,7 @@ void area_centroid(const Poly& q, double& area, Vec2& centroid) {
 
 }  // namespace
 
-void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out,
-                       const std::function<bool(int, int)>& wanted) {
+void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out) {
     const auto corners = box.corners();
     Poly body;
     for (const Vec2& c : corners) body.p[body.n++] = c;
@@ -69,7 +68,6 @@ void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPa
         for (int i = i0; i <= i1; ++i) {
             const double xc = grid.x(i);
             if (xc + hx < row_x0 || xc - hx > row_x1) continue;
-            if (wanted && !wanted(i, j)) continue;
             const Vec2 cc{xc, yc};
             FootprintPatch patch;
             // Fast path: a cell whose four corners are inside the footprint is covered whole.

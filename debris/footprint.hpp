@@ -1,7 +1,6 @@
 // The footprint overlaid on the grid (local contact): for each cell the body covers,
 // the overlap area S_ij and the centroid of the overlap, where the depth is sampled.
 #pragma once
-#include <functional>
 #include <vector>
 
 #include "common/grid.hpp"
@@ -15,10 +14,7 @@ struct FootprintPatch {
 };
 
 // Appends one patch per grid cell that overlaps `box` (cells outside the grid are
-// skipped). The areas sum to L B when the box lies inside the grid. Where `wanted` is
-// given, a cell (i, j) for which it is false is skipped before any clipping: the caller
-// knows it would discard that cell's patch.
-void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out,
-                       const std::function<bool(int, int)>& wanted = {});
+// skipped). The areas sum to L B when the box lies inside the grid.
+void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out);
 
 }  // namespace flotsam::debris

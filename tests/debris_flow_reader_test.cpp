@@ -374,41 +374,6 @@ TEST(FlowReader, ABadFrameReadAheadIsReportedWhereItIsNeeded) {
     EXPECT_EQ(moved.sample(-0.5, 2.2, 1.5).depth, 0.3f);
 }
 
-// depth_floor(i, j), which lets local contact skip cells deeper than the draft, is the
-// smallest stored depth of the 3 x 3 nodes around (i, j) in the two frames around t, and
-// no depth sampled within half a cell of the node (its edges included) is below it, for
-// either interpolant, on a moved window.
-TEST(FlowReader, DepthFloorBoundsTheDepthWithinHalfACell) {
-    const auto dir = test::scratch_dir("fr_floor");
-    const auto path = uneven_flow(dir + "/f.nc");
-    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic}) {
-        FlowReaderDef def;
-        def.time_interpolation = interp;
-        FlowReader r(path, def), whole(path, def);
-        r.set_window(r.cells_for(-0.6, 0.3, 2.1, 2.5));
-        const CellWindow w = r.window();
-        int checked = 0;
-        for (const double t : {0.3, 1.0, 2.7, 4.0, 5.9}) {
-            r.prepare(t);
-            whole.prepare(t);
-            EXPECT_EQ(r.depth_floor(w.i0, w.j0 + 3), 0.0);  // the window's border
-            EXPECT_EQ(r.depth_floor(w.i0 - 2, w.j0 + 3), 0.0);
-            for (int j = w.j0 + 1; j < w.j1 - 1; ++j)
-                for (int i = w.i0 + 1; i < w.i1 - 1; ++i) {
-                    const double floor = r.depth_floor(i, j);
-                    EXPECT_EQ(floor, whole.min_depth(CellWindow{i - 1, i + 2, j - 1, j + 2}));
-                    for (const double fx : {-0.5, -0.31, 0.0, 0.27, 0.5})
-                        for (const double fy : {-0.5, -0.12, 0.0, 0.44, 0.5}) {
-                            const double x = grid.x(i) + fx * grid.dx, y = grid.y(j) + fy * grid.dy;
-                            EXPECT_GE(r.depth(x, y, t), floor) << enum_name(interp) << " t " << t << " node " << i << ", " << j;
-                            ++checked;
-                        }
-                }
-        }
-        EXPECT_GT(checked, 2000) << enum_name(interp);
-    }
-}
-
 TEST(FlowReader, RejectsAFileThatIsNotAFlow) {
     const auto dir = test::scratch_dir("fr_bad");
     Scene s;
