@@ -390,42 +390,10 @@ inline double rate_in_time(const S& s, const F& f, int c) {
     return linear_rate(s.inv_dt, f.role[1][n], f.role[2][n]);
 }
 
-namespace {
-using Float4 = float __attribute__((vector_size(16)));
-}  // namespace
-
-// One frame's field at the stencil's four nodes (00, 10, 01, 11), as doubles.
-template <class S>
-inline Double4 at_nodes(const float* field, const S& s) {
-    return __builtin_convertvector((Float4{field[s.n[0]], field[s.n[1]], field[s.n[2]], field[s.n[3]]}), Double4);
-}
-
-// The values (and d/dt) in time of one field at the four nodes. Where the interpolant is
-// linear at every node (no cubic), the four nodes go as one vector.
-template <class S, class F>
-inline void values_in_time(const S& s, const F& f, double (&v)[4]) {
-    if (!s.cubic_weights) {
-        const Double4 l = linear_in_time(s.a, at_nodes(f.role[1], s), at_nodes(f.role[2], s));
-        for (int c = 0; c < 4; ++c) v[c] = l[c];
-    } else {
-        for (int c = 0; c < 4; ++c) v[c] = value_in_time(s, f, c);
-    }
-}
-template <class S, class F>
-inline void rates_in_time(const S& s, const F& f, double (&rate)[4]) {
-    if (!s.cubic_weights) {
-        const Double4 l = linear_rate(s.inv_dt, at_nodes(f.role[1], s), at_nodes(f.role[2], s));
-        for (int c = 0; c < 4; ++c) rate[c] = l[c];
-    } else {
-        for (int c = 0; c < 4; ++c) rate[c] = rate_in_time(s, f, c);
-    }
-}
-
 // One field at the stencil's point: in time at each node, then bilinear in space.
 template <class S, class F>
 inline double value_at(const S& s, const F& f) {
-    double v[4];
-    values_in_time(s, f, v);
+    const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
     return bilinear(v, s);
 }
 
@@ -483,9 +451,8 @@ FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     const Stencil s = stencil(x, y, at_time(t));
     const double gx = s.inside_x ? 1.0 / grid_.dx : 0.0, gy = s.inside_y ? 1.0 / grid_.dy : 0.0;
     auto interp = [&](const Field& f) {
-        double v[4], rate[4];
-        values_in_time(s, f, v);
-        rates_in_time(s, f, rate);
+        const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
+        const double rate[4] = {rate_in_time(s, f, 0), rate_in_time(s, f, 1), rate_in_time(s, f, 2), rate_in_time(s, f, 3)};
         Interp r;
         r.val = bilinear(v, s);
         r.ddx = ((1.0 - s.wy) * (v[1] - v[0]) + s.wy * (v[3] - v[2])) * gx;

@@ -20,7 +20,6 @@
 // the reader checks each node with `cubic_depth_admissible` and uses the linear weights,
 // for depth and discharge alike, where it fails.
 #pragma once
-#include "debris/kernels.hpp"
 
 namespace flotsam::debris {
 
@@ -28,10 +27,6 @@ namespace flotsam::debris {
 // 0..1 [-]; inv_dt: 1/Δ, or 0 where the flow is held steady [1/s].
 inline double linear_in_time(double s, double f_k, double f_k1) { return (1.0 - s) * f_k + s * f_k1; }
 inline double linear_rate(double inv_dt, double f_k, double f_k1) { return (f_k1 - f_k) * inv_dt; }
-// The same for four values at once (the nodes of a bilinear stencil), lane by lane the
-// same arithmetic, so the same bits.
-inline Double4 linear_in_time(double s, Double4 f_k, Double4 f_k1) { return (1.0 - s) * f_k + s * f_k1; }
-inline Double4 linear_rate(double inv_dt, Double4 f_k, Double4 f_k1) { return (f_k1 - f_k) * inv_dt; }
 
 // Cubic: value and d/dt weights of the four frames k−1, k, k+1, k+2 (in that order)
 // [-], [1/s].
