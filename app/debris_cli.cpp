@@ -25,7 +25,7 @@ namespace flotsam {
 namespace {
 
 struct DebrisOptions {
-    std::string flow, scene, out = "trajectories.nc";
+    std::string flow, scene, ground, out = "trajectories.nc";
     std::vector<std::string> starts, ats;
     debris::BodyDef body = debris::default_body_def();     // every body's settings
     debris::WorldDef world = debris::default_world_def();  // step, flow replay, threads
@@ -88,11 +88,13 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
 
 void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
     const debris::BodyDef& base = o.body;
-    const OutputGuard guard({{"--out", o.out}}, {{"--flow", o.flow}, {"--scene", o.scene}});
+    const OutputGuard guard({{"--out", o.out}}, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}});
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
 
     std::unique_ptr<Scene> scene;
     if (!o.scene.empty()) scene = std::make_unique<Scene>(read_scene(o.scene));
+    std::unique_ptr<Scene> ground;
+    if (!o.ground.empty()) ground = std::make_unique<Scene>(read_scene(o.ground));
     std::vector<debris::BodyDef> bodies;
     std::vector<std::string> start_names;
     for (const auto& name : o.starts) {
@@ -113,7 +115,7 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     }
 
     const debris::WorldDef wdef = debris::scaled_to_bodies(o.world, bodies, !dt_max_default);
-    debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef);
+    debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef, ground.get());
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
@@ -157,6 +159,10 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     add_config_option(sub);
     sub->add_option("--flow", opts->flow, "flow file written by `flotsam hydro` (required)")->check(CLI::ExistingFile);
     sub->add_option("--scene", opts->scene, "scene file: building mask and named start points")->check(CLI::ExistingFile);
+    sub->add_option("--ground", opts->ground,
+                    "a finer scene of the same place: the bodies' ground, steps and buildings (docs/debris.md, \"Ground "
+                    "finer than the flow\")")
+        ->check(CLI::ExistingFile);
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
     sub->add_option("--out", opts->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();

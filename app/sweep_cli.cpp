@@ -15,7 +15,7 @@ namespace flotsam {
 namespace {
 
 struct SweepOptions {
-    std::string spec, out = "sweep.nc", summary, shard = "0/1", scene;
+    std::string spec, out = "sweep.nc", summary, shard = "0/1", scene, ground;
     std::vector<std::string> flows;
     int threads = 0;
     bool no_read_ahead = false;
@@ -34,9 +34,10 @@ struct StatsOptions {
 
 void run_sweep_command(const SweepOptions& o) {
     if (o.spec.empty()) fail("sweep", "--spec", "required (or use `flotsam sweep merge`)");
-    const sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, o.scene, o.flows);
+    sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, o.scene, o.flows);
+    if (!o.ground.empty()) spec.ground = o.ground;
     const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
-    std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}};
+    std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}, {"--ground", spec.ground}};
     for (const auto& f : spec.flows) inputs.push_back({"--flow", f});
     const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;
@@ -97,6 +98,11 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     sweep_cmd->add_flag("--no-read-ahead", so->no_read_ahead,
                         "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)");
     sweep_cmd->add_option("--scene", so->scene, "scene file (overrides the spec's [sweep] scene)")->check(CLI::ExistingFile);
+    sweep_cmd
+        ->add_option("--ground", so->ground,
+                     "a finer scene of the same place for the bodies' ground, steps and buildings (overrides [sweep] "
+                     "ground; docs/debris.md, \"Ground finer than the flow\")")
+        ->check(CLI::ExistingFile);
     sweep_cmd->add_option("--flow", so->flows, "flow file (repeatable; replaces the spec's [flows])")->check(CLI::ExistingFile);
     sweep_cmd->add_flag("--quiet", so->quiet, "no progress lines");
     sweep_cmd->require_subcommand(0, 1);

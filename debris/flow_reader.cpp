@@ -294,6 +294,7 @@ void FlowReader::set_window(const CellWindow& w) {
     if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
     drop_read_ahead();  // read on the old window
     window_ = c;
+    if (has_ground()) window_z_ = window_bed();
     if (!loaded_) return;
     const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};
     for (Frame& f : frames_) f.index = no_frame;  // stored on the old window: read again
@@ -403,6 +404,35 @@ namespace {
 constexpr int points_in_flight = 8;
 }  // namespace
 
+std::vector<float> FlowReader::window_bed() const {
+    std::vector<float> out;
+    out.reserve(std::size_t(window_.i1 - window_.i0) * std::size_t(window_.j1 - window_.j0));
+    for (int j = window_.j0; j < window_.j1; ++j)
+        for (int i = window_.i0; i < window_.i1; ++i) out.push_back(z_[grid_.index(i, j)]);
+    return out;
+}
+
+void FlowReader::set_ground(const Grid& grid, std::vector<float> z) {
+    if (z.size() != grid.size()) fail(path(), "ground", "elevation does not match its grid");
+    ground_grid_ = grid;
+    ground_z_ = std::move(z);
+    window_z_ = window_bed();
+}
+
+double FlowReader::ground_depth(const Stencil& s, double x, double y) const {
+    const double w[4] = {(1.0 - s.wx) * (1.0 - s.wy), s.wx * (1.0 - s.wy), (1.0 - s.wx) * s.wy, s.wx * s.wy};
+    double wet = 0.0, level = 0.0;
+    for (int c = 0; c < 4; ++c) {
+        const double h = value_in_time(s, h_, c);
+        if (!(h > dry_depth_)) continue;
+        wet += w[c];
+        level += w[c] * (h + double(window_z_[s.n[c]]));
+    }
+    if (!(wet > 0.0)) return 0.0;
+    const double ground = ground_z_[ground_grid_.index(ground_grid_.cell_i(x), ground_grid_.cell_j(y))];
+    return std::max(0.0, level / wet - ground);
+}
+
 double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
     double h = 0.0;
     const Vec2 p{x, y};
@@ -415,7 +445,7 @@ void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out)
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
         for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
-        for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], h_);
+        for (int k = 0; k < m; ++k) out[k0 + k] = has_ground() ? ground_depth(s[k], p[k0 + k].x, p[k0 + k].y) : value_at(s[k], h_);
     }
 }
 
@@ -430,17 +460,18 @@ void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* 
     for (int k0 = 0; k0 < n; k0 += points_in_flight) {
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
-        double qx[points_in_flight], qy[points_in_flight];
+        double h[points_in_flight], qx[points_in_flight], qy[points_in_flight];
         for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
         for (int k = 0; k < m; ++k) {
-            out[k0 + k] = FlowPoint{value_at(s[k], h_), 0.0, 0.0};
+            h[k] = value_at(s[k], h_);
             qx[k] = value_at(s[k], qx_);
             qy[k] = value_at(s[k], qy_);
+            out[k0 + k] = FlowPoint{has_ground() ? ground_depth(s[k], p[k0 + k].x, p[k0 + k].y) : h[k], 0.0, 0.0};
         }
         for (int k = 0; k < m; ++k) {
             FlowPoint& q = out[k0 + k];
-            if (q.depth < dry_depth_) continue;
-            const Double2 uv = Double2{qx[k], qy[k]} / Double2{q.depth, q.depth};
+            if (h[k] < dry_depth_) continue;
+            const Double2 uv = Double2{qx[k], qy[k]} / Double2{h[k], h[k]};
             q.u = uv[0];
             q.v = uv[1];
         }
@@ -449,6 +480,12 @@ void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* 
 
 FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
     const Stencil s = stencil(x, y, at_time(t));
+    FlowPointAccel p = flow_accel(s);
+    if (has_ground()) p.depth = ground_depth(s, x, y);
+    return p;
+}
+
+FlowPointAccel FlowReader::flow_accel(const Stencil& s) const {
     const double gx = s.inside_x ? 1.0 / grid_.dx : 0.0, gy = s.inside_y ? 1.0 / grid_.dy : 0.0;
     auto interp = [&](const Field& f) {
         const double v[4] = {value_in_time(s, f, 0), value_in_time(s, f, 1), value_in_time(s, f, 2), value_in_time(s, f, 3)};
@@ -480,6 +517,7 @@ FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
 }
 
 double FlowReader::min_depth(const CellWindow& w) const {
+    if (has_ground()) return 0.0;
     const int i0 = std::max(w.i0, window_.i0) - window_.i0, i1 = std::min(w.i1, window_.i1) - window_.i0;
     const int j0 = std::max(w.j0, window_.j0) - window_.j0, j1 = std::min(w.j1, window_.j1) - window_.j0;
     const int wnx = window_.i1 - window_.i0;

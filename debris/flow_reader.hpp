@@ -90,7 +90,18 @@ public:
     void set_origin(double x_origin, double y_origin) {
         grid_.x0 -= x_origin;
         grid_.y0 -= y_origin;
+        ground_grid_.x0 -= x_origin;
+        ground_grid_.y0 -= y_origin;
     }
+    // The ground the bodies stand on, finer than the flow's (docs/debris.md, "Ground finer
+    // than the flow"): elevation z [m] on `grid` (positions in the frame of grid(), x
+    // fastest), covering the flow's grid. Depth is then the flow's water level over that
+    // ground: max(0, η − z_ground), with η = h + z bilinear over the stencil's wet nodes
+    // (h above the dry tolerance; their weights renormalised; no wet node: dry) and
+    // z_ground that of the ground cell holding the point. Velocities and accelerations stay
+    // the flow's own interpolants. min_depth() then gives no bound (0).
+    void set_ground(const Grid& grid, std::vector<float> z);
+    bool has_ground() const { return !ground_z_.empty(); }
     const std::vector<double>& frame_times() const { return times_; }
     double start_time() const { return times_.front(); }
     double end_time() const { return times_.back(); }
@@ -168,6 +179,10 @@ private:
     struct Stencil;
     struct ReadAhead;  // the background thread and the frame it reads
     Stencil stencil(double x, double y, const TimeStencil& ts) const;
+    // Depth over the ground (set_ground) at (x, y), the stencil's point.
+    double ground_depth(const Stencil& s, double x, double y) const;
+    FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
+    std::vector<float> window_bed() const;              // z_ on window_
     // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].
     void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
@@ -188,6 +203,9 @@ private:
     Grid grid_;
     std::vector<double> times_;
     std::vector<float> z_;
+    Grid ground_grid_{0, 0};       // set_ground's; nx = 0: the bodies stand on the flow's bed
+    std::vector<float> ground_z_;  // [m] on ground_grid_
+    std::vector<float> window_z_;  // z_ on the window (with a ground only) [m]
     int var_h_ = -1, var_u_ = -1, var_v_ = -1;
 
     CellWindow window_;

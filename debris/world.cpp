@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "common/error.hpp"
 #include "debris/scene_match.hpp"
@@ -58,30 +59,84 @@ std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid
     return out;
 }
 
-World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def)
+Ground ground_from_scene(const Scene& scene, const FlowReader& flow) {
+    const Grid& f = flow.grid();
+    const Grid& s = scene.grid;
+    const double tol = 1e-6 * std::min(s.dx, s.dy);
+    if (s.dx > f.dx * (1.0 + 1e-6) || s.dy > f.dy * (1.0 + 1e-6))
+        fail(scene.path, "ground",
+             "its cells (" + std::to_string(s.dx) + " x " + std::to_string(s.dy) + " m) are coarser than those of flow " +
+                 flow.path() + " (" + std::to_string(f.dx) + " x " + std::to_string(f.dy) +
+                 " m): a ground finer than the flow's is wanted");
+    // Covering the flow's grid but for less than one of its cells at each side (a scene
+    // rasterised at 4 cm may reach past the flume wall that the 1 cm one ends at); beyond
+    // the ground's edge is a wall, as beyond the flow's.
+    const double mx = f.dx - tol, my = f.dy - tol;
+    if (s.x_min_edge() > f.x_min_edge() + mx || s.x_max_edge() < f.x_max_edge() - mx || s.y_min_edge() > f.y_min_edge() + my ||
+        s.y_max_edge() < f.y_max_edge() - my)
+        fail(scene.path, "ground", "does not cover the grid of flow " + flow.path());
+    // The scene's cells whose centres lie on the flow's grid.
+    const int i0 = int(std::ceil((f.x_min_edge() - s.x0) / s.dx - 1e-9)),
+              i1 = int(std::floor((f.x_max_edge() - s.x0) / s.dx + 1e-9));
+    const int j0 = int(std::ceil((f.y_min_edge() - s.y0) / s.dy - 1e-9)),
+              j1 = int(std::floor((f.y_max_edge() - s.y0) / s.dy + 1e-9));
+    Ground g;
+    g.grid = Grid{std::min(i1, s.nx - 1) - std::max(i0, 0) + 1,
+                  std::min(j1, s.ny - 1) - std::max(j0, 0) + 1,
+                  s.x(std::max(i0, 0)),
+                  s.y(std::max(j0, 0)),
+                  s.dx,
+                  s.dy};
+    const int di = std::max(i0, 0), dj = std::max(j0, 0);
+    g.z.reserve(g.grid.size());
+    for (int j = 0; j < g.grid.ny; ++j)
+        for (int i = 0; i < g.grid.nx; ++i) g.z.push_back(float(scene.z[s.index(di + i, dj + j)]));
+    if (!scene.building.empty()) {
+        g.building.reserve(g.grid.size());
+        for (int j = 0; j < g.grid.ny; ++j)
+            for (int i = 0; i < g.grid.nx; ++i) g.building.push_back(scene.building[s.index(di + i, dj + j)] ? 1 : 0);
+    }
+    return g;
+}
+
+World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
     : def_(def), flow_(flow_path, def.flow) {
-    if (!building.empty() && building.size() != flow_.grid().size())
+    if (!ground && !building.empty() && building.size() != flow_.grid().size())
         fail(flow_path, "building mask", "does not match the flow grid");
     // Map coordinates (beyond 10 km from the origin): work relative to a round kilometre.
     const auto origin = [](double edge) { return std::abs(edge) > 1e4 ? 1000.0 * std::floor(edge / 1000.0) : 0.0; };
     origin_x_ = origin(flow_.grid().x_min_edge());
     origin_y_ = origin(flow_.grid().y_min_edge());
     if (origin_x_ != 0.0 || origin_y_ != 0.0) flow_.set_origin(origin_x_, origin_y_);
-    obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
+    if (ground) {
+        Grid g = ground->grid;  // into the world's frame, as the flow's grid
+        g.x0 -= origin_x_;
+        g.y0 -= origin_y_;
+        flow_.set_ground(g, ground->z);
+        obstacles_ = ObstacleMap(g, ground->z, ground->building);
+    } else {
+        obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
+    }
     time_ = flow_.start_time();
 }
 
-World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def) {
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const Scene* ground) {
     std::vector<std::uint8_t> building;
+    std::optional<Ground> fine;
     {
         const FlowReader probe(flow_path, def.flow);  // only for its grid
         if (scene) {
             check_flow_matches_scene(probe, *scene);
             building = buildings_on_grid(*scene, probe.grid());
         }
-        for (const BodyDef& b : bodies) check_body_start(b, probe, scene);
+        if (ground) fine = ground_from_scene(*ground, probe);
+        for (const BodyDef& b : bodies) {
+            check_body_start(b, probe, scene);
+            if (ground) check_body_start(b, probe, ground);
+        }
     }
-    World world(flow_path, std::move(building), def);
+    World world(flow_path, std::move(building), def, fine ? &*fine : nullptr);
     for (const BodyDef& b : bodies) world.add_body(b);
     return world;
 }

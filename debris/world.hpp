@@ -49,11 +49,26 @@ WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);
 
+// The ground the bodies stand on where it is finer than the flow's bed (docs/debris.md,
+// "Ground finer than the flow"): ground contact, the resting height, steps and
+// buildings on this grid, the depth the flow's level over it (FlowReader::set_ground).
+struct Ground {
+    Grid grid;                           // covers the flow's grid (positions as the flow's)
+    std::vector<float> z;                // ground elevation [m], buildings included
+    std::vector<std::uint8_t> building;  // 1 where a building stands (empty: none)
+};
+// The cells of `scene` over the flow's grid. The scene must cover the flow's grid with
+// cells no larger than the flow's; errors name both files.
+Ground ground_from_scene(const Scene& scene, const FlowReader& flow);
+
 class World {
 public:
     // A world without bodies; `building` on the flow's grid (empty: none). make_world()
     // below is the usual way in.
-    World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def());
+    // With `ground`, the bodies stand on it instead of the flow's bed, and `building` is
+    // not used (the ground's own buildings are).
+    World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def(),
+          const Ground* ground = nullptr);
 
     // Adds a body at the current time (its position in the flow's own coordinates);
     // returns its index.
@@ -98,7 +113,10 @@ private:
 // The world of one flow: the scene's building mask on the flow's grid (scene null: no
 // buildings), and the bodies. The flow must have been computed on the scene, and each
 // body must start on the grid and off the buildings (debris/scene_match.hpp: the errors
-// name the files or the body). Used by `flotsam debris` and by every flow of a sweep.
-World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def);
+// name the files or the body). With `ground` (a finer scene of the same place, null:
+// none) the bodies stand on its ground and keep off its buildings too. Used by
+// `flotsam debris` and by every flow of a sweep.
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const Scene* ground = nullptr);
 
 }  // namespace flotsam::debris

@@ -52,6 +52,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     r.spec_file = spec.path;
     r.spec_sha256 = spec.sha256;
     r.scene_file = spec.scene;
+    r.ground_file = spec.ground;
     r.design = spec.design;
     r.flows = spec.flows;
     for (const auto& b : spec.bodies) r.bodies.push_back(b.name);
@@ -74,6 +75,8 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
 
     std::unique_ptr<Scene> scene;
     if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));
+    std::unique_ptr<Scene> ground;
+    if (!spec.ground.empty()) ground = std::make_unique<Scene>(read_scene(spec.ground));
     SweepRunStats st;
     for (int f = 0; f < int(spec.flows.size()); ++f) {
         std::vector<const Member*> on_flow;
@@ -83,7 +86,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         const std::string& path = spec.flows[std::size_t(f)];
         std::vector<debris::BodyDef> bodies;
         for (const Member* m : on_flow) bodies.push_back(m->def);
-        debris::World world = debris::make_world(path, scene.get(), bodies, wdef);
+        debris::World world = debris::make_world(path, scene.get(), bodies, wdef, ground.get());
         debris::TrajectorySeries series;
         debris::record(world, series);
         Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +

@@ -109,6 +109,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put_att(NC_GLOBAL, "spec_file", r.spec_file);
         f.put_att(NC_GLOBAL, "spec_sha256", r.spec_sha256);
         f.put_att(NC_GLOBAL, "scene_file", r.scene_file);
+        if (!r.ground_file.empty()) f.put_att(NC_GLOBAL, "ground_file", r.ground_file);
         f.put_att(NC_GLOBAL, "design", r.design);
         f.put_att(NC_GLOBAL, "member_count", r.member_count);
         f.put_att(NC_GLOBAL, "shard", std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count));
@@ -179,6 +180,7 @@ SweepResult read_sweep_file(const std::string& path) {
     r.spec_file = text("spec_file");
     r.spec_sha256 = text("spec_sha256");
     r.scene_file = text("scene_file");
+    r.ground_file = f.att_text(NC_GLOBAL, "ground_file").value_or("");
     r.design = text("design");
     r.member_count = int(number("member_count", Range::count(0, 2e9)));
     r.shard = parse_shard(text("shard"));
@@ -311,7 +313,8 @@ SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vecto
         const std::string& name = paths[k];
         if (p.spec_sha256 != out.spec_sha256) fail(name, "spec_sha256", "comes from another spec than " + paths[0]);
         if (p.member_count != out.member_count || p.time != out.time || p.flows != out.flows || p.bodies != out.bodies ||
-            p.variants != out.variants || p.params.size() != out.params.size() || p.scene_file != out.scene_file)
+            p.variants != out.variants || p.params.size() != out.params.size() || p.scene_file != out.scene_file ||
+            p.ground_file != out.ground_file)
             fail(name, "sweep tables", "differ from those of " + paths[0] + " (not shards of one sweep)");
         for (const auto& m : p.members)
             if (!by_id.emplace(m.id, &m).second) fail(name, "member " + std::to_string(m.id), "also in another part");

@@ -31,6 +31,7 @@ struct MemberRecord : MemberIndex {
 struct SweepResult {
     // The sweep as a whole (identical in every shard).
     std::string spec_file, spec_sha256, scene_file, design;
+    std::string ground_file;  // the bodies' finer ground (debris::Ground; "": the flows' beds)
     std::vector<std::string> flows, bodies, variants;
     std::vector<ParameterSet> params;
     PerturbationDef perturbation;

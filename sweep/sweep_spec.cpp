@@ -283,11 +283,13 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
 // settings for every member.
 void read_sweep_table(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec, debris::BodyDef& body_model) {
     if (!t) return;
-    toml_allow_only(doc, *t,
-                    keys_with(keys_with(keys_with({"scene", "output-interval", "end-time"}, setting_keys(debris::step_settings())),
-                                        setting_keys(debris::flow_replay_settings())),
-                              setting_keys(debris::body_model_settings())));
+    toml_allow_only(
+        doc, *t,
+        keys_with(keys_with(keys_with({"scene", "ground", "output-interval", "end-time"}, setting_keys(debris::step_settings())),
+                            setting_keys(debris::flow_replay_settings())),
+                  setting_keys(debris::body_model_settings())));
     if (has(*t, "scene")) spec.scene = toml_string(doc, *t, "scene");
+    if (has(*t, "ground")) spec.ground = toml_string(doc, *t, "ground");
     if (has(*t, "output-interval")) spec.output_interval = number_in(doc, *t, "output-interval", Range::positive("s"));
     if (has(*t, "end-time")) spec.end_time = number_in(doc, *t, "end-time", Range::positive("s"));
     read_settings(doc, *t, debris::step_settings(), spec.world.step);

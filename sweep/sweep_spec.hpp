@@ -99,6 +99,7 @@ struct SweepSpec {
     std::string path;                // the spec file (for messages)
     std::string sha256;              // of the spec file's bytes
     std::string scene;               // scene file: start points and building mask ("" : none)
+    std::string ground;              // a finer scene the bodies stand on (debris::Ground; "" : the flows' beds)
     std::vector<std::string> flows;  // flow files, in order
     std::vector<BodySpec> bodies;
     std::vector<Variant> variants;

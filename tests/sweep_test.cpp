@@ -385,3 +385,32 @@ TEST(SweepRun, MergedShardsGiveTheBytesOfTheWholeRun) {
     for (std::string line; std::getline(csv, line);) ++rows;
     EXPECT_EQ(rows, 49);
 }
+
+// A ground finer than the flows (--ground, or [sweep] ground): the sweep file names it,
+// and shards run with different grounds are not one sweep.
+TEST(SweepRun, GroundIsRecordedAndShardsMustShareIt) {
+    const auto dir = test::scratch_dir("sweep_ground");
+    const auto flows = two_flows(dir);
+    const std::string spec = small_spec(dir, flows);
+    Scene ground;
+    ground.grid = Grid{120, 80, 0.005, 0.005, 0.01, 0.01};  // the flows' area at half their cells
+    ground.z.assign(ground.grid.size(), -0.1);
+    write_scene(dir + "/ground.nc", ground, "test");
+    std::string out;
+    ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --ground " + dir + "/ground.nc --shard 0/2 --out " + dir +
+                                "/part0.nc --quiet --threads 1",
+                            &out),
+              0)
+        << out;
+    ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --shard 1/2 --out " + dir + "/part1.nc --quiet --threads 1", &out), 0)
+        << out;
+    EXPECT_EQ(read_sweep_file(dir + "/part0.nc").ground_file, dir + "/ground.nc");
+    EXPECT_EQ(read_sweep_file(dir + "/part1.nc").ground_file, "");
+    EXPECT_NE(test::run_cli("sweep merge " + dir + "/part0.nc " + dir + "/part1.nc --out " + dir + "/bad.nc", &out), 0);
+    EXPECT_NE(out.find("not shards of one sweep"), std::string::npos) << out;
+    // The same from the spec's [sweep] table.
+    const std::string with_key = test::write_file(dir, "g.toml",
+                                                  "[sweep]\nground = \"" + dir + "/ground.nc\"\n[flows]\npaths = [\"" + flows[0] +
+                                                      "\"]\n[[body]]\nname = \"A\"\nat = [0.35, 0.30, 0]\n");
+    EXPECT_EQ(read_sweep_spec(with_key).ground, dir + "/ground.nc");
+}

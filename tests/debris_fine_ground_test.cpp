@@ -1,0 +1,141 @@
+// Ground finer than the flow (debris::Ground, FlowReader::set_ground): the bodies stand
+// on a finer scene's ground while the water comes from a coarser flow. The depth is the
+// flow's level over that ground; a pit the flow's cell average hides floats a body, and
+// a pit inland of the flow's shoreline stays dry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cases/debris_flows.hpp"
+#include "debris/world.hpp"
+#include "formats/scene.hpp"
+#include "tests/test_support.hpp"
+
+using namespace flotsam;
+using namespace flotsam::debris;
+
+namespace {
+
+// The flow: 4 cm cells over [0, 0.24] x [0, 0.16] m. Water 3 cm deep (level 0.03 m) on a
+// flat bed at 0 west of x = 0.12 m; a quay at z = 0.05 m from there on, dry.
+const Grid coarse{6, 4, 0.02, 0.02, 0.04, 0.04};
+constexpr double level = 0.03, quay = 0.05, speed = 0.2;
+
+double coarse_bed(double x, double) { return x < 0.12 ? 0.0 : quay; }
+
+std::string quay_flow(const std::string& path) {
+    return test::write_flow(path, coarse, {0.0, 10.0}, coarse_bed, [](double x, double y, double) {
+        const double h = std::max(level - coarse_bed(x, y), 0.0);
+        return test::FlowState{float(h), h > 0 ? float(speed) : 0.0f, 0.0f};
+    });
+}
+
+// The ground: 1 cm cells over the same area. Flat at 0 in the water but for a pit
+// (−0.01 m) and a bump (0.02 m); the quay at 0.06 m but for a street at 0 one cell
+// wide (x in [0.13, 0.14] m) and an inland pit (−0.1 m) at x in [0.19, 0.20] m.
+const Grid fine{24, 16, 0.005, 0.005, 0.01, 0.01};
+double fine_bed(double x, double y) {
+    if (x < 0.12) {
+        if (std::fabs(x - 0.055) < 0.004 && std::fabs(y - 0.075) < 0.004) return -0.01;  // the pit
+        if (std::fabs(x - 0.085) < 0.004 && std::fabs(y - 0.075) < 0.004) return 0.02;   // the bump
+        return 0.0;
+    }
+    if (std::fabs(x - 0.135) < 0.004) return 0.0;   // the street
+    if (std::fabs(x - 0.195) < 0.004) return -0.1;  // the inland pit
+    return 0.06;
+}
+std::vector<float> on_grid(const Grid& g, double (*bed)(double, double)) {
+    std::vector<float> z(g.size());
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) z[g.index(i, j)] = float(bed(g.x(i), g.y(j)));
+    return z;
+}
+
+}  // namespace
+
+// Each number by hand: depth = level over the ground cell holding the point, where the
+// point's bilinear stencil has a wet node.
+TEST(FineGround, DepthIsTheFlowsLevelOverTheFinerGround) {
+    const auto dir = test::scratch_dir("fine_ground_depth");
+    FlowReader r(quay_flow(dir + "/flow.nc"));
+    r.prepare(0.0);
+    // The flow's own depth, for comparison: 3 cm everywhere in the water.
+    EXPECT_NEAR(r.depth(0.055, 0.075, 0.0), level, 1e-7);
+    r.set_ground(fine, on_grid(fine, fine_bed));
+    r.prepare(5.0);
+    EXPECT_NEAR(r.depth(0.055, 0.075, 5.0), 0.04, 1e-7);  // the pit: 0.03 − (−0.01)
+    EXPECT_NEAR(r.depth(0.085, 0.075, 5.0), 0.01, 1e-7);  // the bump: 0.03 − 0.02
+    EXPECT_NEAR(r.depth(0.035, 0.035, 5.0), level, 1e-7);
+    // The street through the quay: its stencil has the wet nodes at x = 0.10 m, so the
+    // level reaches it (the flow's own depth there is the bilinear 3 cm x 1/8 = 3.75 mm).
+    EXPECT_NEAR(r.depth(0.135, 0.075, 5.0), level, 1e-7);
+    EXPECT_NEAR(r.sample(0.135, 0.075, 5.0).u, speed, 1e-6);  // the flow's velocity
+    EXPECT_EQ(r.depth(0.125, 0.075, 5.0), 0.0);               // quay ground above the level
+    // Inland of the flow's shoreline (every node of the stencil dry) a pit stays dry.
+    EXPECT_EQ(r.depth(0.195, 0.075, 5.0), 0.0);
+    EXPECT_EQ(r.sample(0.195, 0.075, 5.0).depth, 0.0);
+    EXPECT_EQ(r.sample_accel(0.195, 0.075, 5.0).depth, 0.0);
+    EXPECT_NEAR(r.sample_accel(0.055, 0.075, 5.0).depth, 0.04, 1e-7);
+}
+
+// A body whose draft (2.5 cm) the flow's 4 cm cell average does not reach floats where
+// the finer ground shows the water deeper. Still water: it starts (its centre is deeper
+// than its draft) and stays where it is.
+TEST(FineGround, APitTheCellAverageHidesFloatsABody) {
+    const auto dir = test::scratch_dir("fine_ground_body");
+    const Grid flow_grid{10, 10, 0.02, 0.02, 0.04, 0.04};
+    const std::string flow = test::write_flow(
+        dir + "/still.nc", flow_grid, {0.0, 10.0}, [](double, double) { return -0.02; },
+        [](double, double, double) {
+            return test::FlowState{0.02f, 0.0f, 0.0f};
+        });
+    Scene ground;
+    ground.grid = Grid{40, 40, 0.005, 0.005, 0.01, 0.01};
+    ground.z.assign(ground.grid.size(), -0.02);
+    for (int j = 0; j < ground.grid.ny; ++j)
+        for (int i = 0; i < ground.grid.nx; ++i)
+            if (std::fabs(ground.grid.x(i) - 0.2) < 0.2 && std::fabs(ground.grid.y(j) - 0.2) < 0.1)
+                ground.z[ground.grid.index(i, j)] = -0.04;  // a 40 x 20 cm pit 4 cm deep
+    ground.path = dir + "/ground.nc";
+    const std::vector<BodyDef> bodies = {test::body_at(0.2, 0.2, 0.0)};
+    World coarse_only = make_world(flow, nullptr, bodies, default_world_def());
+    World on_fine = make_world(flow, nullptr, bodies, default_world_def(), &ground);
+    coarse_only.advance_to(2.0);
+    on_fine.advance_to(2.0);
+    EXPECT_NEAR(on_fine.flow().depth(0.2, 0.2, 2.0), 0.04, 1e-7);
+    EXPECT_NEAR(coarse_only.flow().depth(0.2, 0.2, 2.0), 0.02, 1e-7);
+    EXPECT_FALSE(coarse_only.states()[0].flags & flag_released);  // 2 cm < its draft
+    EXPECT_TRUE(on_fine.states()[0].flags & flag_released);       // 4 cm > its draft
+    const BodyState& s = on_fine.states()[0];
+    EXPECT_LT(std::hypot(s.x - 0.2, s.y - 0.2), 1e-9);
+    EXPECT_LT(std::fabs(s.theta), 1e-9);
+    EXPECT_EQ(on_fine.obstacles().grid().dx, 0.01);
+}
+
+// What a ground must be, with errors that name the files.
+TEST(FineGround, GroundMustCoverTheFlowWithFinerCellsAndKeepBodiesOffItsBuildings) {
+    const auto dir = test::scratch_dir("fine_ground_errors");
+    const std::string flow = quay_flow(dir + "/flow.nc");
+    const std::vector<BodyDef> bodies = {test::body_at(0.06, 0.08, 0.0)};
+    auto scene = [&](const Grid& g) {
+        Scene s;
+        s.grid = g;
+        s.z.assign(g.size(), 0.0);
+        s.path = dir + "/ground.nc";
+        return s;
+    };
+    const Scene coarser = scene(Grid{3, 2, 0.04, 0.04, 0.08, 0.08});
+    std::string msg = test::error_of([&] { make_world(flow, nullptr, bodies, default_world_def(), &coarser); });
+    EXPECT_NE(msg.find("ground.nc"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("coarser than"), std::string::npos) << msg;
+    const Scene half = scene(Grid{12, 16, 0.005, 0.005, 0.01, 0.01});
+    msg = test::error_of([&] { make_world(flow, nullptr, bodies, default_world_def(), &half); });
+    EXPECT_NE(msg.find("does not cover the grid of flow"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("flow.nc"), std::string::npos) << msg;
+    Scene built = scene(fine);
+    built.building.assign(fine.size(), 0);
+    built.building[fine.index(fine.cell_i(0.06), fine.cell_j(0.08))] = 1;  // one 1 cm building cell under its centre
+    msg = test::error_of([&] { make_world(flow, nullptr, bodies, default_world_def(), &built); });
+    EXPECT_NE(msg.find("inside a building of scene"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("ground.nc"), std::string::npos) << msg;
+}
