@@ -419,7 +419,7 @@ void FlowReader::set_ground(const Grid& grid, std::vector<float> z) {
     window_z_ = window_bed();
 }
 
-double FlowReader::ground_depth(const Stencil& s, double x, double y) const {
+double FlowReader::level_over(const Stencil& s, double ground) const {
     const double w[4] = {(1.0 - s.wx) * (1.0 - s.wy), s.wx * (1.0 - s.wy), (1.0 - s.wx) * s.wy, s.wx * s.wy};
     double wet = 0.0, level = 0.0;
     for (int c = 0; c < 4; ++c) {
@@ -428,9 +428,26 @@ double FlowReader::ground_depth(const Stencil& s, double x, double y) const {
         wet += w[c];
         level += w[c] * (h + double(window_z_[s.n[c]]));
     }
-    if (!(wet > 0.0)) return 0.0;
-    const double ground = ground_z_[ground_grid_.index(ground_grid_.cell_i(x), ground_grid_.cell_j(y))];
-    return std::max(0.0, level / wet - ground);
+    return wet > 0.0 ? std::max(0.0, level / wet - ground) : 0.0;
+}
+
+double FlowReader::ground_depth(double x, double y, const TimeStencil& ts) const {
+    // Bilinear over the ground's cell centres, as a flow stored on the ground's grid is
+    // sampled; at each centre the flow's level over that cell's ground.
+    const Grid& g = ground_grid_;
+    const double fx = (x - g.x0) / g.dx, fy = (y - g.y0) / g.dy;
+    const int i = std::clamp(int(std::floor(fx)), 0, g.nx - 2), j = std::clamp(int(std::floor(fy)), 0, g.ny - 2);
+    const double wx = std::clamp(fx - double(i), 0.0, 1.0), wy = std::clamp(fy - double(j), 0.0, 1.0);
+    const double w[4] = {(1.0 - wx) * (1.0 - wy), wx * (1.0 - wy), (1.0 - wx) * wy, wx * wy};
+    // A point on a ground cell centre (a contact patch covering its cell whole) needs that
+    // centre only: nodes of weight below 1e-9 (at most 1e-9 of the depth) are left out.
+    double depth = 0.0;
+    for (int c = 0; c < 4; ++c) {
+        if (!(w[c] > 1e-9)) continue;
+        const int ic = i + (c & 1), jc = j + (c >> 1);
+        depth += w[c] * level_over(stencil(g.x(ic), g.y(jc), ts), ground_z_[g.index(ic, jc)]);
+    }
+    return depth;
 }
 
 double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
@@ -445,7 +462,7 @@ void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out)
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
         for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
-        for (int k = 0; k < m; ++k) out[k0 + k] = has_ground() ? ground_depth(s[k], p[k0 + k].x, p[k0 + k].y) : value_at(s[k], h_);
+        for (int k = 0; k < m; ++k) out[k0 + k] = has_ground() ? ground_depth(p[k0 + k].x, p[k0 + k].y, ts) : value_at(s[k], h_);
     }
 }
 
@@ -466,7 +483,7 @@ void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* 
             h[k] = value_at(s[k], h_);
             qx[k] = value_at(s[k], qx_);
             qy[k] = value_at(s[k], qy_);
-            out[k0 + k] = FlowPoint{has_ground() ? ground_depth(s[k], p[k0 + k].x, p[k0 + k].y) : h[k], 0.0, 0.0};
+            out[k0 + k] = FlowPoint{has_ground() ? ground_depth(p[k0 + k].x, p[k0 + k].y, ts) : h[k], 0.0, 0.0};
         }
         for (int k = 0; k < m; ++k) {
             FlowPoint& q = out[k0 + k];
@@ -479,9 +496,9 @@ void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* 
 }
 
 FlowPointAccel FlowReader::sample_accel(double x, double y, double t) const {
-    const Stencil s = stencil(x, y, at_time(t));
-    FlowPointAccel p = flow_accel(s);
-    if (has_ground()) p.depth = ground_depth(s, x, y);
+    const TimeStencil ts = at_time(t);
+    FlowPointAccel p = flow_accel(stencil(x, y, ts));
+    if (has_ground()) p.depth = ground_depth(x, y, ts);
     return p;
 }
 

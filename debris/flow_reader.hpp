@@ -179,8 +179,11 @@ private:
     struct Stencil;
     struct ReadAhead;  // the background thread and the frame it reads
     Stencil stencil(double x, double y, const TimeStencil& ts) const;
-    // Depth over the ground (set_ground) at (x, y), the stencil's point.
-    double ground_depth(const Stencil& s, double x, double y) const;
+    // The flow's level at the stencil's point over ground at `ground` [m], as a depth
+    // (set_ground); 0 where no node of the stencil is wet.
+    double level_over(const Stencil& s, double ground) const;
+    // Depth over the ground (set_ground) at (x, y).
+    double ground_depth(double x, double y, const TimeStencil& ts) const;
     FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
     std::vector<float> window_bed() const;              // z_ on window_
     // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].

@@ -78,6 +78,38 @@ TEST(FineGround, DepthIsTheFlowsLevelOverTheFinerGround) {
     EXPECT_NEAR(r.sample_accel(0.055, 0.075, 5.0).depth, 0.04, 1e-7);
 }
 
+// Between ground cell centres the depth is bilinear, as a flow stored on the ground's
+// grid is sampled: halfway from the pit's centre to its east neighbour's, (0.04 + 0.03) / 2.
+TEST(FineGround, DepthIsBilinearBetweenGroundCellCentres) {
+    const auto dir = test::scratch_dir("fine_ground_bilinear");
+    FlowReader r(quay_flow(dir + "/flow.nc"));
+    r.set_ground(fine, on_grid(fine, fine_bed));
+    r.prepare(5.0);
+    EXPECT_NEAR(r.depth(0.060, 0.075, 5.0), 0.035, 1e-7);
+    EXPECT_NEAR(r.depth(0.0575, 0.0775, 5.0), 0.75 * 0.75 * 0.04 + (1 - 0.75 * 0.75) * 0.03, 1e-7);
+    // Half a cell from the street's centre onto the quay (0.06 m, above the level): half
+    // the street's depth.
+    EXPECT_NEAR(r.depth(0.140, 0.075, 5.0), 0.5 * level, 1e-7);
+}
+
+// The flow's own bed as the ground gives the flow's own depth everywhere, shorelines
+// included (the stencil of a ground node is that node alone), to float rounding.
+TEST(FineGround, TheFlowsOwnBedAsGroundChangesNothing) {
+    const auto dir = test::scratch_dir("fine_ground_own");
+    const std::string path = quay_flow(dir + "/flow.nc");
+    FlowReader plain(path), own(path);
+    own.set_ground(coarse, on_grid(coarse, coarse_bed));
+    plain.prepare(3.0);
+    own.prepare(3.0);
+    for (double x = 0.02; x <= 0.22; x += 0.0037)
+        for (double y = 0.02; y <= 0.14; y += 0.0111) {
+            EXPECT_NEAR(own.depth(x, y, 3.0), plain.depth(x, y, 3.0), 1e-9) << x << ", " << y;
+            const FlowPoint a = own.sample(x, y, 3.0), b = plain.sample(x, y, 3.0);
+            EXPECT_EQ(a.u, b.u);
+            EXPECT_EQ(a.v, b.v);
+        }
+}
+
 // A body whose draft (2.5 cm) the flow's 4 cm cell average does not reach floats where
 // the finer ground shows the water deeper. Still water: it starts (its centre is deeper
 // than its draft) and stays where it is.
