@@ -534,7 +534,7 @@ FlowPointAccel FlowReader::flow_accel(const Stencil& s) const {
 }
 
 double FlowReader::min_depth(const CellWindow& w) const {
-    if (has_ground()) return 0.0;
+    if (has_ground()) return min_depth_over_ground(w);
     const int i0 = std::max(w.i0, window_.i0) - window_.i0, i1 = std::min(w.i1, window_.i1) - window_.i0;
     const int j0 = std::max(w.j0, window_.j0) - window_.j0, j1 = std::min(w.j1, window_.j1) - window_.j0;
     const int wnx = window_.i1 - window_.i0;
@@ -545,6 +545,40 @@ double FlowReader::min_depth(const CellWindow& w) const {
             for (int i = i0; i < i1; ++i) m = std::min(m, row[i]);
         }
     return double(m);
+}
+
+}  // namespace flotsam::debris
+
+namespace flotsam::debris {
+
+// Over the ground (set_ground) a depth sampled at a point whose stencil lies in cells `w`
+// is the bilinear mean of ground centres' max(0, η − z); those centres lie within one
+// ground cell of the point, so their stencils lie in w widened by one cell, and η is a
+// weighted mean of wet levels there. So the depth is at least the lowest level in the
+// widened w less the highest ground within one ground cell of it. A dry cell there gives
+// no bound (0).
+double FlowReader::min_depth_over_ground(const CellWindow& w) const {
+    const int i0 = std::max(w.i0 - 1, window_.i0) - window_.i0, i1 = std::min(w.i1 + 1, window_.i1) - window_.i0;
+    const int j0 = std::max(w.j0 - 1, window_.j0) - window_.j0, j1 = std::min(w.j1 + 1, window_.j1) - window_.j0;
+    const int wnx = window_.i1 - window_.i0;
+    double level = 1e30;
+    for (int r = 1; r <= 2; ++r)
+        for (int j = j0; j < j1; ++j) {
+            const std::size_t row = std::size_t(j) * std::size_t(wnx);
+            for (int i = i0; i < i1; ++i) {
+                const double h = h_.role[r][row + std::size_t(i)];
+                if (!(h > dry_depth_)) return 0.0;
+                level = std::min(level, h + double(window_z_[row + std::size_t(i)]));
+            }
+        }
+    const Grid& g = ground_grid_;
+    const double x0 = grid_.x(window_.i0 + i0) - 0.5 * grid_.dx - g.dx, x1 = grid_.x(window_.i0 + i1 - 1) + 0.5 * grid_.dx + g.dx;
+    const double y0 = grid_.y(window_.j0 + j0) - 0.5 * grid_.dy - g.dy, y1 = grid_.y(window_.j0 + j1 - 1) + 0.5 * grid_.dy + g.dy;
+    const int gi0 = g.cell_i(x0), gi1 = g.cell_i(x1), gj0 = g.cell_j(y0), gj1 = g.cell_j(y1);
+    float ground = -1e30f;
+    for (int j = gj0; j <= gj1; ++j)
+        for (int i = gi0; i <= gi1; ++i) ground = std::max(ground, ground_z_[g.index(i, j)]);
+    return std::max(0.0, level - double(ground));
 }
 
 }  // namespace flotsam::debris

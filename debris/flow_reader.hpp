@@ -95,11 +95,12 @@ public:
     }
     // The ground the bodies stand on, finer than the flow's (docs/debris.md, "Ground finer
     // than the flow"): elevation z [m] on `grid` (positions in the frame of grid(), x
-    // fastest), covering the flow's grid. Depth is then the flow's water level over that
-    // ground: max(0, η − z_ground), with η = h + z bilinear over the stencil's wet nodes
-    // (h above the dry tolerance; their weights renormalised; no wet node: dry) and
-    // z_ground that of the ground cell holding the point. Velocities and accelerations stay
-    // the flow's own interpolants. min_depth() then gives no bound (0).
+    // fastest), covering the flow's grid. Depth is then what a flow stored on that grid
+    // would give with this flow's level: at each ground cell centre max(0, η − z_ground),
+    // η = h + z bilinear over the stencil's wet nodes (h above the dry tolerance; their
+    // weights renormalised; no wet node: dry), and bilinear between the centres.
+    // Velocities and accelerations stay the flow's own interpolants; min_depth() bounds
+    // the depth over the ground.
     void set_ground(const Grid& grid, std::vector<float> z);
     bool has_ground() const { return !ground_z_.empty(); }
     const std::vector<double>& frame_times() const { return times_; }
@@ -186,6 +187,7 @@ private:
     double ground_depth(double x, double y, const TimeStencil& ts) const;
     FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
     std::vector<float> window_bed() const;              // z_ on window_
+    double min_depth_over_ground(const CellWindow& w) const;
     // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].
     void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.

@@ -7,6 +7,9 @@ namespace flotsam::debris {
 
 namespace {
 
+// Overlaps below this fraction of a cell are round-off, not contact [-].
+constexpr double sliver_fraction = 1e-9;
+
 // A convex polygon of at most 8 vertices (a rectangle clipped by four half-planes).
 struct Poly {
     Vec2 p[8];
@@ -79,7 +82,10 @@ void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPa
                 const Poly cell = clip(clip(row, 0, xc - hx, -1.0), 0, xc + hx, 1.0);
                 if (cell.n < 3) continue;
                 area_centroid(cell, patch.area, patch.centroid);
-                if (patch.area <= 0.0) continue;
+                // A clip this thin is round-off where an edge of the body lies on a cell
+                // edge (a grid-aligned start); its centroid, area / area, is noise that
+                // can land anywhere. It holds no ground: left out.
+                if (!(patch.area > sliver_fraction * grid.dx * grid.dy)) continue;
             }
             out.push_back(patch);
         }
