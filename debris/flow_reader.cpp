@@ -458,11 +458,15 @@ double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
 }
 
 void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out) const {
+    if (has_ground()) {  // its own stencils, on the ground's centres
+        for (int k = 0; k < n; ++k) out[k] = ground_depth(p[k].x, p[k].y, ts);
+        return;
+    }
     for (int k0 = 0; k0 < n; k0 += points_in_flight) {
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
         for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
-        for (int k = 0; k < m; ++k) out[k0 + k] = has_ground() ? ground_depth(p[k0 + k].x, p[k0 + k].y, ts) : value_at(s[k], h_);
+        for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], h_);
     }
 }
 
@@ -533,10 +537,14 @@ FlowPointAccel FlowReader::flow_accel(const Stencil& s) const {
     return p;
 }
 
+CellWindow FlowReader::on_window(const CellWindow& w) const {
+    return CellWindow{std::max(w.i0, window_.i0) - window_.i0, std::min(w.i1, window_.i1) - window_.i0,
+                      std::max(w.j0, window_.j0) - window_.j0, std::min(w.j1, window_.j1) - window_.j0};
+}
+
 double FlowReader::min_depth(const CellWindow& w) const {
     if (has_ground()) return min_depth_over_ground(w);
-    const int i0 = std::max(w.i0, window_.i0) - window_.i0, i1 = std::min(w.i1, window_.i1) - window_.i0;
-    const int j0 = std::max(w.j0, window_.j0) - window_.j0, j1 = std::min(w.j1, window_.j1) - window_.j0;
+    const auto [i0, i1, j0, j1] = on_window(w);
     const int wnx = window_.i1 - window_.i0;
     float m = 1e30f;
     for (int r = 1; r <= 2; ++r)
@@ -547,10 +555,6 @@ double FlowReader::min_depth(const CellWindow& w) const {
     return double(m);
 }
 
-}  // namespace flotsam::debris
-
-namespace flotsam::debris {
-
 // Over the ground (set_ground) a depth sampled at a point whose stencil lies in cells `w`
 // is the bilinear mean of ground centres' max(0, η − z); those centres lie within one
 // ground cell of the point, so their stencils lie in w widened by one cell, and η is a
@@ -558,8 +562,7 @@ namespace flotsam::debris {
 // widened w less the highest ground within one ground cell of it. A dry cell there gives
 // no bound (0).
 double FlowReader::min_depth_over_ground(const CellWindow& w) const {
-    const int i0 = std::max(w.i0 - 1, window_.i0) - window_.i0, i1 = std::min(w.i1 + 1, window_.i1) - window_.i0;
-    const int j0 = std::max(w.j0 - 1, window_.j0) - window_.j0, j1 = std::min(w.j1 + 1, window_.j1) - window_.j0;
+    const auto [i0, i1, j0, j1] = on_window(CellWindow{w.i0 - 1, w.i1 + 1, w.j0 - 1, w.j1 + 1});
     const int wnx = window_.i1 - window_.i0;
     double level = 1e30;
     for (int r = 1; r <= 2; ++r)

@@ -188,6 +188,7 @@ private:
     FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
     std::vector<float> window_bed() const;              // z_ on window_
     double min_depth_over_ground(const CellWindow& w) const;
+    CellWindow on_window(const CellWindow& w) const;  // w ∩ window_, relative to window_
     // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].
     void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
