@@ -139,6 +139,7 @@ double FlowReader::read_frame(Frame& f, std::size_t frame, const CellWindow& w) 
         f.qx[k] *= h;  // u → hu
         f.qy[k] *= h;
     }
+    if (has_ground()) depth_over_ground(f, w);
     f.index = frame;
     return thread_cpu_seconds() - start_cpu;
 }
@@ -259,6 +260,7 @@ void FlowReader::hold(const std::size_t (&need)[4]) {
         h_.role[r] = role(r).h.data();
         qx_.role[r] = role(r).qx.data();
         qy_.role[r] = role(r).qy.data();
+        ground_depth_.role[r] = role(r).ground_depth.data();
     }
     loaded_ = true;
 }
@@ -294,10 +296,14 @@ void FlowReader::set_window(const CellWindow& w) {
     if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
     drop_read_ahead();  // read on the old window
     window_ = c;
-    if (has_ground()) window_z_ = window_bed();
+    if (has_ground()) ground_window_ = ground_window(c);
+    reload();
+}
+
+void FlowReader::reload() {
     if (!loaded_) return;
     const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};
-    for (Frame& f : frames_) f.index = no_frame;  // stored on the old window: read again
+    for (Frame& f : frames_) f.index = no_frame;  // stored on the old window or ground: read again
     hold(need);
 }
 
@@ -337,17 +343,22 @@ struct FlowReader::Stencil {
 };
 
 FlowReader::Stencil FlowReader::stencil(double x, double y, const TimeStencil& ts) const {
+    return stencil_on(grid_, window_, x, y, ts, h_);
+}
+
+FlowReader::Stencil FlowReader::stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts,
+                                           const Field& depth) const {
     Stencil s;
-    const Double2 f = Double2{x - grid_.x0, y - grid_.y0} / Double2{grid_.dx, grid_.dy};  // one packed division
+    const Double2 f = Double2{x - g.x0, y - g.y0} / Double2{g.dx, g.dy};  // one packed division
     const double fx = f[0], fy = f[1];
-    const int wnx = window_.i1 - window_.i0, wny = window_.j1 - window_.j0;
-    int i = int(std::floor(fx)) - window_.i0, j = int(std::floor(fy)) - window_.j0;
+    const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0;
+    int i = int(std::floor(fx)) - w.i0, j = int(std::floor(fy)) - w.j0;
     s.inside_x = i >= 0 && i <= wnx - 2;
     s.inside_y = j >= 0 && j <= wny - 2;
     i = std::clamp(i, 0, wnx - 2);
     j = std::clamp(j, 0, wny - 2);
-    s.wx = std::clamp(fx - double(i + window_.i0), 0.0, 1.0);
-    s.wy = std::clamp(fy - double(j + window_.j0), 0.0, 1.0);
+    s.wx = std::clamp(fx - double(i + w.i0), 0.0, 1.0);
+    s.wy = std::clamp(fy - double(j + w.j0), 0.0, 1.0);
     s.n[0] = std::size_t(j) * std::size_t(wnx) + std::size_t(i);
     s.n[1] = s.n[0] + 1;
     s.n[2] = s.n[0] + std::size_t(wnx);
@@ -357,7 +368,8 @@ FlowReader::Stencil FlowReader::stencil(double x, double y, const TimeStencil& t
     if (ts.cubic) {
         s.cubic_weights = &ts.cubic_weights;
         for (int c = 0; c < 4; ++c) {
-            const double h[4] = {h_.role[0][s.n[c]], h_.role[1][s.n[c]], h_.role[2][s.n[c]], h_.role[3][s.n[c]]};
+            const std::size_t n = s.n[c];
+            const double h[4] = {depth.role[0][n], depth.role[1][n], depth.role[2][n], depth.role[3][n]};
             s.cubic[c] = cubic_depth_admissible(apply_time_weights(ts.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth_);
         }
     }
@@ -404,50 +416,61 @@ namespace {
 constexpr int points_in_flight = 8;
 }  // namespace
 
-std::vector<float> FlowReader::window_bed() const {
-    std::vector<float> out;
-    out.reserve(std::size_t(window_.i1 - window_.i0) * std::size_t(window_.j1 - window_.j0));
-    for (int j = window_.j0; j < window_.j1; ++j)
-        for (int i = window_.i0; i < window_.i1; ++i) out.push_back(z_[grid_.index(i, j)]);
-    return out;
-}
-
 void FlowReader::set_ground(const Grid& grid, std::vector<float> z) {
     if (z.size() != grid.size()) fail(path(), "ground", "elevation does not match its grid");
+    drop_read_ahead();  // read without this ground
     ground_grid_ = grid;
     ground_z_ = std::move(z);
-    window_z_ = window_bed();
+    ground_window_ = ground_window(window_);
+    reload();
 }
 
-double FlowReader::level_over(const Stencil& s, double ground) const {
-    const double w[4] = {(1.0 - s.wx) * (1.0 - s.wy), s.wx * (1.0 - s.wy), (1.0 - s.wx) * s.wy, s.wx * s.wy};
-    double wet = 0.0, level = 0.0;
-    for (int c = 0; c < 4; ++c) {
-        const double h = value_in_time(s, h_, c);
-        if (!(h > dry_depth_)) continue;
-        wet += w[c];
-        level += w[c] * (h + double(window_z_[s.n[c]]));
+CellWindow FlowReader::ground_window(const CellWindow& w) const {
+    // A point sampled in w lies between the nodes x(w.i0) and x(w.i1 − 1) (cells_for), and
+    // its bilinear stencil on the ground takes the centres either side of it: one more
+    // centre each way covers round-off.
+    const Grid& g = ground_grid_;
+    const auto below = [](double f) { return int(std::floor(f)) - 1; };
+    const int i0 = below((grid_.x(w.i0) - g.x0) / g.dx), i1 = below((grid_.x(w.i1 - 1) - g.x0) / g.dx) + 4;
+    const int j0 = below((grid_.y(w.j0) - g.y0) / g.dy), j1 = below((grid_.y(w.j1 - 1) - g.y0) / g.dy) + 4;
+    CellWindow c{std::clamp(i0, 0, g.nx - 2), std::clamp(i1, 2, g.nx), std::clamp(j0, 0, g.ny - 2), std::clamp(j1, 2, g.ny)};
+    c.i1 = std::max(c.i1, c.i0 + 2);
+    c.j1 = std::max(c.j1, c.j0 + 2);
+    return c;
+}
+
+void FlowReader::depth_over_ground(Frame& f, const CellWindow& w) const {
+    const Grid& g = ground_grid_;
+    const CellWindow gw = ground_window(w);
+    const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0;
+    f.ground_depth.resize(std::size_t(gw.i1 - gw.i0) * std::size_t(gw.j1 - gw.j0));
+    float* out = f.ground_depth.data();
+    for (int gj = gw.j0; gj < gw.j1; ++gj) {
+        const double fy = (g.y(gj) - grid_.y0) / grid_.dy;
+        const int j = std::clamp(int(std::floor(fy)) - w.j0, 0, wny - 2);
+        const double wy = std::clamp(fy - double(j + w.j0), 0.0, 1.0);
+        for (int gi = gw.i0; gi < gw.i1; ++gi) {
+            const double fx = (g.x(gi) - grid_.x0) / grid_.dx;
+            const int i = std::clamp(int(std::floor(fx)) - w.i0, 0, wnx - 2);
+            const double wx = std::clamp(fx - double(i + w.i0), 0.0, 1.0);
+            const double wc[4] = {(1.0 - wx) * (1.0 - wy), wx * (1.0 - wy), (1.0 - wx) * wy, wx * wy};
+            double wet = 0.0, level = 0.0;
+            for (int c = 0; c < 4; ++c) {
+                const int ni = i + (c & 1), nj = j + (c >> 1);
+                const double h = f.h[std::size_t(nj) * std::size_t(wnx) + std::size_t(ni)];
+                if (!(h > dry_depth_)) continue;
+                wet += wc[c];
+                level += wc[c] * (h + double(z_[grid_.index(w.i0 + ni, w.j0 + nj)]));
+            }
+            *out++ = wet > 0.0 ? float(std::max(0.0, level / wet - double(ground_z_[g.index(gi, gj)]))) : 0.0f;
+        }
     }
-    return wet > 0.0 ? std::max(0.0, level / wet - ground) : 0.0;
 }
 
 double FlowReader::ground_depth(double x, double y, const TimeStencil& ts) const {
     // Bilinear over the ground's cell centres, as a flow stored on the ground's grid is
-    // sampled; at each centre the flow's level over that cell's ground.
-    const Grid& g = ground_grid_;
-    const double fx = (x - g.x0) / g.dx, fy = (y - g.y0) / g.dy;
-    const int i = std::clamp(int(std::floor(fx)), 0, g.nx - 2), j = std::clamp(int(std::floor(fy)), 0, g.ny - 2);
-    const double wx = std::clamp(fx - double(i), 0.0, 1.0), wy = std::clamp(fy - double(j), 0.0, 1.0);
-    const double w[4] = {(1.0 - wx) * (1.0 - wy), wx * (1.0 - wy), (1.0 - wx) * wy, wx * wy};
-    // A point on a ground cell centre (a contact patch covering its cell whole) needs that
-    // centre only: nodes of weight below 1e-9 (at most 1e-9 of the depth) are left out.
-    double depth = 0.0;
-    for (int c = 0; c < 4; ++c) {
-        if (!(w[c] > 1e-9)) continue;
-        const int ic = i + (c & 1), jc = j + (c >> 1);
-        depth += w[c] * level_over(stencil(g.x(ic), g.y(jc), ts), ground_z_[g.index(ic, jc)]);
-    }
-    return depth;
+    // sampled.
+    return value_at(stencil_on(ground_grid_, ground_window_, x, y, ts, ground_depth_), ground_depth_);
 }
 
 double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
@@ -555,33 +578,24 @@ double FlowReader::min_depth(const CellWindow& w) const {
     return double(m);
 }
 
-// Over the ground (set_ground) a depth sampled at a point whose stencil lies in cells `w`
-// is the bilinear mean of ground centres' max(0, η − z); those centres lie within one
-// ground cell of the point, so their stencils lie in w widened by one cell, and η is a
-// weighted mean of wet levels there. So the depth is at least the lowest level in the
-// widened w less the highest ground within one ground cell of it. A dry cell there gives
-// no bound (0).
+// Over the ground (set_ground) the depth at a point is a bilinear mean of the ground
+// centres' depths around it, interpolated in time between the frames around t (the cubic
+// only where it stays above the shallower of those two): at least the smallest of those
+// centres' depths in the two frames.
 double FlowReader::min_depth_over_ground(const CellWindow& w) const {
-    const auto [i0, i1, j0, j1] = on_window(CellWindow{w.i0 - 1, w.i1 + 1, w.j0 - 1, w.j1 + 1});
-    const int wnx = window_.i1 - window_.i0;
-    double level = 1e30;
+    const CellWindow gw = ground_window(w);
+    const int gnx = ground_window_.i1 - ground_window_.i0;
+    const int i0 = std::max(gw.i0, ground_window_.i0) - ground_window_.i0,
+              i1 = std::min(gw.i1, ground_window_.i1) - ground_window_.i0;
+    const int j0 = std::max(gw.j0, ground_window_.j0) - ground_window_.j0,
+              j1 = std::min(gw.j1, ground_window_.j1) - ground_window_.j0;
+    float m = 1e30f;
     for (int r = 1; r <= 2; ++r)
         for (int j = j0; j < j1; ++j) {
-            const std::size_t row = std::size_t(j) * std::size_t(wnx);
-            for (int i = i0; i < i1; ++i) {
-                const double h = h_.role[r][row + std::size_t(i)];
-                if (!(h > dry_depth_)) return 0.0;
-                level = std::min(level, h + double(window_z_[row + std::size_t(i)]));
-            }
+            const float* row = ground_depth_.role[r] + std::size_t(j) * std::size_t(gnx);
+            for (int i = i0; i < i1; ++i) m = std::min(m, row[i]);
         }
-    const Grid& g = ground_grid_;
-    const double x0 = grid_.x(window_.i0 + i0) - 0.5 * grid_.dx - g.dx, x1 = grid_.x(window_.i0 + i1 - 1) + 0.5 * grid_.dx + g.dx;
-    const double y0 = grid_.y(window_.j0 + j0) - 0.5 * grid_.dy - g.dy, y1 = grid_.y(window_.j0 + j1 - 1) + 0.5 * grid_.dy + g.dy;
-    const int gi0 = g.cell_i(x0), gi1 = g.cell_i(x1), gj0 = g.cell_j(y0), gj1 = g.cell_j(y1);
-    float ground = -1e30f;
-    for (int j = gj0; j <= gj1; ++j)
-        for (int i = gi0; i <= gi1; ++i) ground = std::max(ground, ground_z_[g.index(i, j)]);
-    return std::max(0.0, level - double(ground));
+    return double(m);
 }
 
 }  // namespace flotsam::debris

@@ -96,11 +96,12 @@ public:
     // The ground the bodies stand on, finer than the flow's (docs/debris.md, "Ground finer
     // than the flow"): elevation z [m] on `grid` (positions in the frame of grid(), x
     // fastest), covering the flow's grid. Depth is then what a flow stored on that grid
-    // would give with this flow's level: at each ground cell centre max(0, η − z_ground),
-    // η = h + z bilinear over the stencil's wet nodes (h above the dry tolerance; their
-    // weights renormalised; no wet node: dry), and bilinear between the centres.
-    // Velocities and accelerations stay the flow's own interpolants; min_depth() bounds
-    // the depth over the ground.
+    // would give with this flow's level: each frame, as it is loaded, is carried down to
+    // the ground's cell centres as max(0, η − z_ground), η = h + z bilinear over the flow
+    // stencil's wet nodes (h above the dry tolerance; their weights renormalised; no wet
+    // node: dry); that depth is interpolated in time as the flow's is (the cubic under the
+    // same guard) and bilinearly between the centres. Velocities and accelerations stay
+    // the flow's own interpolants; min_depth() bounds the depth over the ground.
     void set_ground(const Grid& grid, std::vector<float> z);
     bool has_ground() const { return !ground_z_.empty(); }
     const std::vector<double>& frame_times() const { return times_; }
@@ -172,6 +173,7 @@ private:
     struct Frame {
         std::size_t index = no_frame;
         std::vector<float> h, qx, qy;
+        std::vector<float> ground_depth;  // with a ground: depth at its cell centres over ground_window(window) [m]
     };
     // One field of the four roles (below), for the sampling loops.
     struct Field {
@@ -180,19 +182,23 @@ private:
     struct Stencil;
     struct ReadAhead;  // the background thread and the frame it reads
     Stencil stencil(double x, double y, const TimeStencil& ts) const;
-    // The flow's level at the stencil's point over ground at `ground` [m], as a depth
-    // (set_ground); 0 where no node of the stencil is wet.
-    double level_over(const Stencil& s, double ground) const;
+    // The bilinear stencil of (x, y) on grid g's cells `w` (arrays of w's size), with the
+    // cubic guard on `depth`.
+    Stencil stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts, const Field& depth) const;
+    // The ground cells whose centres the points sampled in flow cells `w` need.
+    CellWindow ground_window(const CellWindow& w) const;
+    // Carries frame f (read on flow cells w) down to the ground: f.ground_depth.
+    void depth_over_ground(Frame& f, const CellWindow& w) const;
     // Depth over the ground (set_ground) at (x, y).
     double ground_depth(double x, double y, const TimeStencil& ts) const;
     FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
-    std::vector<float> window_bed() const;              // z_ on window_
     double min_depth_over_ground(const CellWindow& w) const;
     CellWindow on_window(const CellWindow& w) const;  // w ∩ window_, relative to window_
     // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].
     void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
     void hold(const std::size_t (&need)[4]);
+    void reload();  // reads the held frames again (after a window or ground change)
     void load(Frame& f, std::size_t frame);
     // Reads frame `frame` on window `w` into f; returns the CPU time it took [s]. Touches
     // only f and the file (the read-ahead thread runs it).
@@ -211,7 +217,6 @@ private:
     std::vector<float> z_;
     Grid ground_grid_{0, 0};       // set_ground's; nx = 0: the bodies stand on the flow's bed
     std::vector<float> ground_z_;  // [m] on ground_grid_
-    std::vector<float> window_z_;  // z_ on the window (with a ground only) [m]
     int var_h_ = -1, var_u_ = -1, var_v_ = -1;
 
     CellWindow window_;
@@ -226,6 +231,8 @@ private:
     Frame frames_[4];
     int role_slot_[4] = {0, 1, 2, 3};
     Field h_, qx_, qy_;                 // the roles' arrays, set when frames are loaded
+    Field ground_depth_;                // the roles' depths over the ground (with one)
+    CellWindow ground_window_;          // ground_window(window_)
     std::unique_ptr<ReadAhead> ahead_;  // made by the first read_ahead()
 };
 

@@ -93,6 +93,35 @@ TEST(FineGround, DepthIsBilinearBetweenGroundCellCentres) {
     EXPECT_NEAR(r.depth(0.140, 0.075, 5.0), 0.5 * level, 1e-7);
 }
 
+// The depth over the ground is interpolated in time frame by frame, as a flow stored on
+// the ground's grid would be: the bump (z = 0.02 m) is dry at t = 0 (level 0.01 m) and
+// under 1 cm at t = 10 s (level 0.03 m), so at t = 5 s it has half of that, 5 mm, though
+// the level interpolated to 5 s (0.02 m) only reaches its top. min_depth bounds it.
+TEST(FineGround, DepthOverTheGroundIsInterpolatedBetweenFramesLikeAStoredFlow) {
+    const auto dir = test::scratch_dir("fine_ground_time");
+    const std::string path = test::write_flow(
+        dir + "/flow.nc", coarse, {0.0, 10.0}, [](double, double) { return 0.0; },
+        [](double, double, double t) {
+            return test::FlowState{float(0.01 + 0.002 * t), 0.0f, 0.0f};
+        });
+    FlowReader r(path);
+    r.set_ground(fine, on_grid(fine, fine_bed));
+    r.prepare(5.0);
+    EXPECT_NEAR(r.depth(0.085, 0.075, 0.0), 0.0, 1e-7);
+    EXPECT_NEAR(r.depth(0.085, 0.075, 10.0), 0.01, 1e-7);
+    EXPECT_NEAR(r.depth(0.085, 0.075, 5.0), 0.005, 1e-7);  // the bump
+    EXPECT_NEAR(r.depth(0.035, 0.035, 5.0), 0.02, 1e-7);   // flat ground
+    EXPECT_NEAR(r.depth(0.055, 0.075, 5.0), 0.03, 1e-7);   // the pit
+    // Halfway between the bump's centre and its flat neighbour's: at 2.5 s (0.0025 + 0.015) / 2,
+    // at 7.5 s (0.0075 + 0.025) / 2.
+    EXPECT_NEAR(r.depth(0.09, 0.075, 2.5), 0.00875, 1e-7);
+    EXPECT_NEAR(r.depth(0.09, 0.075, 7.5), 0.01625, 1e-7);
+    const CellWindow all{0, coarse.nx, 0, coarse.ny};
+    EXPECT_NEAR(r.min_depth(all), 0.0, 1e-12);  // the bump at t = 0
+    const CellWindow west{0, 2, 0, 3};          // x < 0.08: flat and the pit
+    EXPECT_NEAR(r.min_depth(west), 0.01, 1e-7);
+}
+
 // The flow's own bed as the ground gives the flow's own depth everywhere, shorelines
 // included (the stencil of a ground node is that node alone), to float rounding.
 TEST(FineGround, TheFlowsOwnBedAsGroundChangesNothing) {
