@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
         std::printf("  body steps: %ld (%.0f steps/s over compute time)\n", st.steps, double(st.steps) / compute);
         std::printf("  frames read: %zu over %zu flow openings (%.1f per flow)\n", st.frames_loaded, st.flows_opened,
                     double(st.frames_loaded) / double(st.flows_opened));
+        std::printf("  cells read: %.3g a frame, %.0f %% of the bodies' bounding windows (only the tiles under the bodies)\n",
+                    double(st.cells_read) / double(std::max<std::size_t>(st.frames_loaded, 1)),
+                    100.0 * double(st.cells_read) / double(std::max<std::size_t>(st.window_cells, 1)));
         std::printf("  I/O: %.1f s (%.0f %%) = frame reading %.1f s + output writing %.1f s; compute %.1f s (%.0f %%)\n", io,
                     100 * io / wall, st.io_seconds, write, compute, 100 * compute / wall);
         std::printf("  reading CPU time: %.1f s (%s)\n", st.read_cpu_seconds,

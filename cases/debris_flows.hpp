@@ -20,9 +20,11 @@ using BedFn = std::function<double(double x, double y)>;
 using FieldFn = std::function<FlowState(double x, double y, double t)>;
 
 inline std::string write_flow(const std::string& path, const Grid& g, const std::vector<double>& times, const BedFn& bed,
-                              const FieldFn& field, const std::map<std::string, std::string>& attributes = {}) {
+                              const FieldFn& field, const std::map<std::string, std::string>& attributes = {},
+                              int chunk = FlowFileDef{}.chunk) {
     FlowFileDef def;
     def.attributes = attributes;
+    def.chunk = chunk;
     def.window = g;
     def.frame_times = times;
     def.z.resize(g.size());

@@ -195,7 +195,7 @@ bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Bod
         double dt = std::min(stable_step(ctx, b, s), t_end - s.time);
         if (t_end - s.time - dt < 1e-9 * ctx.def.dt_max) dt = t_end - s.time;  // no sliver steps
         const CellWindow need = ctx.flow.cells_for(s.x - pad, s.x + pad, s.y - pad, s.y + pad);
-        if (!ctx.flow.window().contains(need)) return false;
+        if (!ctx.flow.covers(need)) return false;
         // The limit is set from the velocity at the start of the step; if the flow
         // accelerates the body so that a corner moves more than twice that within the step,
         // redo it shorter (tunnelling through a one-cell wall needs a whole cell).

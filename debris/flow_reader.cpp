@@ -107,6 +107,13 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
     dry_depth_ = read_dry_depth(file_);
     window_ = CellWindow{0, grid_.nx, 0, grid_.ny};
     for (int v : {var_h_, var_u_, var_v_}) size_chunk_cache(file_, v);
+    int storage = 0;
+    std::size_t chunk[3] = {0, 0, 0};
+    file_.check(nc_inq_var_chunking(file_.id(), var_h_, &storage, chunk), "chunking of '" + file_.var_name(var_h_) + "'");
+    if (storage == NC_CHUNKED && chunk[1] > 0 && chunk[2] > 0) {
+        tile_y_ = int(chunk[1]);
+        tile_x_ = int(chunk[2]);
+    }
 }
 
 double FlowReader::next_frame_time(double t) const {
@@ -114,32 +121,76 @@ double FlowReader::next_frame_time(double t) const {
     return it == times_.end() ? times_.back() : *it;
 }
 
-double FlowReader::read_frame(Frame& f, std::size_t frame, const CellWindow& w) const {
-    const double start_cpu = thread_cpu_seconds();
-    const std::size_t ni = std::size_t(w.i1 - w.i0), nj = std::size_t(w.j1 - w.j0), n = ni * nj;
-    const std::vector<std::size_t> start = {frame, std::size_t(w.j0), std::size_t(w.i0)}, count = {1, nj, ni};
-    f.index = no_frame;
-    f.h.resize(n);
-    f.qx.resize(n);
-    f.qy.resize(n);
-    file_.get_slab(var_h_, start, count, f.h.data());
-    file_.get_slab(var_u_, start, count, f.qx.data());
-    file_.get_slab(var_v_, start, count, f.qy.data());
-    for (std::size_t k = 0; k < n; ++k) {
-        const float h = f.h[k], u = f.qx[k], v = f.qy[k];
-        // A stored flow has 0 where dry, never NaN, a fill value or a negative depth.
-        if (!(h >= 0.0f && h < 1.1e4f && std::fabs(u) < 1e3f && std::fabs(v) < 1e3f)) {
-            const std::size_t i = std::size_t(w.i0) + k % ni, j = std::size_t(w.j0) + k / ni;
-            const char* what = !(h >= 0.0f && h < 1.1e4f) ? "h" : !(std::fabs(u) < 1e3f) ? "u" : "v";
-            const float value = what[0] == 'h' ? h : what[0] == 'u' ? u : v;
-            fail(path(), "frame " + std::to_string(frame) + ", cell (i " + std::to_string(i) + ", j " + std::to_string(j) + ")",
-                 std::string(what) + " = " + std::to_string(value) +
-                     " is not a depth or velocity (NaN, a fill value, negative or absurd); a flow file stores 0 where dry");
+FlowReader::TileRange FlowReader::tiles_of(const CellWindow& w) const {
+    const int ti0 = w.i0 / tile_x_, tj0 = w.j0 / tile_y_;
+    return TileRange{ti0, tj0, (w.i1 - 1) / tile_x_ + 1 - ti0, (w.j1 - 1) / tile_y_ + 1 - tj0};
+}
+
+CellWindow FlowReader::tile_cells(const CellWindow& w, int ti, int tj) const {
+    return CellWindow{std::max(w.i0, ti * tile_x_), std::min(w.i1, (ti + 1) * tile_x_), std::max(w.j0, tj * tile_y_),
+                      std::min(w.j1, (tj + 1) * tile_y_)};
+}
+
+void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const {
+    const std::size_t ni = std::size_t(r.i1 - r.i0), nj = std::size_t(r.j1 - r.j0), wnx = std::size_t(w.i1 - w.i0);
+    const std::vector<std::size_t> start = {frame, std::size_t(r.j0), std::size_t(r.i0)}, count = {1, nj, ni};
+    const std::size_t offset = std::size_t(r.j0 - w.j0) * wnx + std::size_t(r.i0 - w.i0);
+    for (std::vector<float>* field : {&f.h, &f.qx, &f.qy}) {
+        const int var = field == &f.h ? var_h_ : field == &f.qx ? var_u_ : var_v_;
+        if (r == w) {
+            file_.get_slab(var, start, count, field->data());
+            continue;
         }
-        f.qx[k] *= h;  // u → hu
-        f.qy[k] *= h;
+        f.slab.resize(ni * nj);
+        file_.get_slab(var, start, count, f.slab.data());
+        for (std::size_t j = 0; j < nj; ++j) std::copy_n(f.slab.data() + j * ni, ni, field->data() + offset + j * wnx);
     }
-    if (has_ground()) depth_over_ground(f, w);
+    for (std::size_t j = 0; j < nj; ++j)
+        for (std::size_t k = offset + j * wnx; k < offset + j * wnx + ni; ++k) {
+            const float h = f.h[k], u = f.qx[k], v = f.qy[k];
+            // A stored flow has 0 where dry, never NaN, a fill value or a negative depth.
+            if (!(h >= 0.0f && h < 1.1e4f && std::fabs(u) < 1e3f && std::fabs(v) < 1e3f)) {
+                const std::size_t i = std::size_t(w.i0) + k % wnx, jj = std::size_t(w.j0) + k / wnx;
+                const char* what = !(h >= 0.0f && h < 1.1e4f) ? "h" : !(std::fabs(u) < 1e3f) ? "u" : "v";
+                const float value = what[0] == 'h' ? h : what[0] == 'u' ? u : v;
+                fail(path(),
+                     "frame " + std::to_string(frame) + ", cell (i " + std::to_string(i) + ", j " + std::to_string(jj) + ")",
+                     std::string(what) + " = " + std::to_string(value) +
+                         " is not a depth or velocity (NaN, a fill value, negative or absurd); a flow file stores 0 where dry");
+            }
+            f.qx[k] *= h;  // u → hu
+            f.qy[k] *= h;
+        }
+}
+
+double FlowReader::read_frame(Frame& f, std::size_t frame, const Area& a) const {
+    const double start_cpu = thread_cpu_seconds();
+    const CellWindow& w = a.window;
+    const std::size_t n = std::size_t(w.i1 - w.i0) * std::size_t(w.j1 - w.j0);
+    f.index = no_frame;
+    for (std::vector<float>* field : {&f.h, &f.qx, &f.qy}) {
+        field->resize(n);
+        if (!a.tiles.empty()) std::fill(field->begin(), field->end(), 0.0f);  // cells not read: dry, never sampled
+    }
+    if (a.tiles.empty()) {
+        read_cells(f, frame, w, w);
+    } else {
+        // Each row of tiles as runs of tiles read side by side: one read per run and field.
+        const TileRange t = tiles_of(w);
+        for (int tj = 0; tj < t.ntj; ++tj)
+            for (int ti = 0; ti < t.nti;) {
+                if (!a.tiles[std::size_t(tj * t.nti + ti)]) {
+                    ++ti;
+                    continue;
+                }
+                int end = ti;
+                while (end < t.nti && a.tiles[std::size_t(tj * t.nti + end)]) ++end;
+                const CellWindow first = tile_cells(w, t.ti0 + ti, t.tj0 + tj), last = tile_cells(w, t.ti0 + end - 1, t.tj0 + tj);
+                read_cells(f, frame, w, CellWindow{first.i0, last.i1, first.j0, first.j1});
+                ti = end;
+            }
+    }
+    if (has_ground()) depth_over_ground(f, a);
     f.index = frame;
     return thread_cpu_seconds() - start_cpu;
 }
@@ -148,8 +199,8 @@ void FlowReader::load(Frame& f, std::size_t frame) {
     const auto start_clock = std::chrono::steady_clock::now();
     if (!take_read_ahead(f, frame)) {
         wait_read_ahead();  // one netCDF caller at a time; a frame read ahead stays for a later role
-        load_cpu_seconds_ += read_frame(f, frame, window_);
-        ++frames_loaded_;
+        load_cpu_seconds_ += read_frame(f, frame, area());
+        count_read(area());
     }
     load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
 }
@@ -158,7 +209,7 @@ void FlowReader::load(Frame& f, std::size_t frame) {
 // only the thread touches `frame` and `cpu_seconds`.
 struct FlowReader::ReadAhead {
     Frame frame;                    // the frame read
-    CellWindow window;              // the window it is read on
+    Area area;                      // the area it is read on
     double cpu_seconds = 0.0;       // CPU time of the read [s]
     std::size_t wanted = no_frame;  // the frame started and not yet taken or dropped; no_frame: none
     BackgroundTask task;            // last: destroyed (its job waited for) first
@@ -183,13 +234,14 @@ void FlowReader::read_ahead(double t) {
     }
     if (next == no_frame) return;
     if (!ahead_) ahead_ = std::make_unique<ReadAhead>();
-    if (ahead_->wanted == next && ahead_->window == window_) return;  // under way already
+    if (ahead_->wanted == next && ahead_->area.window == window_ && ahead_->area.tiles == window_tiles_)
+        return;  // under way already
     drop_read_ahead();
     ReadAhead* a = ahead_.get();
     a->wanted = next;
-    a->window = window_;
+    a->area = area();
     a->cpu_seconds = 0.0;
-    a->task.start([this, a, next] { a->cpu_seconds = read_frame(a->frame, next, a->window); });
+    a->task.start([this, a, next] { a->cpu_seconds = read_frame(a->frame, next, a->area); });
 }
 
 void FlowReader::wait_read_ahead() {
@@ -203,9 +255,10 @@ void FlowReader::finish_read_ahead() {
 }
 
 bool FlowReader::take_read_ahead(Frame& f, std::size_t frame) {
-    if (!ahead_ || ahead_->wanted != frame || !(ahead_->window == window_)) return false;
+    if (!ahead_ || ahead_->wanted != frame || !(ahead_->area.window == window_ && ahead_->area.tiles == window_tiles_))
+        return false;
     ahead_->wanted = no_frame;
-    ++frames_loaded_;
+    count_read(ahead_->area);
     load_cpu_seconds_ += ahead_->cpu_seconds;
     // A frame that fails its checks is reported where it is needed, as without
     // read-ahead; one never needed is never reported.
@@ -219,8 +272,25 @@ void FlowReader::drop_read_ahead() {
     if (!ahead_ || ahead_->wanted == no_frame) return;
     ahead_->task.wait();  // an error here is of a frame not needed
     ahead_->wanted = no_frame;
-    ++frames_loaded_;
+    count_read(ahead_->area);
     load_cpu_seconds_ += ahead_->cpu_seconds;
+}
+
+void FlowReader::count_read(const Area& a) {
+    ++frames_loaded_;
+    const std::size_t window_cells = std::size_t(a.window.i1 - a.window.i0) * std::size_t(a.window.j1 - a.window.j0);
+    window_cells_ += window_cells;
+    if (a.tiles.empty()) {
+        cells_read_ += window_cells;
+        return;
+    }
+    const TileRange t = tiles_of(a.window);
+    for (int tj = 0; tj < t.ntj; ++tj)
+        for (int ti = 0; ti < t.nti; ++ti)
+            if (a.tiles[std::size_t(tj * t.nti + ti)]) {
+                const CellWindow c = tile_cells(a.window, t.ti0 + ti, t.tj0 + tj);
+                cells_read_ += std::size_t(c.i1 - c.i0) * std::size_t(c.j1 - c.j0);
+            }
 }
 
 void FlowReader::hold(const std::size_t (&need)[4]) {
@@ -293,10 +363,60 @@ void FlowReader::set_window(const CellWindow& w) {
                  std::clamp(w.j1, 2, grid_.ny)};
     c.i1 = std::max(c.i1, c.i0 + 2);
     c.j1 = std::max(c.j1, c.j0 + 2);
-    if (c.i0 == window_.i0 && c.i1 == window_.i1 && c.j0 == window_.j0 && c.j1 == window_.j1 && loaded_) return;
-    drop_read_ahead();  // read on the old window
-    window_ = c;
-    if (has_ground()) ground_window_ = ground_window(c);
+    set_area(Area{c, {}});
+}
+
+namespace {
+CellWindow widened(const CellWindow& w, int by) { return CellWindow{w.i0 - by, w.i1 + by, w.j0 - by, w.j1 + by}; }
+}  // namespace
+
+void FlowReader::set_regions(const std::vector<CellWindow>& regions) {
+    if (regions.empty()) return;
+    CellWindow box{grid_.nx, 0, grid_.ny, 0};
+    std::vector<CellWindow> wide;
+    for (const CellWindow& r : regions) {
+        const CellWindow c = widened(r, region_margin);
+        wide.push_back(CellWindow{std::clamp(c.i0, 0, grid_.nx - 2), std::clamp(c.i1, 2, grid_.nx),
+                                  std::clamp(c.j0, 0, grid_.ny - 2), std::clamp(c.j1, 2, grid_.ny)});
+        box = CellWindow{std::min(box.i0, wide.back().i0), std::max(box.i1, wide.back().i1), std::min(box.j0, wide.back().j0),
+                         std::max(box.j1, wide.back().j1)};
+    }
+    Area a{box, {}};
+    const TileRange t = tiles_of(box);
+    a.tiles.assign(std::size_t(t.nti * t.ntj), 0);
+    for (const CellWindow& r : wide) {
+        const TileRange u = tiles_of(r);
+        for (int tj = u.tj0; tj < u.tj0 + u.ntj; ++tj)
+            for (int ti = u.ti0; ti < u.ti0 + u.nti; ++ti) a.tiles[std::size_t((tj - t.tj0) * t.nti + (ti - t.ti0))] = 1;
+    }
+    if (std::all_of(a.tiles.begin(), a.tiles.end(), [](char c) { return c != 0; })) a.tiles.clear();
+    set_area(std::move(a));
+}
+
+bool FlowReader::covers(const CellWindow& w) const {
+    const CellWindow c = widened(w, region_margin);
+    const CellWindow need{std::max(c.i0, 0), std::min(c.i1, grid_.nx), std::max(c.j0, 0), std::min(c.j1, grid_.ny)};
+    if (!window_.contains(need)) return false;
+    if (window_tiles_.empty()) return true;
+    const TileRange t = tiles_of(window_), u = tiles_of(need);
+    for (int tj = u.tj0; tj < u.tj0 + u.ntj; ++tj)
+        for (int ti = u.ti0; ti < u.ti0 + u.nti; ++ti)
+            if (!window_tiles_[std::size_t((tj - t.tj0) * t.nti + (ti - t.ti0))]) return false;
+    return true;
+}
+
+std::size_t FlowReader::tiles_loaded() const {
+    const TileRange t = tiles_of(window_);
+    return window_tiles_.empty() ? std::size_t(t.nti * t.ntj)
+                                 : std::size_t(std::count(window_tiles_.begin(), window_tiles_.end(), char(1)));
+}
+
+void FlowReader::set_area(Area a) {
+    if (a.window == window_ && a.tiles == window_tiles_ && loaded_) return;
+    drop_read_ahead();  // read on the old area
+    window_ = a.window;
+    window_tiles_ = std::move(a.tiles);
+    if (has_ground()) ground_window_ = ground_window(window_);
     reload();
 }
 
@@ -439,17 +559,31 @@ CellWindow FlowReader::ground_window(const CellWindow& w) const {
     return c;
 }
 
-void FlowReader::depth_over_ground(Frame& f, const CellWindow& w) const {
-    const Grid& g = ground_grid_;
+void FlowReader::depth_over_ground(Frame& f, const Area& a) const {
+    const CellWindow& w = a.window;
     const CellWindow gw = ground_window(w);
-    const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0;
     f.ground_depth.resize(std::size_t(gw.i1 - gw.i0) * std::size_t(gw.j1 - gw.j0));
-    float* out = f.ground_depth.data();
-    for (int gj = gw.j0; gj < gw.j1; ++gj) {
+    if (a.tiles.empty()) {
+        depth_over_ground(f, w, w);
+        return;
+    }
+    std::fill(f.ground_depth.begin(), f.ground_depth.end(), 0.0f);  // under tiles not read: never sampled
+    const TileRange t = tiles_of(w);
+    for (int tj = 0; tj < t.ntj; ++tj)
+        for (int ti = 0; ti < t.nti; ++ti)
+            if (a.tiles[std::size_t(tj * t.nti + ti)]) depth_over_ground(f, w, tile_cells(w, t.ti0 + ti, t.tj0 + tj));
+}
+
+void FlowReader::depth_over_ground(Frame& f, const CellWindow& w, const CellWindow& r) const {
+    const Grid& g = ground_grid_;
+    const CellWindow gw = ground_window(w), gr = ground_window(r);
+    const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0, gnx = gw.i1 - gw.i0;
+    for (int gj = gr.j0; gj < gr.j1; ++gj) {
         const double fy = (g.y(gj) - grid_.y0) / grid_.dy;
         const int j = std::clamp(int(std::floor(fy)) - w.j0, 0, wny - 2);
         const double wy = std::clamp(fy - double(j + w.j0), 0.0, 1.0);
-        for (int gi = gw.i0; gi < gw.i1; ++gi) {
+        float* out = f.ground_depth.data() + std::size_t(gj - gw.j0) * std::size_t(gnx) + std::size_t(gr.i0 - gw.i0);
+        for (int gi = gr.i0; gi < gr.i1; ++gi) {
             const double fx = (g.x(gi) - grid_.x0) / grid_.dx;
             const int i = std::clamp(int(std::floor(fx)) - w.i0, 0, wnx - 2);
             const double wx = std::clamp(fx - double(i + w.i0), 0.0, 1.0);

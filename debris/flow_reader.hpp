@@ -132,11 +132,25 @@ public:
     // Restricts loading to cells `w` (clamped to the grid); reloads the current frames
     // (and drops a frame read ahead on the old window).
     void set_window(const CellWindow& w);
+    // Loads, of the frames, only the tiles (the file's chunks) under the regions, each
+    // widened by region_margin cells: far-apart bodies do not pay for the cells between
+    // them. The window is then the regions' bounding box; cells of it outside those
+    // tiles hold zeros and must not be sampled (covers()). Reloads as set_window does.
+    void set_regions(const std::vector<CellWindow>& regions);
+    // Whether cells `w`, widened by region_margin, are loaded: sampling at points whose
+    // stencils lie in w, the ground's depths included, reads loaded cells only.
+    bool covers(const CellWindow& w) const;
+    // Flow cells beyond a region that its samples read: the ground centres around a point
+    // (ground_window) lie up to three flow cells past its stencil's nodes.
+    static constexpr int region_margin = 3;
     const CellWindow& window() const { return window_; }
+    std::size_t tiles_loaded() const;  // tiles of the window that are read [-]
     // The cells a box [x0, x1] × [y0, y1] needs for sampling (bilinear stencils included).
     CellWindow cells_for(double x0, double x1, double y0, double y1) const;
     std::size_t frames_loaded() const { return frames_loaded_; }          // frames read, read ahead ones included
     std::size_t frames_read_ahead() const { return frames_read_ahead_; }  // of them, read ahead and used
+    std::size_t cells_read() const { return cells_read_; }                // cells of those frames read (tiles under the regions)
+    std::size_t window_cells() const { return window_cells_; }            // cells of their windows (what a dense read takes)
     double load_seconds() const { return load_seconds_; }          // wall time the caller spent reading or waiting for frames [s]
     double load_cpu_seconds() const { return load_cpu_seconds_; }  // CPU time of the reading, on whichever thread [s]
 
@@ -173,7 +187,18 @@ private:
     struct Frame {
         std::size_t index = no_frame;
         std::vector<float> h, qx, qy;
+        std::vector<float> slab;          // one tile run as read, before it is placed
         std::vector<float> ground_depth;  // with a ground: depth at its cell centres over ground_window(window) [m]
+    };
+    // What is loaded of a frame: a window and which of its tiles (all: the whole window).
+    struct Area {
+        CellWindow window;
+        std::vector<char> tiles;  // per tile over the window, row-major; empty: all of them
+        bool operator==(const Area&) const = default;
+    };
+    // The tiles (tile_x_ × tile_y_ cells, aligned to the grid's origin) that window w touches.
+    struct TileRange {
+        int ti0 = 0, tj0 = 0, nti = 0, ntj = 0;
     };
     // One field of the four roles (below), for the sampling loops.
     struct Field {
@@ -187,8 +212,10 @@ private:
     Stencil stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts, const Field& depth) const;
     // The ground cells whose centres the points sampled in flow cells `w` need.
     CellWindow ground_window(const CellWindow& w) const;
-    // Carries frame f (read on flow cells w) down to the ground: f.ground_depth.
-    void depth_over_ground(Frame& f, const CellWindow& w) const;
+    // Carries frame f (read on area a) down to the ground: f.ground_depth.
+    void depth_over_ground(Frame& f, const Area& a) const;
+    // The same for the ground cells of ground_window(r), r within a's window.
+    void depth_over_ground(Frame& f, const CellWindow& w, const CellWindow& r) const;
     // Depth over the ground (set_ground) at (x, y).
     double ground_depth(double x, double y, const TimeStencil& ts) const;
     FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
@@ -200,9 +227,16 @@ private:
     void hold(const std::size_t (&need)[4]);
     void reload();  // reads the held frames again (after a window or ground change)
     void load(Frame& f, std::size_t frame);
-    // Reads frame `frame` on window `w` into f; returns the CPU time it took [s]. Touches
+    TileRange tiles_of(const CellWindow& w) const;
+    // The cells of tile (ti, tj) within w.
+    CellWindow tile_cells(const CellWindow& w, int ti, int tj) const;
+    void set_area(Area a);
+    void count_read(const Area& a);  // a frame read on area a
+    // Reads frame `frame` on area `a` into f; returns the CPU time it took [s]. Touches
     // only f and the file (the read-ahead thread runs it).
-    double read_frame(Frame& f, std::size_t frame, const CellWindow& w) const;
+    double read_frame(Frame& f, std::size_t frame, const Area& a) const;
+    // Reads cells r of frame `frame` into f's arrays laid out on window w.
+    void read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const;
     // Moves the frame read ahead into f if it is frame `frame` on the current window.
     bool take_read_ahead(Frame& f, std::size_t frame);
     void wait_read_ahead();  // for a read under way, untimed
@@ -219,10 +253,14 @@ private:
     std::vector<float> ground_z_;  // [m] on ground_grid_
     int var_h_ = -1, var_u_ = -1, var_v_ = -1;
 
-    CellWindow window_;
+    int tile_x_ = 64, tile_y_ = 64;   // the file's chunk edges in x and y [cells] (64 where not chunked)
+    CellWindow window_;               // the cells loaded are within it
+    std::vector<char> window_tiles_;  // Area::tiles of the loaded area
+    Area area() const { return Area{window_, window_tiles_}; }
     bool loaded_ = false;
     std::size_t frames_loaded_ = 0;
     std::size_t frames_read_ahead_ = 0;
+    std::size_t cells_read_ = 0, window_cells_ = 0;
     double load_seconds_ = 0.0;
     double load_cpu_seconds_ = 0.0;
     // Roles 0..3: frames k−1, k, k+1, k+2 around t (k, k+1 bracket t; a missing one is

@@ -157,18 +157,15 @@ void World::clear_event_flags() {
 }
 
 void World::fit_window() {
-    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    std::vector<CellWindow> regions;
     const StepContext ctx{flow_, obstacles_, def_.step};
     for (std::size_t b = 0; b < states_.size(); ++b) {
         // Beyond what one step needs (else a body could never be served), plus the margin.
         const double r = window_pad(ctx, params_[b]) + def_.window_margin_lengths * params_[b].def.length;
-        x0 = std::min(x0, states_[b].x - r);
-        x1 = std::max(x1, states_[b].x + r);
-        y0 = std::min(y0, states_[b].y - r);
-        y1 = std::max(y1, states_[b].y + r);
+        regions.push_back(flow_.cells_for(states_[b].x - r, states_[b].x + r, states_[b].y - r, states_[b].y + r));
     }
-    if (x0 > x1) return;
-    flow_.set_window(flow_.cells_for(x0, x1, y0, y1));
+    if (regions.empty()) return;
+    flow_.set_regions(regions);
     window_fitted_ = true;
 }
 

@@ -97,7 +97,7 @@ public:
     void clear_event_flags();
 
 private:
-    void fit_window();  // the loaded window: all bodies plus the margin
+    void fit_window();  // the loaded tiles: those under each body plus the margin
 
     WorldDef def_;
     FlowReader flow_;

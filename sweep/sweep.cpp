@@ -120,6 +120,8 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         }
         st.flows_opened += 1;
         st.frames_loaded += world.flow().frames_loaded();
+        st.cells_read += world.flow().cells_read();
+        st.window_cells += world.flow().window_cells();
         st.io_seconds += world.flow().load_seconds();
         st.read_cpu_seconds += world.flow().load_cpu_seconds();
     }

@@ -415,3 +415,66 @@ TEST(FlowReader, DryToleranceComesFromTheFlowFile) {
         EXPECT_NE(msg.find("dry_depth_m"), std::string::npos) << msg;
     }
 }
+
+// Two bodies far apart (set_regions): only the tiles (the file's 8 × 8 chunks here) under
+// each region widened by region_margin are read. Region A, cells i 4..7, j 4..7, widens
+// to i 1..10, j 1..10: tiles (0..1, 0..1); region B, i 30..33, j 14..17, to i 27..36,
+// j 11..20: tiles (3..4, 1..2). The window is their bounding box, 5 × 3 tiles, of which
+// 8 are read. Every sample the regions serve, over a finer ground too, equals to the bit
+// what a reader of the whole grid gives, for both interpolants, as time advances.
+TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
+    const auto dir = test::scratch_dir("fr_regions");
+    const Grid g{40, 24, 0.025, 0.025, 0.05, 0.05};
+    const auto bed = [](double x, double y) { return -0.01 + 0.01 * x - 0.005 * y; };
+    const auto path = test::write_flow(
+        dir + "/f.nc", g, {0.0, 1.0, 2.0, 3.5, 5.0}, bed,
+        [](double x, double y, double t) {
+            const double h = 0.01 + 0.03 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t);  // dry in places
+            return test::FlowState{float(std::max(0.0, h)), float(0.3 * x - 0.1 * t), float(0.2 * y)};
+        },
+        {}, 8);
+    const Grid fine{80, 48, 0.0125, 0.0125, 0.025, 0.025};
+    std::vector<float> ground(fine.size());
+    for (int j = 0; j < fine.ny; ++j)
+        for (int i = 0; i < fine.nx; ++i)
+            ground[fine.index(i, j)] = float(bed(fine.x(i), fine.y(j)) + 0.004 * std::sin(40 * fine.x(i) + 30 * fine.y(j)));
+    const CellWindow a{4, 8, 4, 8}, b{30, 34, 14, 18}, between{18, 22, 8, 12};
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic})
+        for (const bool on_ground : {false, true}) {
+            FlowReaderDef def;
+            def.time_interpolation = interp;
+            FlowReader sparse(path, def), whole(path, def);
+            if (on_ground) {
+                sparse.set_ground(fine, ground);
+                whole.set_ground(fine, ground);
+            }
+            sparse.set_regions({a, b});
+            EXPECT_EQ(sparse.window(), (CellWindow{1, 37, 1, 21}));
+            EXPECT_EQ(sparse.tiles_loaded(), 8u);
+            EXPECT_TRUE(sparse.covers(a));
+            EXPECT_TRUE(sparse.covers(b));
+            EXPECT_FALSE(sparse.covers(between));
+            EXPECT_TRUE(sparse.covers(CellWindow{4, 13, 4, 8}));   // widened: cells 1..15, tiles 0..1
+            EXPECT_FALSE(sparse.covers(CellWindow{4, 14, 4, 8}));  // widened: cell 16, in tile 2
+            int compared = 0;
+            for (double t = 0.0; t <= 5.0; t += 0.45) {
+                sparse.prepare(t);
+                whole.prepare(t);
+                for (const CellWindow& r : {a, b}) {
+                    EXPECT_EQ(sparse.min_depth(r), whole.min_depth(r)) << t;
+                    for (double fx = 0.0; fx <= 1.0; fx += 0.23)
+                        for (double fy = 0.0; fy <= 1.0; fy += 0.31) {
+                            const double x = g.x(r.i0) + fx * (g.x(r.i1 - 1) - g.x(r.i0));
+                            const double y = g.y(r.j0) + fy * (g.y(r.j1 - 1) - g.y(r.j0));
+                            const FlowPointAccel p = sparse.sample_accel(x, y, t), q = whole.sample_accel(x, y, t);
+                            EXPECT_EQ(p.depth, q.depth) << x << ", " << y << ", " << t;
+                            EXPECT_EQ(p.u, q.u);
+                            EXPECT_EQ(p.du_dt, q.du_dt);
+                            EXPECT_EQ(sparse.depth(x, y, t), whole.depth(x, y, t));
+                            compared += p.depth > 0.0;
+                        }
+                }
+            }
+            EXPECT_GT(compared, 100) << "the regions' points must be wet, mostly";
+        }
+}
