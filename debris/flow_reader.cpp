@@ -615,15 +615,16 @@ double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
 }
 
 void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out) const {
-    if (has_ground()) {  // its own stencils, on the ground's centres
-        for (int k = 0; k < n; ++k) out[k] = ground_depth(p[k].x, p[k].y, ts);
-        return;
-    }
+    // Over a ground its depths on its centres, else the flow's own, sampled alike.
+    const bool g = has_ground();
+    const Grid& grid = g ? ground_grid_ : grid_;
+    const CellWindow& window = g ? ground_window_ : window_;
+    const Field& depth = g ? ground_depth_ : h_;
     for (int k0 = 0; k0 < n; k0 += points_in_flight) {
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
-        for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
-        for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], h_);
+        for (int k = 0; k < m; ++k) s[k] = stencil_on(grid, window, p[k0 + k].x, p[k0 + k].y, ts, depth);
+        for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], depth);
     }
 }
 
