@@ -131,12 +131,33 @@ CellWindow FlowReader::tile_cells(const CellWindow& w, int ti, int tj) const {
                       std::min(w.j1, (tj + 1) * tile_y_)};
 }
 
+std::vector<CellWindow> FlowReader::read_rects(const Area& a) const {
+    if (a.tiles.empty()) return {a.window};
+    // Each row of tiles as runs of tiles side by side: one read per run and field.
+    std::vector<CellWindow> runs;
+    const TileRange t = tiles_of(a.window);
+    for (int tj = 0; tj < t.ntj; ++tj)
+        for (int ti = 0; ti < t.nti;) {
+            int end = ti;
+            while (end < t.nti && a.tiles[std::size_t(tj * t.nti + end)]) ++end;
+            if (end == ti) {
+                ++ti;
+                continue;
+            }
+            const CellWindow first = tile_cells(a.window, t.ti0 + ti, t.tj0 + tj),
+                             last = tile_cells(a.window, t.ti0 + end - 1, t.tj0 + tj);
+            runs.push_back(CellWindow{first.i0, last.i1, first.j0, first.j1});
+            ti = end;
+        }
+    return runs;
+}
+
 void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const {
     const std::size_t ni = std::size_t(r.i1 - r.i0), nj = std::size_t(r.j1 - r.j0), wnx = std::size_t(w.i1 - w.i0);
     const std::vector<std::size_t> start = {frame, std::size_t(r.j0), std::size_t(r.i0)}, count = {1, nj, ni};
     const std::size_t offset = std::size_t(r.j0 - w.j0) * wnx + std::size_t(r.i0 - w.i0);
-    for (std::vector<float>* field : {&f.h, &f.qx, &f.qy}) {
-        const int var = field == &f.h ? var_h_ : field == &f.qx ? var_u_ : var_v_;
+    const std::pair<int, std::vector<float>*> fields[] = {{var_h_, &f.h}, {var_u_, &f.qx}, {var_v_, &f.qy}};
+    for (const auto& [var, field] : fields) {
         if (r == w) {
             file_.get_slab(var, start, count, field->data());
             continue;
@@ -172,24 +193,7 @@ double FlowReader::read_frame(Frame& f, std::size_t frame, const Area& a) const 
         field->resize(n);
         if (!a.tiles.empty()) std::fill(field->begin(), field->end(), 0.0f);  // cells not read: dry, never sampled
     }
-    if (a.tiles.empty()) {
-        read_cells(f, frame, w, w);
-    } else {
-        // Each row of tiles as runs of tiles read side by side: one read per run and field.
-        const TileRange t = tiles_of(w);
-        for (int tj = 0; tj < t.ntj; ++tj)
-            for (int ti = 0; ti < t.nti;) {
-                if (!a.tiles[std::size_t(tj * t.nti + ti)]) {
-                    ++ti;
-                    continue;
-                }
-                int end = ti;
-                while (end < t.nti && a.tiles[std::size_t(tj * t.nti + end)]) ++end;
-                const CellWindow first = tile_cells(w, t.ti0 + ti, t.tj0 + tj), last = tile_cells(w, t.ti0 + end - 1, t.tj0 + tj);
-                read_cells(f, frame, w, CellWindow{first.i0, last.i1, first.j0, first.j1});
-                ti = end;
-            }
-    }
+    for (const CellWindow& r : read_rects(a)) read_cells(f, frame, w, r);
     if (has_ground()) depth_over_ground(f, a);
     f.index = frame;
     return thread_cpu_seconds() - start_cpu;
@@ -278,19 +282,9 @@ void FlowReader::drop_read_ahead() {
 
 void FlowReader::count_read(const Area& a) {
     ++frames_loaded_;
-    const std::size_t window_cells = std::size_t(a.window.i1 - a.window.i0) * std::size_t(a.window.j1 - a.window.j0);
-    window_cells_ += window_cells;
-    if (a.tiles.empty()) {
-        cells_read_ += window_cells;
-        return;
-    }
-    const TileRange t = tiles_of(a.window);
-    for (int tj = 0; tj < t.ntj; ++tj)
-        for (int ti = 0; ti < t.nti; ++ti)
-            if (a.tiles[std::size_t(tj * t.nti + ti)]) {
-                const CellWindow c = tile_cells(a.window, t.ti0 + ti, t.tj0 + tj);
-                cells_read_ += std::size_t(c.i1 - c.i0) * std::size_t(c.j1 - c.j0);
-            }
+    const auto cells = [](const CellWindow& c) { return std::size_t(c.i1 - c.i0) * std::size_t(c.j1 - c.j0); };
+    window_cells_ += cells(a.window);
+    for (const CellWindow& r : read_rects(a)) cells_read_ += cells(r);
 }
 
 void FlowReader::hold(const std::size_t (&need)[4]) {
@@ -563,15 +557,8 @@ void FlowReader::depth_over_ground(Frame& f, const Area& a) const {
     const CellWindow& w = a.window;
     const CellWindow gw = ground_window(w);
     f.ground_depth.resize(std::size_t(gw.i1 - gw.i0) * std::size_t(gw.j1 - gw.j0));
-    if (a.tiles.empty()) {
-        depth_over_ground(f, w, w);
-        return;
-    }
-    std::fill(f.ground_depth.begin(), f.ground_depth.end(), 0.0f);  // under tiles not read: never sampled
-    const TileRange t = tiles_of(w);
-    for (int tj = 0; tj < t.ntj; ++tj)
-        for (int ti = 0; ti < t.nti; ++ti)
-            if (a.tiles[std::size_t(tj * t.nti + ti)]) depth_over_ground(f, w, tile_cells(w, t.ti0 + ti, t.tj0 + tj));
+    if (!a.tiles.empty()) std::fill(f.ground_depth.begin(), f.ground_depth.end(), 0.0f);  // under tiles not read: never sampled
+    for (const CellWindow& r : read_rects(a)) depth_over_ground(f, w, r);
 }
 
 void FlowReader::depth_over_ground(Frame& f, const CellWindow& w, const CellWindow& r) const {
@@ -695,19 +682,14 @@ FlowPointAccel FlowReader::flow_accel(const Stencil& s) const {
     return p;
 }
 
-CellWindow FlowReader::on_window(const CellWindow& w) const {
-    return CellWindow{std::max(w.i0, window_.i0) - window_.i0, std::min(w.i1, window_.i1) - window_.i0,
-                      std::max(w.j0, window_.j0) - window_.j0, std::min(w.j1, window_.j1) - window_.j0};
-}
-
-double FlowReader::min_depth(const CellWindow& w) const {
-    if (has_ground()) return min_depth_over_ground(w);
-    const auto [i0, i1, j0, j1] = on_window(w);
-    const int wnx = window_.i1 - window_.i0;
+double FlowReader::smallest_depth(const Field& depth, const CellWindow& window, const CellWindow& w) {
+    const int i0 = std::max(w.i0, window.i0) - window.i0, i1 = std::min(w.i1, window.i1) - window.i0;
+    const int j0 = std::max(w.j0, window.j0) - window.j0, j1 = std::min(w.j1, window.j1) - window.j0;
+    const int wnx = window.i1 - window.i0;
     float m = 1e30f;
     for (int r = 1; r <= 2; ++r)
         for (int j = j0; j < j1; ++j) {
-            const float* row = h_.role[r] + std::size_t(j) * std::size_t(wnx);
+            const float* row = depth.role[r] + std::size_t(j) * std::size_t(wnx);
             for (int i = i0; i < i1; ++i) m = std::min(m, row[i]);
         }
     return double(m);
@@ -716,21 +698,9 @@ double FlowReader::min_depth(const CellWindow& w) const {
 // Over the ground (set_ground) the depth at a point is a bilinear mean of the ground
 // centres' depths around it, interpolated in time between the frames around t (the cubic
 // only where it stays above the shallower of those two): at least the smallest of those
-// centres' depths in the two frames.
-double FlowReader::min_depth_over_ground(const CellWindow& w) const {
-    const CellWindow gw = ground_window(w);
-    const int gnx = ground_window_.i1 - ground_window_.i0;
-    const int i0 = std::max(gw.i0, ground_window_.i0) - ground_window_.i0,
-              i1 = std::min(gw.i1, ground_window_.i1) - ground_window_.i0;
-    const int j0 = std::max(gw.j0, ground_window_.j0) - ground_window_.j0,
-              j1 = std::min(gw.j1, ground_window_.j1) - ground_window_.j0;
-    float m = 1e30f;
-    for (int r = 1; r <= 2; ++r)
-        for (int j = j0; j < j1; ++j) {
-            const float* row = ground_depth_.role[r] + std::size_t(j) * std::size_t(gnx);
-            for (int i = i0; i < i1; ++i) m = std::min(m, row[i]);
-        }
-    return double(m);
+// centres' depths in the two frames; likewise the flow's own.
+double FlowReader::min_depth(const CellWindow& w) const {
+    return has_ground() ? smallest_depth(ground_depth_, ground_window_, ground_window(w)) : smallest_depth(h_, window_, w);
 }
 
 }  // namespace flotsam::debris

@@ -219,8 +219,9 @@ private:
     // Depth over the ground (set_ground) at (x, y).
     double ground_depth(double x, double y, const TimeStencil& ts) const;
     FlowPointAccel flow_accel(const Stencil& s) const;  // sample_accel on the flow's own depth
-    double min_depth_over_ground(const CellWindow& w) const;
-    CellWindow on_window(const CellWindow& w) const;  // w ∩ window_, relative to window_
+    // Smallest depth of `depth` (arrays on `window`) over cells w ∩ window in the two
+    // frames around t.
+    static double smallest_depth(const Field& depth, const CellWindow& window, const CellWindow& w);
     // The frames of roles 0..3 that the interpolant needs on [t, next_frame_time(t)].
     void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
@@ -237,6 +238,8 @@ private:
     double read_frame(Frame& f, std::size_t frame, const Area& a) const;
     // Reads cells r of frame `frame` into f's arrays laid out on window w.
     void read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const;
+    // The cells of area a that are read: its window, or each row of its tiles as runs.
+    std::vector<CellWindow> read_rects(const Area& a) const;
     // Moves the frame read ahead into f if it is frame `frame` on the current window.
     bool take_read_ahead(Frame& f, std::size_t frame);
     void wait_read_ahead();  // for a read under way, untimed
