@@ -21,10 +21,10 @@ struct ContactPatch {
 };
 
 // The patches in contact at time t for a body at `box`: CC, one patch at the centre when
-// h_c < d; LC, one per grid cell under the footprint where h_ij < d (`footprint` is
-// working memory). Clears `out` first.
+// h_c < d; LC, one per grid cell under the footprint where h_ij < d (`footprint` keeps
+// the last box's cells). Clears `out` first.
 void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams& body, const Box& box, double centre_depth,
-                     double t, double rho, double g, std::vector<FootprintPatch>& footprint, std::vector<ContactPatch>& out);
+                     double t, double rho, double g, FootprintCache& footprint, std::vector<ContactPatch>& out);
 
 // Translational and yaw velocity.
 struct Velocities {

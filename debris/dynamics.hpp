@@ -35,7 +35,7 @@ StepDef default_step_def();
 
 // Working memory of one thread (reused, so steps do not allocate).
 struct StepScratch {
-    std::vector<FootprintPatch> footprint;
+    FootprintCache footprint;
     std::vector<ContactPatch> patches;
     std::vector<ObstacleContact> contacts;
 };

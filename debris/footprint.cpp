@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace flotsam::debris {
 
@@ -90,6 +91,20 @@ void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPa
             out.push_back(patch);
         }
     }
+}
+
+const std::vector<FootprintPatch>& FootprintCache::patches(const Box& box, const Grid& grid) {
+    const auto same = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    const bool same_grid = grid.nx == grid_.nx && grid.ny == grid_.ny && same(grid.dx, grid_.dx) && same(grid.dy, grid_.dy) &&
+                           same(grid.x0, grid_.x0) && same(grid.y0, grid_.y0);
+    if (!(valid_ && same_grid && same(box, box_))) {
+        patches_.clear();
+        footprint_patches(box, grid, patches_);
+        box_ = box;
+        grid_ = grid;
+        valid_ = true;
+    }
+    return patches_;
 }
 
 }  // namespace flotsam::debris

@@ -43,7 +43,7 @@ double friction_capacity_at_rest(const std::string& path, ContactModel contact) 
     flow.prepare(0.5);
     BodyDef def = body_at(0.0, 0.0, 0.3, contact);
     const BodyParams p = make_body_params(def, rho);
-    std::vector<FootprintPatch> footprint;
+    FootprintCache footprint;
     std::vector<ContactPatch> patches;
     contact_patches(flow, flow.grid(), p, Box::make({0.0, 0.0}, 0.3, def.length, def.width), flow.depth(0.0, 0.0, 0.5), 0.5, rho, g,
                     footprint, patches);

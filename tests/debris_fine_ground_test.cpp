@@ -223,3 +223,30 @@ TEST(FineGround, NoSliverPatchesWhereBodyEdgesLieOnCellEdges) {
         EXPECT_NEAR(area, 0.025, 1e-12) << heading;
     }
 }
+
+// A body that has not moved reuses its patches (FootprintCache); any change of pose, even
+// the last bit of the heading, or of the grid, clips again. Every answer is the patches a
+// fresh clip gives, bit for bit.
+TEST(FineGround, FootprintCacheGivesTheFreshClipForEveryPose) {
+    const Grid fine{300, 300, 0.005, -2.995, 0.01, 0.01}, coarse{75, 75, 0.02, -2.98, 0.04, 0.04};
+    const auto fresh = [](const Box& box, const Grid& g) {
+        std::vector<FootprintPatch> p;
+        footprint_patches(box, g, p);
+        return p;
+    };
+    const auto same = [](const std::vector<FootprintPatch>& a, const std::vector<FootprintPatch>& b) {
+        if (a.size() != b.size()) return false;
+        for (std::size_t k = 0; k < a.size(); ++k)
+            if (a[k].area != b[k].area || a[k].centroid.x != b[k].centroid.x || a[k].centroid.y != b[k].centroid.y) return false;
+        return true;
+    };
+    const double theta = 0.3;
+    const Box boxes[] = {Box::make({1.37, -2.15}, theta, 0.25, 0.1), Box::make({1.37, -2.15}, theta, 0.25, 0.1),
+                         Box::make({1.37, -2.15}, std::nextafter(theta, 1.0), 0.25, 0.1),
+                         Box::make({1.3712, -2.15}, theta, 0.25, 0.1), Box::make({1.3712, -2.15}, theta, 0.25, 0.1)};
+    FootprintCache cache;
+    for (const Box& box : boxes) EXPECT_TRUE(same(cache.patches(box, fine), fresh(box, fine)));
+    EXPECT_TRUE(same(cache.patches(boxes[0], coarse), fresh(boxes[0], coarse)));
+    EXPECT_TRUE(same(cache.patches(boxes[0], fine), fresh(boxes[0], fine)));
+    EXPECT_FALSE(same(fresh(boxes[0], fine), fresh(boxes[3], fine)));  // the moves above do change the patches
+}
