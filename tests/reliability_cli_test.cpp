@@ -2,6 +2,7 @@
 // per output, finite numbers or a named error, inputs never outputs, readers that do
 // not crash, a full disk. Each test runs the built `flotsam` binary.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -111,12 +112,17 @@ TEST(ReliabilityCli, RefusedRestartNamesTheSettingsAndKeepsThePartialWork) {
 
 namespace {
 
-bool wait_for(const std::string& path, double seconds) {
+// The pid a run wrote into the lock file of its output ("pid N on HOST"), once written;
+// 0 if none appears within `seconds`.
+pid_t lock_holder(const std::string& out, double seconds) {
     for (int k = 0; k < int(seconds * 100); ++k) {
-        if (fs::exists(path)) return true;
+        std::ifstream in(out + ".lock");
+        std::string word;
+        long pid = 0;
+        if (in >> word >> pid && word == "pid" && pid > 0) return pid_t(pid);
         ::usleep(10000);
     }
-    return false;
+    return 0;
 }
 
 }  // namespace
@@ -134,9 +140,14 @@ TEST(ReliabilityCli, SecondWriterStopsAtOnceAndTheFirstFinishesIntact) {
         SCOPED_TRACE(env.empty() ? "HDF5 file locking on" : env);
         const std::string f = c.dir + "/f" + std::to_string(env.size()) + ".nc";
         FILE* first = test::start_cli(args + f, env);
-        ASSERT_TRUE(wait_for(f + ".part", 20.0));
-        // Two more writers started at once while the first runs (it takes seconds; they
-        // stop at once): one with HDF5 locking as the test's environment has it, one with env.
+        // The first run is held (SIGSTOP) once it holds the output, so that the others
+        // surely start while it runs, however loaded the machine: unheld it takes well
+        // under a second, and a slow start of the others let it finish first (a flaky test).
+        const pid_t holder = lock_holder(f, 20.0);
+        ASSERT_GT(holder, 0);
+        ASSERT_EQ(::kill(holder, SIGSTOP), 0);
+        // Two more writers started at once while the first runs (they stop at once): one
+        // with HDF5 locking as the test's environment has it, one with env.
         FILE* second = test::start_cli(args + f, "");
         FILE* third = test::start_cli(args + f, env);
         const int rc = test::finish_cli(second, &out);
@@ -146,6 +157,7 @@ TEST(ReliabilityCli, SecondWriterStopsAtOnceAndTheFirstFinishesIntact) {
         EXPECT_NE(out.find("another run is writing " + f + " (pid "), std::string::npos) << out;
         EXPECT_NE(rc2, 0);
         EXPECT_NE(out2.find("another run is writing"), std::string::npos) << out2;
+        ASSERT_EQ(::kill(holder, SIGCONT), 0);
         ASSERT_EQ(test::finish_cli(first, &out), 0) << out;
         EXPECT_EQ(sha256_file(f), ref);
         EXPECT_FALSE(fs::exists(f + ".part"));
