@@ -16,6 +16,6 @@ def rfix(h,q,eps,z=None):
     mL=both&(hL<KAP*hR)&(uR>uL)&(uL<0)
     dL=np.where(mL,np.maximum((uL-2*cL)-(uR-2*cR),0)*hL*hR/np.maximum(hL+hR,1e-300),0)
     # momentum flux F across face (positive = moved from left to right)
-    F=dR-dL
+    F=dR+dL
     q=q.copy(); q[1:]+=F; q[:-1]-=F
     return q
