@@ -457,12 +457,16 @@ struct FlowReader::Stencil {
 };
 
 FlowReader::Stencil FlowReader::stencil(double x, double y, const TimeStencil& ts) const {
-    return stencil_on(grid_, window_, x, y, ts, h_);
+    Stencil s;
+    stencil_on(grid_, window_, x, y, ts, h_, s);
+    return s;
 }
 
-FlowReader::Stencil FlowReader::stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts,
-                                           const Field& depth) const {
-    Stencil s;
+// Fills `s` in place, every field: the batched samplers keep arrays of stencils, and a
+// stencil returned by value and copied into one was read back as a whole right after
+// being written field by field, which stalled the load (a third of the depth sampling).
+void FlowReader::stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts, const Field& depth,
+                            Stencil& s) const {
     const Double2 f = Double2{x - g.x0, y - g.y0} / Double2{g.dx, g.dy};  // one packed division
     const double fx = f[0], fy = f[1];
     const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0;
@@ -479,15 +483,14 @@ FlowReader::Stencil FlowReader::stencil_on(const Grid& g, const CellWindow& w, d
     s.n[3] = s.n[2] + 1;
     s.a = ts.a;
     s.inv_dt = ts.inv_dt;
-    if (ts.cubic) {
-        s.cubic_weights = &ts.cubic_weights;
-        for (int c = 0; c < 4; ++c) {
-            const std::size_t n = s.n[c];
-            const double h[4] = {depth.role[0][n], depth.role[1][n], depth.role[2][n], depth.role[3][n]};
-            s.cubic[c] = cubic_depth_admissible(apply_time_weights(ts.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth_);
-        }
+    s.cubic_weights = ts.cubic ? &ts.cubic_weights : nullptr;
+    for (int c = 0; c < 4; ++c) {
+        s.cubic[c] = false;
+        if (!ts.cubic) continue;
+        const std::size_t n = s.n[c];
+        const double h[4] = {depth.role[0][n], depth.role[1][n], depth.role[2][n], depth.role[3][n]};
+        s.cubic[c] = cubic_depth_admissible(apply_time_weights(ts.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth_);
     }
-    return s;
 }
 
 namespace {
@@ -591,7 +594,9 @@ void FlowReader::depth_over_ground(Frame& f, const CellWindow& w, const CellWind
 double FlowReader::ground_depth(double x, double y, const TimeStencil& ts) const {
     // Bilinear over the ground's cell centres, as a flow stored on the ground's grid is
     // sampled.
-    return value_at(stencil_on(ground_grid_, ground_window_, x, y, ts, ground_depth_), ground_depth_);
+    Stencil s;
+    stencil_on(ground_grid_, ground_window_, x, y, ts, ground_depth_, s);
+    return value_at(s, ground_depth_);
 }
 
 double FlowReader::depth(double x, double y, const TimeStencil& ts) const {
@@ -610,7 +615,7 @@ void FlowReader::depth(const Vec2* p, int n, const TimeStencil& ts, double* out)
     for (int k0 = 0; k0 < n; k0 += points_in_flight) {
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
-        for (int k = 0; k < m; ++k) s[k] = stencil_on(grid, window, p[k0 + k].x, p[k0 + k].y, ts, depth);
+        for (int k = 0; k < m; ++k) stencil_on(grid, window, p[k0 + k].x, p[k0 + k].y, ts, depth, s[k]);
         for (int k = 0; k < m; ++k) out[k0 + k] = value_at(s[k], depth);
     }
 }
@@ -627,7 +632,7 @@ void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* 
         const int m = std::min(points_in_flight, n - k0);
         Stencil s[points_in_flight];
         double h[points_in_flight], qx[points_in_flight], qy[points_in_flight];
-        for (int k = 0; k < m; ++k) s[k] = stencil(p[k0 + k].x, p[k0 + k].y, ts);
+        for (int k = 0; k < m; ++k) stencil_on(grid_, window_, p[k0 + k].x, p[k0 + k].y, ts, h_, s[k]);
         for (int k = 0; k < m; ++k) {
             h[k] = value_at(s[k], h_);
             qx[k] = value_at(s[k], qx_);

@@ -209,7 +209,8 @@ private:
     Stencil stencil(double x, double y, const TimeStencil& ts) const;
     // The bilinear stencil of (x, y) on grid g's cells `w` (arrays of w's size), with the
     // cubic guard on `depth`.
-    Stencil stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts, const Field& depth) const;
+    void stencil_on(const Grid& g, const CellWindow& w, double x, double y, const TimeStencil& ts, const Field& depth,
+                    Stencil& out) const;
     // The ground cells whose centres the points sampled in flow cells `w` need.
     CellWindow ground_window(const CellWindow& w) const;
     // Carries frame f (read on area a) down to the ground: f.ground_depth.
