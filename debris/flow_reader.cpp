@@ -695,6 +695,7 @@ double FlowReader::smallest_depth(const Field& depth, const CellWindow& window, 
     for (int r = 1; r <= 2; ++r)
         for (int j = j0; j < j1; ++j) {
             const float* row = depth.role[r] + std::size_t(j) * std::size_t(wnx);
+#pragma omp simd reduction(min : m)
             for (int i = i0; i < i1; ++i) m = std::min(m, row[i]);
         }
     return double(m);

@@ -7,16 +7,29 @@
 namespace flotsam::debris {
 
 ObstacleMap::ObstacleMap(const Grid& grid, std::vector<float> bed, std::vector<std::uint8_t> building)
-    : grid_(grid), bed_(std::move(bed)), building_(std::move(building)) {}
+    : grid_(grid), bed_(std::move(bed)), building_(std::move(building)), open_ground_(bed_), wall_top_(bed_) {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    for (std::size_t c = 0; c < building_.size(); ++c)
+        if (building_[c]) {
+            open_ground_[c] = -inf;
+            wall_top_[c] = inf;
+        }
+}
 
 bool ObstacleMap::blocked(int i, int j, double bottom, double step_height) const {
     if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return true;
-    const std::size_t c = grid_.index(i, j);
-    if (!building_.empty() && building_[c]) return true;
-    return double(bed_[c]) > bottom + step_height;
+    return double(wall_top_[grid_.index(i, j)]) > bottom + step_height;
 }
 
 namespace {
+
+// Largest of row[i0 .. i1] (vectorised; exact: a max does not depend on the order).
+float row_max(const float* row, int i0, int i1) {
+    float m = -std::numeric_limits<float>::infinity();
+#pragma omp simd reduction(max : m)
+    for (int i = i0; i <= i1; ++i) m = std::max(m, row[i]);
+    return m;
+}
 
 // The separating-axis test of a body against the square cell of half sizes hx, hy at c.
 // For each direction n, "pen" is how far the body must move along +n to clear the cell:
@@ -73,11 +86,9 @@ double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
 
 bool ObstacleMap::ground_above(const Box& box, double level) const {
     const CellRange r = cells_touching(box, 1);
+    const int i0 = std::max(r.i0, 0), i1 = std::min(r.i1, grid_.nx - 1);
     for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j)
-        for (int i = std::max(r.i0, 0); i <= std::min(r.i1, grid_.nx - 1); ++i) {
-            const std::size_t c = grid_.index(i, j);
-            if (double(bed_[c]) > level && (building_.empty() || !building_[c])) return true;
-        }
+        if (i0 <= i1 && double(row_max(open_ground_.data() + grid_.index(0, j), i0, i1)) > level) return true;
     return false;
 }
 
@@ -87,7 +98,12 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
     const CellRange r = cells_touching(box, 0);
     const auto corners = box.corners();
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
+    const bool inside_x = r.i0 >= 0 && r.i1 < grid_.nx;
     for (int j = r.j0; j <= r.j1; ++j) {
+        // A row inside the grid with nothing above the bottom's reach holds no contact.
+        if (inside_x && j >= 0 && j < grid_.ny &&
+            !(double(row_max(wall_top_.data() + grid_.index(0, j), r.i0, r.i1)) > bottom + step_height))
+            continue;
         for (int i = r.i0; i <= r.i1; ++i) {
             if (!blocked(i, j, bottom, step_height)) continue;
             const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
