@@ -15,7 +15,7 @@
 # (hydrostatically reconstructed face depth > eps), so a shoreline at rest never starts a tip.
 import numpy as np, os
 from ritter import g, minmod, invd, flux
-from vof import fix_alpha
+from vof import fix_alpha, alpha_heun
 from rfix import rfix
 from rfix_src import rfix_src, _minv43
 TIPZ=os.environ.get("TIPZ","mid")
@@ -112,12 +112,7 @@ def run(x,h,z,t_end,vof=False,fix='none',n_manning=0.0,eps=1e-9,cfl=0.8,th=1.3,d
             dh2,dq2,da2,tE2,tW2,_=stage(h1c,q1c,a1,z,dx,eps,th,vof,n_manning)
             h2=h1c+dt*dh2; q2=fric(np.maximum(h2,0),q1c+dt*dq2,dt)
             h2=.5*h+.5*h2; q2=.5*q+.5*q2
-            if vof:
-                s1=da*dx; s2=da2*dx
-                s2E=np.where(tE2,s2,np.where(np.concatenate([tE2[1:],[False]]),np.concatenate([s2[1:],[0]]),s1))
-                s2W=np.where(tW2,s2,np.where(np.concatenate([[False],tW2[:-1]]),np.concatenate([[0],s2[:-1]]),s1))
-                s2k=np.where(tE,s2E,np.where(tW,s2W,0))
-                a2=al+dt*0.5*(da+s2k/dx)
+            if vof: a2=alpha_heun(al,da,da2,tE,tW,tE2,tW2,dt)
             if ((h1<0).any() or (h2<0).any()) and attempt==0 and dt*a>0.45+1e-9:
                 dt=0.45/a; continue
             break

@@ -73,6 +73,12 @@ def stage(h,q,al,dx,eps,th):
     dal=np.where(tipE,np.maximum(sE,0),0)+np.where(tipW,np.maximum(sW,0),0)
     amax=np.max(np.concatenate([a,dal]))
     return -(fm[1:]-fm[:-1])/dx, -(fn[1:]-fn[:-1])/dx, dal/dx, tipE, tipW, amax/dx
+def alpha_heun(al,da,da2,tE,tW,tE2,tW2,dt):
+    # Heun: the wet fraction moves with the mean of the two stages' speeds of the same tip
+    # (followed into the next cell if it moved one cell in the first stage).
+    s2E=np.where(tE2,da2,np.where(np.concatenate([tE2[1:],[False]]),np.concatenate([da2[1:],[0]]),da))
+    s2W=np.where(tW2,da2,np.where(np.concatenate([[False],tW2[:-1]]),np.concatenate([[0],da2[:-1]]),da))
+    return al+dt*0.5*(da+np.where(tE,s2E,np.where(tW,s2W,0)))
 def fix_alpha(h,al,tipE,tipW,eps):
     n=len(h)
     al=al.copy()
@@ -104,12 +110,7 @@ def run(nx,h0,t_end,cfl=0.8,eps=float(os.environ.get("EPS","1e-5")),th=1.3,dtcap
             h1c=np.maximum(h1,0); q1c=np.where(h1c>0,q1,0); a1=fix_alpha(h1c,a1,tE,tW,eps)
             dh2,dq2,da2,tE2,tW2,_=stage(h1c,q1c,a1,dx,eps,th)
             h2=.5*h+.5*(h1c+dt*dh2); q2=.5*q+.5*(q1c+dt*dq2)
-            # tip speed: Heun average of the speed of the same tip (follow it if it moved one cell at stage 1)
-            s1=da*dx; s2=da2*dx
-            s2E=np.where(tE2,s2,np.where(np.concatenate([tE2[1:],[False]]),np.concatenate([s2[1:],[0]]),s1))
-            s2W=np.where(tW2,s2,np.where(np.concatenate([[False],tW2[:-1]]),np.concatenate([[0],s2[:-1]]),s1))
-            s2k=np.where(tE,s2E,np.where(tW,s2W,0))
-            a2=al+dt*0.5*(da+s2k/dx)
+            a2=alpha_heun(al,da,da2,tE,tW,tE2,tW2,dt)
             if ((h1<0).any() or (h2<0).any()) and attempt==0 and dt*a>0.45+1e-9:
                 dt=0.45/a; continue
             break
