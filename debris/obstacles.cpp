@@ -7,10 +7,10 @@
 namespace flotsam::debris {
 
 ObstacleMap::ObstacleMap(const Grid& grid, std::vector<float> bed, std::vector<std::uint8_t> building)
-    : grid_(grid), bed_(std::move(bed)), building_(std::move(building)), open_ground_(bed_), wall_top_(bed_) {
+    : grid_(grid), bed_(std::move(bed)), open_ground_(bed_), wall_top_(bed_) {
     constexpr float inf = std::numeric_limits<float>::infinity();
-    for (std::size_t c = 0; c < building_.size(); ++c)
-        if (building_[c]) {
+    for (std::size_t c = 0; c < building.size(); ++c)
+        if (building[c]) {
             open_ground_[c] = -inf;
             wall_top_[c] = inf;
         }
@@ -77,7 +77,7 @@ double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
     for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j)
         for (int i = std::max(r.i0, 0); i <= std::min(r.i1, grid_.nx - 1); ++i) {
             const std::size_t c = grid_.index(i, j);
-            if ((!building_.empty() && building_[c]) || double(bed_[c]) <= top) continue;
+            if (double(open_ground_[c]) <= top) continue;  // a building (-inf) or no higher
             const Vec2 centre{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
             if (penetration(box, centre, 0.5 * grid_.dx, 0.5 * grid_.dy).depth() > min_overlap) top = double(bed_[c]);
         }

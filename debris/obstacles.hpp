@@ -57,7 +57,6 @@ private:
 
     Grid grid_;
     std::vector<float> bed_;
-    std::vector<std::uint8_t> building_;
     // The two questions the scans ask of a cell, one number each so that a row is one
     // vectorised max: its ground where no building stands (−inf under a building), and
     // the top of what blocks there (+inf under a building, else the ground) [m].
