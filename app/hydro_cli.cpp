@@ -28,6 +28,7 @@ struct HydroOptions {
     std::string level_mode_all;  // --level-mode: every side at once (a side's own option wins)
     std::string scheme = "fv";
     std::string friction = "implicit";
+    std::string fronts = "tracked";
     int threads = 0;
 };
 
@@ -51,6 +52,7 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     PhysicsDef& s = o.physics;
     o.run.scheme = parse_enum<Scheme>(o.scheme, "--scheme");
     o.run.finite_volume.friction = parse_enum<Friction>(o.friction, "--friction");
+    o.run.finite_volume.fronts = parse_enum<FrontTreatment>(o.fronts, "--fronts");
     s.west.kind = parse_enum<BoundaryKind>(o.west, "--west");
     s.east.kind = parse_enum<BoundaryKind>(o.east, "--east");
     s.south.kind = parse_enum<BoundaryKind>(o.south, "--south");
@@ -177,6 +179,10 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->check(in_range(Range::positive("m").up_to(1.0)));
     sub->add_option("--friction", o->friction,
                     "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
+        ->capture_default_str();
+    sub->add_option("--fronts", o->fronts,
+                    "Finite volumes: dry-bed fronts 'tracked' (a wet fraction and the invariant correction, docs/hydro.md) or "
+                    "'plain' cell averages (for comparison; they lag)")
         ->capture_default_str();
     sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
                   "Stability study only: accept --cfl above 1, step above 0.5 without the positivity redo, and let the leap-frog "

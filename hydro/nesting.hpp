@@ -82,10 +82,11 @@ public:
 
     double pump_level_at_stop() const { return coarse_.pump_level_at_stop(); }
     void set_pump_level_at_stop(double v) { coarse_.set_pump_level_at_stop(v); }
-    // h, hu, hv of the coarse then the fine grid (padded layouts), for checkpoints.
+    // The coarse then the fine grid's exact state (Solver::state_arrays), for checkpoints.
     std::vector<std::vector<double>*> state_arrays() {
-        return {&coarse_.depth_data(), &coarse_.x_discharge_data(), &coarse_.y_discharge_data(),
-                &fine_.depth_data(),   &fine_.x_discharge_data(),   &fine_.y_discharge_data()};
+        std::vector<std::vector<double>*> a = coarse_.state_arrays();
+        for (std::vector<double>* v : fine_.state_arrays()) a.push_back(v);
+        return a;
     }
     long reflux_clamps() const { return reflux_clamps_; }  // interface cells refluxed below h = 0
 

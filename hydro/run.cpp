@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 
@@ -412,7 +413,9 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDe
     fd.attributes["realisation"] = std::to_string(run.realisation);
     fd.attributes["boundary_file"] = boundary_files(def);
     fd.attributes["boundary_checksum"] = boundary_checksums(def);
-    fd.attributes["dry_depth_m"] = std::to_string(def.dry_depth);
+    char dry[32];
+    std::snprintf(dry, sizeof dry, "%g", def.dry_depth);  // std::to_string's "%f" would write 1e-9 as 0.000000
+    fd.attributes["dry_depth_m"] = dry;
     return fd;
 }
 

@@ -24,7 +24,11 @@ bool is_x_side(Side s) { return s == Side::west || s == Side::east; }
 }  // namespace
 
 Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv)
-    : grid_(scene.grid), def_(def), fv_(fv), forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
+    : grid_(scene.grid),
+      def_(def),
+      fv_(fv),
+      front_(scene.grid.nx, scene.grid.ny, scene.grid.dx, scene.grid.dy, def.gravity, def.dry_depth),
+      forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
     if (fv.order != 1 && fv.order != 2) fail("", "--order", "must be 1 or 2");
     if (!(fv.cfl > 0.0 && (fv.cfl <= 1.0 || def.study_past_stability_limit)))
         fail("", "--cfl",
@@ -33,7 +37,9 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
     rows_ = std::size_t(grid_.ny + 2 * kGhost);
     const std::size_t n = stride_ * rows_;
-    for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &h2_, &hu2_, &hv2_, &z_, &g_n2_}) v->assign(n, 0.0);
+    for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &h2_, &hu2_, &hv2_, &z_, &g_n2_, &alpha_, &alpha1_, &alpha2_})
+        v->assign(n, 0.0);
+    front_cols_.assign(std::size_t(grid_.ny), FrontRange{});
     for (auto* v : {&bound_, &bound1_, &bound2_, &state_nonzero_, &base_nonzero_, &active_})
         v->assign(std::size_t(grid_.ny), ColumnRange{});
     depth_nonzero_.assign(rows_, ColumnRange{});
@@ -79,6 +85,7 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
             rest_depth_[int(s)].push_back(xs ? h_[at(s == Side::west ? 0 : grid_.nx - 1, k)]
                                              : h_[at(k, s == Side::south ? 0 : grid_.ny - 1)]);
     }
+    front_.reset(h_, alpha_);
     track_transfer_ = def.west.kind == BoundaryKind::nested || def.east.kind == BoundaryKind::nested;
     for (auto* v : {&west_face_mass_, &east_face_mass_, &west_stage1_, &east_stage1_, &west_transfer_, &east_transfer_})
         v->assign(std::size_t(grid_.ny), 0.0);
@@ -113,7 +120,8 @@ double Solver::volume() const {
 
 std::string Solver::description() const {
     return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
-           (fv_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)");
+           (fv_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)") +
+           (fv_.fronts == FrontTreatment::tracked ? ", tracked fronts" : ", plain fronts");
 }
 
 void Solver::state_row(int j, int i0, int i1, double* __restrict h, double* __restrict u, double* __restrict v) const {
@@ -360,11 +368,58 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     }
 }
 
+// ---- Fronts (front.hpp): the sweep's changes at tip cells ----
+// A tip cell and its neighbours along the front's direction are first order (slopes
+// zero); its back face takes the wedge's state, its face toward the dry side is shut.
+bool is_x(TipDir d) { return d == TipDir::east || d == TipDir::west; }
+
+// Zero the x-slopes of a row's x-tips and their x-neighbours, in padded columns [c0, c1).
+void x_slopes_at_tips(const std::vector<Tip>& tips, int c0, int c1, double* se, double* sh, double* su, double* sv) {
+    for (const Tip& t : tips)
+        if (is_x(t.dir))
+            for (int c = std::max(t.i + kGhost - 1, c0); c <= std::min(t.i + kGhost + 1, c1 - 1); ++c)
+                se[c] = sh[c] = su[c] = sv[c] = 0.0;
+}
+
+// Flux through a tip's back face from the wedge state (n: +1 when the front moves toward
+// +x or +y, the tip on the face's high side), tangential velocities ut_lo, ut_hi.
+FaceFlux back_face_flux(const Sweep& s, const TipFace& f, double n, double ut_lo, double ut_hi) {
+    FaceFlux out;
+    if (n > 0.0)
+        face_flux(f.eta_up, f.h_up, f.u, ut_lo, f.eta_tip, f.h_tip, f.u, ut_hi, s.g, s.dry, out);
+    else
+        face_flux(f.eta_tip, f.h_tip, -f.u, ut_lo, f.eta_up, f.h_up, -f.u, ut_hi, s.g, s.dry, out);
+    return out;
+}
+
+void store(const FaceFlux& f, int c, double* fm, double* fl, double* fr, double* ft) {
+    fm[c] = f.mass;
+    fl[c] = f.normal_L;
+    fr[c] = f.normal_R;
+    ft[c] = f.tangential;
+}
+
+// The x faces of a row's x-tips (face c between padded columns c and c+1; cell values,
+// since the slopes there are zero).
+void x_faces_at_tips(const Sweep& s, const std::vector<Tip>& tips, const double* e, const double* h, const double* v, double* fm,
+                     double* fl, double* fr, double* ft) {
+    for (const Tip& t : tips) {
+        if (!is_x(t.dir)) continue;
+        const int c = t.i + kGhost;
+        const bool east = t.dir == TipDir::east;
+        const int back = east ? c - 1 : c, shut = east ? c : c - 1;
+        store(back_face_flux(s, t.face, east ? 1.0 : -1.0, v[back], v[back + 1]), back, fm, fl, fr, ft);
+        FaceFlux f;
+        shut_face_flux(e[shut], h[shut], e[shut + 1], h[shut + 1], s.g, f);
+        store(f, shut, fm, fl, fr, ft);
+    }
+}
+
 // Rates of change of the cells `cols` of padded row r: the x-direction (slopes, face
 // fluxes, bed slope; branch-free so it vectorises), then the y-faces below and above
 // and the y bed slope. Returns the mass fluxes through the west and east boundary faces.
-[[gnu::noinline]] std::pair<double, double> rates_row(const Sweep& s, ColumnRange cols, const double* h, const RowBuffers& w,
-                                                      int r) {
+[[gnu::noinline]] std::pair<double, double> rates_row(const Sweep& s, ColumnRange cols, const double* h, const RowBuffers& w, int r,
+                                                      const std::vector<Tip>* tips) {
     const double* __restrict e = w.prim(r, 0);
     const double* __restrict u = w.prim(r, 1);
     const double* __restrict v = w.prim(r, 2);
@@ -391,6 +446,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
         su[c] = wt * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], s.theta);
         sv[c] = wt * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], s.theta);
     }
+    if (tips) x_slopes_at_tips(*tips, c0 - 1, c1 + 1, se, sh, su, sv);
 // Face c+1/2 between padded columns c and c+1.
 #pragma omp simd
     for (int c = c0 - 1; c < c1; ++c) {
@@ -402,6 +458,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
         fr[c] = f.normal_R;
         ft[c] = f.tangential;
     }
+    if (tips) x_faces_at_tips(s, *tips, e, h, v, fm, fl, fr, ft);
 #pragma omp simd
     for (int c = c0; c < c1; ++c) {
         const double hw = h[c] - 0.5 * sh[c], he = h[c] + 0.5 * sh[c];
@@ -574,6 +631,26 @@ void Solver::stage(Stage which, double dt, double t) {
     const int nx = grid_.nx, ny = grid_.ny;
     const Sweep s{def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
     auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
+    // Fronts: the tips of the stage's input (front.hpp).
+    std::vector<double>& alpha = corrector ? alpha1_ : alpha_;
+    const bool fronts = fv_.fronts == FrontTreatment::tracked;
+    if (fronts) {
+        for (int j = 0; j < ny; ++j) front_cols_[std::size_t(j)] = {active_[std::size_t(j)].begin, active_[std::size_t(j)].end};
+        std::array<bool, 4> mirror{};
+        for (Side side : {Side::west, Side::east, Side::south, Side::north})
+            mirror[int(side)] = boundary(side).kind == BoundaryKind::wall || boundary(side).kind == BoundaryKind::pump;
+        front_.fill_ghosts(h, alpha, mirror);
+        if (which == Stage::predictor && state_changed_outside_) {  // alpha may not match h: make it (idempotent)
+            std::vector<FrontRange> all(std::size_t(ny), FrontRange{0, nx});
+            front_.fix(h, all, alpha);
+        }
+        front_.find_tips(h, hu, hv, alpha, z_, g_n2_, front_cols_);
+    }
+    auto tips_of = [&](int j) -> const std::vector<Tip>* {
+        if (!fronts || !front_.any_tips() || j < 0 || j >= ny) return nullptr;
+        const std::vector<Tip>& row_tips = front_.tips(j);
+        return row_tips.empty() ? nullptr : &row_tips;
+    };
     auto row = [&](const std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     auto row_out = [&](std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
     if (work_.size() < std::size_t(omp_get_max_threads())) work_.resize(std::size_t(omp_get_max_threads()));
@@ -606,8 +683,37 @@ void Solver::stage(Stage which, double dt, double t) {
         auto slopes = [&](int j) {
             const ColumnRange c = hull(hull(active(j - 1), active(j)), active(j + 1));
             y_slopes_row(s, c, row(h, j - 1), row(h, j), row(h, j + 1), w, j + kGhost);
+            // First order at y-tips and their y-neighbours.
+            for (int k = j - 1; k <= j + 1; ++k)
+                if (const std::vector<Tip>* tips = tips_of(k))
+                    for (const Tip& tip : *tips)
+                        if (!is_x(tip.dir) && tip.i >= c.begin && tip.i < c.end)
+                            for (int q = 0; q < 4; ++q) w.slope(j + kGhost, q)[tip.i + kGhost] = 0.0;
         };
-        auto faces = [&](int j) { y_faces_row(s, hull(active(j - 1), active(j)), row(h, j - 1), row(h, j), w, j + kGhost); };
+        auto faces = [&](int j) {
+            y_faces_row(s, hull(active(j - 1), active(j)), row(h, j - 1), row(h, j), w, j + kGhost);
+            // The y faces of tips: the face below row j is the back face of a north-moving
+            // tip in row j and of a south-moving one in row j - 1, the shut face of the others.
+            const double *lo_e = w.prim(j - 1 + kGhost, 0), *hi_e = w.prim(j + kGhost, 0);
+            const double *lo_u = w.prim(j - 1 + kGhost, 1), *hi_u = w.prim(j + kGhost, 1);
+            const double *lo_h = row(h, j - 1), *hi_h = row(h, j);
+            double *fm = w.face(j + kGhost, 0), *fl = w.face(j + kGhost, 1), *fr = w.face(j + kGhost, 2),
+                   *ft = w.face(j + kGhost, 3);
+            for (int k : {j - 1, j})
+                if (const std::vector<Tip>* tips = tips_of(k))
+                    for (const Tip& tip : *tips) {
+                        if (is_x(tip.dir)) continue;
+                        const int c = tip.i + kGhost;
+                        const bool north = tip.dir == TipDir::north;
+                        if (north == (k == j)) {
+                            store(back_face_flux(s, tip.face, north ? 1.0 : -1.0, lo_u[c], hi_u[c]), c, fm, fl, fr, ft);
+                        } else {
+                            FaceFlux f;
+                            shut_face_flux(lo_e[c], lo_h[c], hi_e[c], hi_h[c], s.g, f);
+                            store(f, c, fm, fl, fr, ft);
+                        }
+                    }
+        };
         // This thread's strip of interior rows.
         auto first_row = [&](int k) {
             const double share = cumulative_columns_.back() * k / nt;
@@ -631,7 +737,7 @@ void Solver::stage(Stage which, double dt, double t) {
                 clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
             west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
             if (cols.empty()) continue;
-            const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost);
+            const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost, tips_of(j));
             west_face_mass_[std::size_t(j)] = west_mass;
             east_face_mass_[std::size_t(j)] = east_mass;
             double* dh = w.rate(0);
@@ -651,6 +757,15 @@ void Solver::stage(Stage which, double dt, double t) {
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
     (corrector ? bound2_ : bound1_) = active_;
     if (last) max_wave_rate_ = amax;
+    // The wet fraction after the step grows with the predictor's tips (forward Euler: the
+    // front is first order anyway; 1D trials gave the same fronts as Heun's average),
+    // then each stage's output makes it consistent with its depth.
+    if (fronts) {
+        if (!corrector) front_.grow(alpha_, dt, alpha2_);
+        std::vector<double>& alpha_out = corrector ? alpha2_ : alpha1_;
+        if (!corrector) alpha1_ = alpha2_;
+        front_.fix(h_out, front_cols_, alpha_out);
+    }
 }
 
 void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {
@@ -708,6 +823,7 @@ void Solver::step(double dt) {
         hu_ = hu2_;
         hv_ = hv2_;
     }
+    alpha_.swap(alpha2_);
     west_transfer_.swap(saved_west_transfer_);
     east_transfer_.swap(saved_east_transfer_);
     stats_.negative_depth_fixes = fixes_before;
@@ -737,6 +853,8 @@ void Solver::step_once(double dt) {
         hu_ = hu1_;
         hv_ = hv1_;
         bound_ = bound1_;
+        alpha2_.swap(alpha_);
+        alpha_ = alpha1_;
     } else {
         stage(Stage::predictor, dt, time_);
         if (track_transfer_) {
@@ -749,6 +867,7 @@ void Solver::step_once(double dt) {
         h_.swap(h2_);
         hu_.swap(hu2_);
         hv_.swap(hv2_);
+        alpha_.swap(alpha2_);
         bound_.swap(bound2_);
         if (state_changed_outside_) std::fill(bound2_.begin(), bound2_.end(), ColumnRange{0, grid_.nx});
         if (track_transfer_)
@@ -756,6 +875,12 @@ void Solver::step_once(double dt) {
                 west_transfer_[j] += 0.5 * dt * (west_stage1_[j] + west_face_mass_[j]);
                 east_transfer_[j] += 0.5 * dt * (east_stage1_[j] + east_face_mass_[j]);
             }
+    }
+    if (fv_.fronts == FrontTreatment::tracked) {
+        // The invariant correction (front.hpp) on the new state, within the columns it
+        // may be nonzero in; the step's CFL rate covers the cells it changed.
+        for (int j = 0; j < grid_.ny; ++j) front_cols_[std::size_t(j)] = {bound_[std::size_t(j)].begin, bound_[std::size_t(j)].end};
+        max_wave_rate_ = std::max(max_wave_rate_, front_.correct_invariants(h_, hu_, hv_, z_, g_n2_, front_cols_));
     }
     state_changed_outside_ = false;
     time_ += dt;

@@ -22,6 +22,7 @@
 #include "common/timeseries.hpp"
 #include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
+#include "hydro/front.hpp"
 #include "hydro/physics.hpp"
 #include "hydro/swe_kernels.hpp"
 
@@ -33,6 +34,14 @@ enum class Friction { implicit, explicit_ };
 inline constexpr EnumNames<Friction, 2> friction_names{"friction treatment",
                                                        {{{Friction::implicit, "implicit"}, {Friction::explicit_, "explicit"}}}};
 constexpr const auto& enum_names(Friction) { return friction_names; }
+
+// Dry-bed fronts: tracked (the wet fraction of the cells a front moves into and the
+// invariant correction, front.hpp) or plain cell averages (for comparison: their fronts
+// lag, docs/hydro.md "Wet/dry fronts").
+enum class FrontTreatment { tracked, plain };
+inline constexpr EnumNames<FrontTreatment, 2> front_treatment_names{
+    "front treatment", {{{FrontTreatment::tracked, "tracked"}, {FrontTreatment::plain, "plain"}}}};
+constexpr const auto& enum_names(FrontTreatment) { return front_treatment_names; }
 
 // Columns [begin, end) of one grid row, in interior indices (ghosts are -2, -1, nx, nx + 1).
 struct ColumnRange {
@@ -50,6 +59,7 @@ struct FiniteVolumeDef {
     // faster. false computes every cell (the tests check that skipping changes no bit).
     bool skip_dry_land = true;
     Friction friction = Friction::implicit;  // explicit: stability study only
+    FrontTreatment fronts = FrontTreatment::tracked;
 };
 
 class Solver {
@@ -77,6 +87,8 @@ public:
     double level(int i, int j) const { return h_[at(i, j)] + z_[at(i, j)]; }
     double x_velocity(int i, int j) const { return velocity(h_[at(i, j)], hu_[at(i, j)], def_.dry_depth); }
     double y_velocity(int i, int j) const { return velocity(h_[at(i, j)], hv_[at(i, j)], def_.dry_depth); }
+    // The part of the cell the water covers, 0..1 (front.hpp; 1 or 0 away from fronts).
+    double wet_fraction(int i, int j) const { return alpha_[at(i, j)]; }
     // depth(i, j), x_velocity(i, j), y_velocity(i, j) of the cells i0 <= i < i1 of row j,
     // into h[i - i0], u[i - i0], v[i - i0] (for output and statistics over whole rows).
     void state_row(int j, int i0, int i1, double* h, double* u, double* v) const;
@@ -97,8 +109,11 @@ public:
     const std::vector<double>& x_discharge_data() const { return hu_; }
     const std::vector<double>& y_discharge_data() const { return hv_; }
     std::size_t stride() const { return stride_; }
-    // h, hu, hv (padded), the exact state for checkpoints.
-    std::vector<std::vector<double>*> state_arrays() { return {&depth_data(), &x_discharge_data(), &y_discharge_data()}; }
+    std::vector<double>& wet_fraction_data() { return changed_outside(alpha_); }
+    // h, hu, hv and the wet fraction (padded), the exact state for checkpoints.
+    std::vector<std::vector<double>*> state_arrays() {
+        return {&depth_data(), &x_discharge_data(), &y_discharge_data(), &wet_fraction_data()};
+    }
 
     // Nesting (hydro/nesting.hpp), west and east sides only. Ghost values of a `nested`
     // side: the state `a` at time t0 and `b` at t1, interpolated linearly in time
@@ -142,8 +157,12 @@ private:
     SolverStats stats_;
     // Hot state.
     std::vector<double> h_, hu_, hv_;
-    std::vector<double> h1_, hu1_, hv1_;      // Heun's intermediate stage
-    std::vector<double> h2_, hu2_, hv2_;      // the corrector's output, swapped with h_ after it
+    std::vector<double> h1_, hu1_, hv1_;  // Heun's intermediate stage
+    std::vector<double> h2_, hu2_, hv2_;  // the corrector's output, swapped with h_ after it
+    // Wet fraction (front.hpp) of h_, h1_ and h2_; the tracker and the columns it looks at.
+    std::vector<double> alpha_, alpha1_, alpha2_;
+    FrontTracker front_;
+    std::vector<FrontRange> front_cols_;
     std::vector<std::vector<double>> work_;   // per thread: the row buffers of stage()
     std::vector<double> cumulative_columns_;  // columns to compute below each row (splits rows over threads)
     // Skipping dry land (solver.cpp). Per interior row: the columns outside which h_
