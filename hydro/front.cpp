@@ -17,7 +17,7 @@ FrontTracker::FrontTracker(int nx, int ny, double dx, double dy, double g, doubl
     : nx_(nx), ny_(ny), stride_(std::size_t(nx + 4)), dx_(dx), dy_(dy), g_(g), dry_(dry_depth) {
     tips_.resize(std::size_t(ny));
     y_exchange_.assign(stride_ * std::size_t(ny + 4), 0.0);
-    y_face_cols_.assign(std::size_t(ny), FrontRange{});
+    y_any_.assign(std::size_t(ny), 0);
     changed_.resize(std::size_t(ny));
 }
 
@@ -62,14 +62,24 @@ void FrontTracker::find_tips(const std::vector<double>& h, const std::vector<dou
             row.clear();
             const FrontRange c = cols[std::size_t(j)];
             if (c.begin >= c.end) continue;
-            // Candidates first, in a pass that vectorises: not full, with a wet neighbour.
+            // Candidates first, in a pass that vectorises: not full, and a wet neighbour,
+            // whose level stands above this cell's ground unless this cell holds water or
+            // a fraction (the conditions of `behind` below, weakened): the buildings
+            // beside the water drop out here.
             candidate.assign(std::size_t(c.end - c.begin), 0);
             const double* hc = h.data() + at(0, j);
+            const double* zc = z.data() + at(0, j);
             const double* ac = alpha.data() + at(0, j);
             unsigned char* cand = candidate.data() - c.begin;
 #pragma omp simd
-            for (int i = c.begin; i < c.end; ++i)
-                cand[i] = (ac[i] < 1.0) & ((hc[i - 1] > dry) | (hc[i + 1] > dry) | (hc[i - st] > dry) | (hc[i + st] > dry));
+            for (int i = c.begin; i < c.end; ++i) {
+                const bool wet_w = hc[i - 1] > dry, wet_e = hc[i + 1] > dry, wet_s = hc[i - st] > dry, wet_n = hc[i + st] > dry;
+                const bool above =
+                    (wet_w & (hc[i - 1] + zc[i - 1] - zc[i] > dry)) | (wet_e & (hc[i + 1] + zc[i + 1] - zc[i] > dry)) |
+                    (wet_s & (hc[i - st] + zc[i - st] - zc[i] > dry)) | (wet_n & (hc[i + st] + zc[i + st] - zc[i] > dry));
+                const bool holds = (hc[i] > dry) | (ac[i] > 0.0);
+                cand[i] = (ac[i] < 1.0) & ((holds & (wet_w | wet_e | wet_s | wet_n)) | above);
+            }
             for (int i = c.begin; i < c.end; ++i) {
                 if (!cand[i]) continue;
                 const std::size_t p = at(i, j);
@@ -159,8 +169,9 @@ void FrontTracker::fix(const std::vector<double>& h, const std::vector<FrontRang
 double FrontTracker::correct_invariants(const std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv,
                                         const std::vector<double>& z, const std::vector<double>& g_n2,
                                         const std::vector<FrontRange>& cols) {
-    const double dry = dry_, g = g_;
+    const double dry = dry_, g = g_, idx = 1.0 / dx_, idy = 1.0 / dy_;
     const std::ptrdiff_t st = std::ptrdiff_t(stride_);
+    double amax = 0.0;
     // A face can exchange only between two wet cells, one less than half as deep as the
     // other: found first in a pass that vectorises (few faces qualify).
     auto thin_beside_thick = [dry](double a, double b) { return (a > dry) & (b > dry) & ((b < 0.5 * a) | (a < 0.5 * b)); };
@@ -196,36 +207,42 @@ double FrontTracker::correct_invariants(const std::vector<double>& h, std::vecto
                 changed.push_back(at(i + 1, j));
             }
         }
-        // y faces: the face below row j (j >= 1), from the state after the x faces.
+        // y faces: the face below row j (j >= 1), from the state after the x faces. A face
+        // row with no candidate is marked and not written (nor read below).
 #pragma omp for schedule(static)
         for (int j = 1; j < ny_; ++j) {
             const FrontRange c = hull(cols[std::size_t(j - 1)], cols[std::size_t(j)]);
-            y_face_cols_[std::size_t(j)] = c;
+            y_any_[std::size_t(j)] = 0;
             if (c.begin >= c.end) continue;
             const double* hs = h.data() + at(0, j - 1);
             const double* hn = hs + st;
-            double* F = y_exchange_.data() + at(0, j);
             flag.assign(std::size_t(c.end - c.begin), 0);
             unsigned char* fl = flag.data() - c.begin;
-#pragma omp simd
+            bool any = false;
+#pragma omp simd reduction(| : any)
             for (int i = c.begin; i < c.end; ++i) {
                 fl[i] = thin_beside_thick(hs[i], hn[i]);
-                F[i] = 0.0;
+                any = any | bool(fl[i]);
             }
+            if (!any) continue;
+            double* F = y_exchange_.data() + at(0, j);
+            std::fill(F + c.begin, F + c.end, 0.0);
             for (int i = c.begin; i < c.end; ++i) {
                 if (!fl[i]) continue;
                 const std::size_t s = at(i, j - 1), n = at(i, j);
                 F[i] = invariant_exchange(h[s], velocity(h[s], hv[s], dry), h[n], velocity(h[n], hv[n], dry), z[n] - z[s],
                                           0.5 * (g_n2[s] + g_n2[n]), dy_, g, dry);
             }
+            y_any_[std::size_t(j)] = 1;
         }
 #pragma omp for schedule(static)
         for (int j = 0; j < ny_; ++j) {
+            const bool has_below = j >= 1 && y_any_[std::size_t(j)], has_above = j + 1 < ny_ && y_any_[std::size_t(j) + 1];
+            if (!has_below && !has_above) continue;
             std::vector<std::size_t>& changed = changed_[std::size_t(j)];
             const FrontRange c = cols[std::size_t(j)];  // within both faces' columns
             const double* below = y_exchange_.data() + at(0, j);
             const double* above = below + st;
-            const bool has_below = j >= 1, has_above = j + 1 < ny_;
             double* q = hv.data() + at(0, j);
             for (int i = c.begin; i < c.end; ++i) {
                 // moved north: into this row from below, out of it above
@@ -235,11 +252,11 @@ double FrontTracker::correct_invariants(const std::vector<double>& h, std::vecto
                 changed.push_back(at(i, j));
             }
         }
+        // The step's CFL rate must cover the cells changed (thin water sped up).
+#pragma omp for schedule(static) reduction(max : amax)
+        for (int j = 0; j < ny_; ++j)
+            for (std::size_t p : changed_[std::size_t(j)]) amax = std::max(amax, wave_rate(h[p], hu[p], hv[p], g, dry, idx, idy));
     }
-    double amax = 0.0;
-    const double idx = 1.0 / dx_, idy = 1.0 / dy_;
-    for (const auto& row : changed_)
-        for (std::size_t p : row) amax = std::max(amax, wave_rate(h[p], hu[p], hv[p], g, dry, idx, idy));
     return amax;
 }
 

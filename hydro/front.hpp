@@ -71,7 +71,7 @@ private:
     std::vector<std::vector<Tip>> tips_;  // per interior row
     bool any_ = false;
     std::vector<double> y_exchange_;                 // per y face (below row j, padded layout): discharge moved north [m^2/s]
-    std::vector<FrontRange> y_face_cols_;            // the columns of y_exchange_ set for the faces below each row
+    std::vector<unsigned char> y_any_;               // per face row: y_exchange_ was written this step (else it is not read)
     std::vector<std::vector<std::size_t>> changed_;  // per row: the cells the correction changed
 };
 
