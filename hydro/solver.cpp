@@ -373,12 +373,17 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 // zero); its back face takes the wedge's state, its face toward the dry side is shut.
 bool is_x(TipDir d) { return d == TipDir::east || d == TipDir::west; }
 
-// Zero the x-slopes of a row's x-tips and their x-neighbours, in padded columns [c0, c1).
-void x_slopes_at_tips(const std::vector<Tip>& tips, int c0, int c1, double* se, double* sh, double* su, double* sv) {
-    for (const Tip& t : tips)
-        if (is_x(t.dir))
-            for (int c = std::max(t.i + kGhost - 1, c0); c <= std::min(t.i + kGhost + 1, c1 - 1); ++c)
-                se[c] = sh[c] = su[c] = sv[c] = 0.0;
+// Zero the x-slopes of a row's x-tips and their x-neighbours, in padded columns [c0, c1);
+// an edge cell's ghost too, so that a wall's mirror image stays a mirror image (else the
+// wall face's two states differ and water crosses it).
+void x_slopes_at_tips(const std::vector<Tip>& tips, int nx, int c0, int c1, double* se, double* sh, double* su, double* sv) {
+    for (const Tip& t : tips) {
+        if (!is_x(t.dir)) continue;
+        int lo = t.i + kGhost - 1, hi = t.i + kGhost + 1;
+        if (lo == kGhost) --lo;
+        if (hi == nx - 1 + kGhost) ++hi;
+        for (int c = std::max(lo, c0); c <= std::min(hi, c1 - 1); ++c) se[c] = sh[c] = su[c] = sv[c] = 0.0;
+    }
 }
 
 // Flux through a tip's back face from the wedge state (n: +1 when the front moves toward
@@ -446,7 +451,7 @@ void x_faces_at_tips(const Sweep& s, const std::vector<Tip>& tips, const double*
         su[c] = wt * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], s.theta);
         sv[c] = wt * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], s.theta);
     }
-    if (tips) x_slopes_at_tips(*tips, c0 - 1, c1 + 1, se, sh, su, sv);
+    if (tips) x_slopes_at_tips(*tips, s.nx, c0 - 1, c1 + 1, se, sh, su, sv);
 // Face c+1/2 between padded columns c and c+1.
 #pragma omp simd
     for (int c = c0 - 1; c < c1; ++c) {
@@ -683,8 +688,10 @@ void Solver::stage(Stage which, double dt, double t) {
         auto slopes = [&](int j) {
             const ColumnRange c = hull(hull(active(j - 1), active(j)), active(j + 1));
             y_slopes_row(s, c, row(h, j - 1), row(h, j), row(h, j + 1), w, j + kGhost);
-            // First order at y-tips and their y-neighbours.
-            for (int k = j - 1; k <= j + 1; ++k)
+            // First order at y-tips and their y-neighbours; a ghost row as the edge row it
+            // mirrors (see x_slopes_at_tips).
+            const int as_row = j == -1 ? 0 : (j == ny ? ny - 1 : j);
+            for (int k = as_row - 1; k <= as_row + 1; ++k)
                 if (const std::vector<Tip>* tips = tips_of(k))
                     for (const Tip& tip : *tips)
                         if (!is_x(tip.dir) && tip.i >= c.begin && tip.i < c.end)
