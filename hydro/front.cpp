@@ -5,14 +5,6 @@
 
 namespace flotsam::hydro {
 
-namespace {
-FrontRange hull(FrontRange a, FrontRange b) {
-    if (a.begin >= a.end) return b;
-    if (b.begin >= b.end) return a;
-    return {std::min(a.begin, b.begin), std::max(a.end, b.end)};
-}
-}  // namespace
-
 FrontTracker::FrontTracker(int nx, int ny, double dx, double dy, double g, double dry_depth)
     : nx_(nx), ny_(ny), stride_(std::size_t(nx + 4)), dx_(dx), dy_(dy), g_(g), dry_(dry_depth) {
     tips_.resize(std::size_t(ny));
@@ -46,7 +38,7 @@ void FrontTracker::fill_ghosts(const std::vector<double>& h, std::vector<double>
 
 void FrontTracker::find_tips(const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv,
                              const std::vector<double>& alpha, const std::vector<double>& z, const std::vector<double>& g_n2,
-                             const std::vector<FrontRange>& cols) {
+                             const std::vector<ColumnRange>& cols) {
     const double dry = dry_;
     bool any = false;
     // A cell is a tip in a direction where the water behind it is wet and full, the
@@ -60,8 +52,8 @@ void FrontTracker::find_tips(const std::vector<double>& h, const std::vector<dou
         for (int j = 0; j < ny_; ++j) {
             std::vector<Tip>& row = tips_[std::size_t(j)];
             row.clear();
-            const FrontRange c = cols[std::size_t(j)];
-            if (c.begin >= c.end) continue;
+            const ColumnRange c = cols[std::size_t(j)];
+            if (c.empty()) continue;
             // Candidates first, in a pass that vectorises: not full, and a wet neighbour,
             // whose level stands above this cell's ground unless this cell holds water or
             // a fraction (the conditions of `behind` below, weakened): the buildings
@@ -143,12 +135,12 @@ void FrontTracker::grow(const std::vector<double>& alpha_in, double dt, std::vec
     }
 }
 
-void FrontTracker::fix(const std::vector<double>& h, const std::vector<FrontRange>& cols, std::vector<double>& alpha) const {
+void FrontTracker::fix(const std::vector<double>& h, const std::vector<ColumnRange>& cols, std::vector<double>& alpha) const {
     const double dry = dry_;
     const std::ptrdiff_t st = std::ptrdiff_t(stride_);
 #pragma omp parallel for schedule(static)
     for (int j = 0; j < ny_; ++j) {
-        const FrontRange c = cols[std::size_t(j)];
+        const ColumnRange c = cols[std::size_t(j)];
         const double* hc = h.data() + at(0, j);
         double* ac = alpha.data() + at(0, j);
         // Branch-free, so that it vectorises: it runs over every computed cell, twice a step.
@@ -168,7 +160,7 @@ void FrontTracker::fix(const std::vector<double>& h, const std::vector<FrontRang
 
 double FrontTracker::correct_invariants(const std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv,
                                         const std::vector<double>& z, const std::vector<double>& g_n2,
-                                        const std::vector<FrontRange>& cols) {
+                                        const std::vector<ColumnRange>& cols) {
     const double dry = dry_, g = g_, idx = 1.0 / dx_, idy = 1.0 / dy_;
     const std::ptrdiff_t st = std::ptrdiff_t(stride_);
     double amax = 0.0;
@@ -184,7 +176,7 @@ double FrontTracker::correct_invariants(const std::vector<double>& h, std::vecto
         for (int j = 0; j < ny_; ++j) {
             std::vector<std::size_t>& changed = changed_[std::size_t(j)];
             changed.clear();
-            const FrontRange c = cols[std::size_t(j)];
+            const ColumnRange c = cols[std::size_t(j)];
             if (c.end - c.begin < 2) continue;
             const double* hc = h.data() + at(0, j);
             flag.assign(std::size_t(c.end - c.begin), 0);
@@ -211,9 +203,9 @@ double FrontTracker::correct_invariants(const std::vector<double>& h, std::vecto
         // row with no candidate is marked and not written (nor read below).
 #pragma omp for schedule(static)
         for (int j = 1; j < ny_; ++j) {
-            const FrontRange c = hull(cols[std::size_t(j - 1)], cols[std::size_t(j)]);
+            const ColumnRange c = hull(cols[std::size_t(j - 1)], cols[std::size_t(j)]);
             y_any_[std::size_t(j)] = 0;
-            if (c.begin >= c.end) continue;
+            if (c.empty()) continue;
             const double* hs = h.data() + at(0, j - 1);
             const double* hn = hs + st;
             flag.assign(std::size_t(c.end - c.begin), 0);
@@ -240,7 +232,7 @@ double FrontTracker::correct_invariants(const std::vector<double>& h, std::vecto
             const bool has_below = j >= 1 && y_any_[std::size_t(j)], has_above = j + 1 < ny_ && y_any_[std::size_t(j) + 1];
             if (!has_below && !has_above) continue;
             std::vector<std::size_t>& changed = changed_[std::size_t(j)];
-            const FrontRange c = cols[std::size_t(j)];  // within both faces' columns
+            const ColumnRange c = cols[std::size_t(j)];  // within both faces' columns
             const double* below = y_exchange_.data() + at(0, j);
             const double* above = below + st;
             double* q = hv.data() + at(0, j);

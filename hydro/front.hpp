@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hydro/column_range.hpp"
 #include "hydro/front_kernels.hpp"
 
 namespace flotsam::hydro {
@@ -23,11 +24,6 @@ struct Tip {
     int i = 0;  // interior column of the tip cell
     TipDir dir = TipDir::east;
     TipFace face;  // the back face's state (velocity toward the tip) and the growth rate
-};
-
-// Columns [begin, end) of an interior row to look at.
-struct FrontRange {
-    int begin = 0, end = 0;
 };
 
 class FrontTracker {
@@ -45,7 +41,7 @@ public:
     // rows), each with its back face's wedge state; per row, in column order.
     void find_tips(const std::vector<double>& h, const std::vector<double>& hu, const std::vector<double>& hv,
                    const std::vector<double>& alpha, const std::vector<double>& z, const std::vector<double>& g_n2,
-                   const std::vector<FrontRange>& cols);
+                   const std::vector<ColumnRange>& cols);
     const std::vector<Tip>& tips(int j) const { return tips_[std::size_t(j)]; }
     bool any_tips() const { return any_; }
 
@@ -55,13 +51,13 @@ public:
     // Consistency of alpha with h on the rows' columns: 1 in wet cells with no dry
     // neighbour, 0 in dry cells with no wet one; a wet cell's alpha at least its depth
     // over its deepest neighbour's (its wet part no deeper than the water beside it).
-    void fix(const std::vector<double>& h, const std::vector<FrontRange>& cols, std::vector<double>& alpha) const;
+    void fix(const std::vector<double>& h, const std::vector<ColumnRange>& cols, std::vector<double>& alpha) const;
 
     // The invariant correction on every interior face, x faces then y faces, over the
     // rows' columns. Returns the largest CFL rate (a_x/dx + a_y/dy) of the cells it
     // changed (0 if none).
     double correct_invariants(const std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv,
-                              const std::vector<double>& z, const std::vector<double>& g_n2, const std::vector<FrontRange>& cols);
+                              const std::vector<double>& z, const std::vector<double>& g_n2, const std::vector<ColumnRange>& cols);
 
 private:
     std::size_t at(int i, int j) const { return std::size_t(j + 2) * stride_ + std::size_t(i + 2); }

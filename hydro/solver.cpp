@@ -39,7 +39,6 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
     const std::size_t n = stride_ * rows_;
     for (auto* v : {&h_, &hu_, &hv_, &h1_, &hu1_, &hv1_, &h2_, &hu2_, &hv2_, &z_, &g_n2_, &alpha_, &alpha1_, &alpha2_})
         v->assign(n, 0.0);
-    front_cols_.assign(std::size_t(grid_.ny), FrontRange{});
     for (auto* v : {&bound_, &bound1_, &bound2_, &state_nonzero_, &base_nonzero_, &active_})
         v->assign(std::size_t(grid_.ny), ColumnRange{});
     depth_nonzero_.assign(rows_, ColumnRange{});
@@ -60,7 +59,8 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
         }
     // Bed in the ghost cells: mirrored at walls (a lake at rest stays exact), copied elsewhere.
     for (Side s : {Side::west, Side::east, Side::south, Side::north}) {
-        const bool mirror = boundary(s).kind == BoundaryKind::wall || boundary(s).kind == BoundaryKind::pump;
+        mirrored_[int(s)] = boundary(s).kind == BoundaryKind::wall || boundary(s).kind == BoundaryKind::pump;
+        const bool mirror = mirrored_[int(s)];
         if (is_x_side(s)) {
             for (int j = 0; j < grid_.ny; ++j)
                 for (int g = 1; g <= kGhost; ++g) {
@@ -292,11 +292,6 @@ private:
     std::size_t stride_;
 };
 
-ColumnRange hull(ColumnRange a, ColumnRange b) {
-    if (a.empty()) return b;
-    if (b.empty()) return a;
-    return {std::min(a.begin, b.begin), std::max(a.end, b.end)};
-}
 ColumnRange widen(ColumnRange a, int n) { return a.empty() ? a : ColumnRange{a.begin - n, a.end + n}; }
 ColumnRange clip(ColumnRange a, int lo, int hi) { return {std::max(a.begin, lo), std::min(a.end, hi)}; }
 
@@ -640,16 +635,12 @@ void Solver::stage(Stage which, double dt, double t) {
     std::vector<double>& alpha = corrector ? alpha1_ : alpha_;
     const bool fronts = fv_.fronts == FrontTreatment::tracked;
     if (fronts) {
-        for (int j = 0; j < ny; ++j) front_cols_[std::size_t(j)] = {active_[std::size_t(j)].begin, active_[std::size_t(j)].end};
-        std::array<bool, 4> mirror{};
-        for (Side side : {Side::west, Side::east, Side::south, Side::north})
-            mirror[int(side)] = boundary(side).kind == BoundaryKind::wall || boundary(side).kind == BoundaryKind::pump;
-        front_.fill_ghosts(h, alpha, mirror);
+        front_.fill_ghosts(h, alpha, mirrored_);
         if (which == Stage::predictor && state_changed_outside_) {  // alpha may not match h: make it (idempotent)
-            std::vector<FrontRange> all(std::size_t(ny), FrontRange{0, nx});
+            const std::vector<ColumnRange> all(std::size_t(ny), ColumnRange{0, nx});
             front_.fix(h, all, alpha);
         }
-        front_.find_tips(h, hu, hv, alpha, z_, g_n2_, front_cols_);
+        front_.find_tips(h, hu, hv, alpha, z_, g_n2_, active_);
     }
     auto tips_of = [&](int j) -> const std::vector<Tip>* {
         if (!fronts || !front_.any_tips() || j < 0 || j >= ny) return nullptr;
@@ -771,7 +762,7 @@ void Solver::stage(Stage which, double dt, double t) {
         if (!corrector) front_.grow(alpha_, dt, alpha2_);
         std::vector<double>& alpha_out = corrector ? alpha2_ : alpha1_;
         if (!corrector) alpha1_ = alpha2_;
-        front_.fix(h_out, front_cols_, alpha_out);
+        front_.fix(h_out, active_, alpha_out);
     }
 }
 
@@ -886,8 +877,7 @@ void Solver::step_once(double dt) {
     if (fv_.fronts == FrontTreatment::tracked) {
         // The invariant correction (front.hpp) on the new state, within the columns it
         // may be nonzero in; the step's CFL rate covers the cells it changed.
-        for (int j = 0; j < grid_.ny; ++j) front_cols_[std::size_t(j)] = {bound_[std::size_t(j)].begin, bound_[std::size_t(j)].end};
-        max_wave_rate_ = std::max(max_wave_rate_, front_.correct_invariants(h_, hu_, hv_, z_, g_n2_, front_cols_));
+        max_wave_rate_ = std::max(max_wave_rate_, front_.correct_invariants(h_, hu_, hv_, z_, g_n2_, bound_));
     }
     state_changed_outside_ = false;
     time_ += dt;

@@ -43,12 +43,6 @@ inline constexpr EnumNames<FrontTreatment, 2> front_treatment_names{
     "front treatment", {{{FrontTreatment::tracked, "tracked"}, {FrontTreatment::plain, "plain"}}}};
 constexpr const auto& enum_names(FrontTreatment) { return front_treatment_names; }
 
-// Columns [begin, end) of one grid row, in interior indices (ghosts are -2, -1, nx, nx + 1).
-struct ColumnRange {
-    int begin = 0, end = 0;
-    bool empty() const { return begin >= end; }
-};
-
 // The settings only the finite-volume scheme has (the physics: PhysicsDef).
 struct FiniteVolumeDef {
     double cfl = 0.8;            // dt * max(a_x/dx + a_y/dy); <= 0.5 keeps h >= 0 by itself; up to 1:
@@ -162,7 +156,6 @@ private:
     // Wet fraction (front.hpp) of h_, h1_ and h2_; the tracker and the columns it looks at.
     std::vector<double> alpha_, alpha1_, alpha2_;
     FrontTracker front_;
-    std::vector<FrontRange> front_cols_;
     std::vector<std::vector<double>> work_;   // per thread: the row buffers of stage()
     std::vector<double> cumulative_columns_;  // columns to compute below each row (splits rows over threads)
     // Skipping dry land (solver.cpp). Per interior row: the columns outside which h_
@@ -184,6 +177,7 @@ private:
     // 0.45 when the step clamped a negative depth.
     std::vector<double> saved_west_transfer_, saved_east_transfer_;
     void step_once(double dt);
+    std::array<bool, 4> mirrored_{};  // per side (west, east, south, north): ghosts mirror the edge (walls, the pump)
     std::array<std::vector<double>, 4> rest_depth_;  // initial depth of each side's edge cells [m] (transmissive sides)
     // Nesting: ghost frames per x side (0 west, 1 east) and the boundary face fluxes.
     struct NestedGhosts {
