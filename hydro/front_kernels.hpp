@@ -120,6 +120,39 @@ inline void shut_face_flux(double etaL, double hL, double etaR, double hR, doubl
     f.normal_R = 0.5 * g * (hR * hR - hsR * hsR);
 }
 
+// Whether a face between cells of depths a and b can take an invariant exchange: both
+// wet, one less than half as deep as the other (invariant_exchange's kThin). Few faces
+// pass, so this test runs first, in a pass that vectorises.
+inline bool thin_beside_thick(double a, double b, double dry_depth) {
+    return (a > dry_depth) & (b > dry_depth) & ((b < 0.5 * a) | (a < 0.5 * b));
+}
+
+// Whether a cell (depth h, bed z, wet fraction alpha) may be a tip, from its four
+// neighbours' depths and beds (west, east, south, north): not full, and beside wet water
+// that either reaches it (it holds water or a fraction) or stands above its ground. A
+// superset of the tips; FrontTracker::find_tips looks closer at each.
+inline bool may_be_tip(double h, double z, double alpha, double hw, double zw, double he, double ze, double hs, double zs, double hn,
+                       double zn, double dry_depth) {
+    const bool wet_w = hw > dry_depth, wet_e = he > dry_depth, wet_s = hs > dry_depth, wet_n = hn > dry_depth;
+    const bool above = (wet_w & (hw + zw - z > dry_depth)) | (wet_e & (he + ze - z > dry_depth)) | (wet_s & (hs + zs - z > dry_depth)) |
+                       (wet_n & (hn + zn - z > dry_depth));
+    const bool holds = (h > dry_depth) | (alpha > 0.0);
+    return (alpha < 1.0) & ((holds & (wet_w | wet_e | wet_s | wet_n)) | above);
+}
+
+// The wet fraction made consistent with the depths (FrontTracker::fix): 1 in a wet cell
+// with no dry neighbour, 0 in a dry cell with no wet one; a wet cell's at least its depth
+// over its deepest neighbour's (its wet part no deeper than the water beside it).
+inline double consistent_wet_fraction(double alpha, double h, double hw, double he, double hs, double hn, double dry_depth) {
+    const bool all_wet = (hw > dry_depth) & (he > dry_depth) & (hs > dry_depth) & (hn > dry_depth);
+    const bool any_wet = (hw > dry_depth) | (he > dry_depth) | (hs > dry_depth) | (hn > dry_depth);
+    const double deepest = std::max(std::max(hw, he), std::max(hs, hn));
+    const double lowest = deepest > h ? h / deepest : 1.0;
+    const double a = std::min(alpha, 1.0);
+    const double wet_value = all_wet ? 1.0 : std::max(a, lowest);
+    return h > dry_depth ? wet_value : (any_wet ? a : 0.0);
+}
+
 // The invariant correction at one face (both sides wetter than the dry tolerance):
 // discharge [m^2/s] to move from the left cell to the right one (q_R += F, q_L -= F),
 // from depths h, velocities u along the face normal, the bed rise z_R - z_L = dz, g n^2

@@ -638,7 +638,7 @@ void Solver::stage(Stage which, double dt, double t) {
         front_.fill_ghosts(h, alpha, mirrored_);
         if (which == Stage::predictor && state_changed_outside_) {  // alpha may not match h: make it (idempotent)
             const std::vector<ColumnRange> all(std::size_t(ny), ColumnRange{0, nx});
-            front_.fix(h, all, alpha);
+            front_.fix(h, z_, all, alpha, alpha);
         }
         front_.find_tips(h, hu, hv, alpha, z_, g_n2_, active_);
     }
@@ -656,6 +656,12 @@ void Solver::stage(Stage which, double dt, double t) {
     for (int j = 0; j < ny; ++j)
         cumulative_columns_[std::size_t(j) + 1] =
             cumulative_columns_[std::size_t(j)] + 1.0 + std::max(0, active(j).end - active(j).begin);
+    // The wet fraction after the step grows with the predictor's tips (forward Euler: the
+    // front is first order anyway; 1D trials gave the same fronts as Heun's average); each
+    // stage's output then makes alpha_ so grown consistent with its depth, row by row in
+    // the sweep (front_.fix_row), into alpha_out.
+    if (fronts && !corrector) front_.grow(alpha_, dt);
+    std::vector<double>& alpha_out = corrector ? alpha2_ : alpha1_;
     long fixes = 0;
     double worst = 0.0, amax = 0.0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
@@ -712,6 +718,23 @@ void Solver::stage(Stage which, double dt, double t) {
                         }
                     }
         };
+        // Rates and update of interior row j over its columns (nonempty).
+        auto compute_row = [&](int j, ColumnRange cols) {
+            const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost, tips_of(j));
+            west_face_mass_[std::size_t(j)] = west_mass;
+            east_face_mass_[std::size_t(j)] = east_mass;
+            double* dh = w.rate(0);
+            for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
+                dh[pump_cells_[k] % stride_] += pump_rate;
+            if (corrector)
+                update_row_with<true>(fv_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                                      row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
+                                      row_out(hv_out, j), fixes, worst);
+            else
+                update_row_with<false>(fv_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), nullptr,
+                                       nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
+            if (last) amax = std::max(amax, max_wave_rate_row(s, cols, row(h_out, j), row(hu_out, j), row(hv_out, j)));
+        };
         // This thread's strip of interior rows.
         auto first_row = [&](int k) {
             const double share = cumulative_columns_.back() * k / nt;
@@ -734,36 +757,23 @@ void Solver::stage(Stage which, double dt, double t) {
             for (std::vector<double>* a : {&h_out, &hu_out, &hv_out})
                 clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
             west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
-            if (cols.empty()) continue;
-            const auto [west_mass, east_mass] = rates_row(s, cols, row(h, j), w, j + kGhost, tips_of(j));
-            west_face_mass_[std::size_t(j)] = west_mass;
-            east_face_mass_[std::size_t(j)] = east_mass;
-            double* dh = w.rate(0);
-            for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
-                dh[pump_cells_[k] % stride_] += pump_rate;
-            if (corrector)
-                update_row_with<true>(fv_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
-                                      row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
-                                      row_out(hv_out, j), fixes, worst);
-            else
-                update_row_with<false>(fv_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), nullptr,
-                                       nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
-            if (last) amax = std::max(amax, max_wave_rate_row(s, cols, row(h_out, j), row(hu_out, j), row(hv_out, j)));
+            if (!cols.empty()) compute_row(j, cols);
+            // The wet fraction of the row below, whose neighbours are final now (the first
+            // and last rows of the strip wait for the threads beside).
+            if (fronts && j - 1 > j0) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j - 1);
+        }
+        if (fronts) {
+#pragma omp barrier
+            if (j0 < j1) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j0);
+            if (j0 < j1 - 1) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j1 - 1);
         }
     }
+
     stats_.negative_depth_fixes += fixes;
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
     (corrector ? bound2_ : bound1_) = active_;
     if (last) max_wave_rate_ = amax;
-    // The wet fraction after the step grows with the predictor's tips (forward Euler: the
-    // front is first order anyway; 1D trials gave the same fronts as Heun's average),
-    // then each stage's output makes it consistent with its depth.
-    if (fronts) {
-        if (!corrector) front_.grow(alpha_, dt, alpha2_);
-        std::vector<double>& alpha_out = corrector ? alpha2_ : alpha1_;
-        if (!corrector) alpha1_ = alpha2_;
-        front_.fix(h_out, active_, alpha_out);
-    }
+    if (fronts) front_.fix_done(h_out, active_, alpha_, alpha_out, true);
 }
 
 void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {
@@ -875,9 +885,10 @@ void Solver::step_once(double dt) {
             }
     }
     if (fv_.fronts == FrontTreatment::tracked) {
-        // The invariant correction (front.hpp) on the new state, within the columns it
-        // may be nonzero in; the step's CFL rate covers the cells it changed.
-        max_wave_rate_ = std::max(max_wave_rate_, front_.correct_invariants(h_, hu_, hv_, z_, g_n2_, bound_));
+        // The invariant correction (front.hpp) on the new state, which the last stage's
+        // fix() saw (order 1: h1_, of which h_ is a copy); the step's CFL rate covers the
+        // cells it changed.
+        max_wave_rate_ = std::max(max_wave_rate_, front_.correct_invariants(h_, hu_, hv_, z_, g_n2_));
     }
     state_changed_outside_ = false;
     time_ += dt;
