@@ -188,11 +188,17 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
                   "Stability study only: accept --cfl above 1, step above 0.5 without the positivity redo, and let the leap-frog "
                   "run past Courant number 1 (to see the failure)");
     sub->add_option("--nest-ratio", r.nest.ratio,
-                    "Coarse grid of this many times the scene's spacing west of --nest-x, sub-cycled (1: one uniform grid)")
+                    "Grids of this many times the scene's spacing, west to east between the --nest-x interfaces, sub-cycled: "
+                    "'4' is a coarse grid west of the interface and the scene's own east of it, '4,1,2' adds one twice as "
+                    "coarse east of a second interface (1: one uniform grid; docs/accuracy.md)")
         ->capture_default_str()
+        ->delimiter(',')
         ->check(in_range(Range::count(1, 16)));
-    sub->add_option("--nest-x", r.nest.x, "x of the nesting interface [m]; keep it in water that stays wet")
+    sub->add_option("--nest-x", r.nest.x,
+                    "x of the nesting interfaces, west to east [m]; keep them in water that stays wet or on ground the flow "
+                    "does not reach")
         ->capture_default_str()
+        ->delimiter(',')
         ->check(in_range(Range::any("m")));
     sub->add_option("--manning-n", s.default_manning_n, "Manning n where the scene has no manning_n [s m^-1/3]")
         ->capture_default_str()

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "common/error.hpp"
 
@@ -9,19 +10,9 @@ namespace flotsam::hydro {
 
 NestDef default_nest_def() { return NestDef{}; }
 
-namespace {
-constexpr int kLayers = 2;  // ghost layers of hydro::Solver
-
-int snapped_interface(const Scene& s, const NestDef& n) {
-    if (n.ratio < 2) fail(s.path, "--nest-ratio", "must be 2 or more for a nested run");
-    const int i = int(std::floor((n.x - s.grid.x_min_edge()) / s.grid.dx + 1e-9));
-    const int snapped = (i / n.ratio) * n.ratio;
-    if (snapped < 2 * n.ratio || s.grid.nx - snapped < 2 * n.ratio)
-        fail(s.path, "--nest-x", "the interface must leave at least 2 coarse and " + std::to_string(2 * n.ratio) + " fine columns");
-    return snapped;
+bool NestDef::nested() const {
+    return std::any_of(ratio.begin(), ratio.end(), [](int r) { return r > 1; });
 }
-
-}  // namespace
 
 int rows_ratio(int rows, int ratio) {
     int r = std::min(ratio, rows);
@@ -30,159 +21,264 @@ int rows_ratio(int rows, int ratio) {
 }
 
 namespace {
+constexpr int kLayers = 2;  // ghost layers of hydro::Solver
 
-// Block averages (rx x ry cells) of the scene west of the interface.
-Scene coarse_scene(const Scene& s, int rx, int ry, int i_nest) {
+// Each slab's ratio and first scene column (and the scene's nx after the last), from the
+// interfaces. An interface west of the finest slab is moved west to a whole number of the
+// coarser neighbour's cells from the scene's west edge; one east of it, east to a whole
+// number from the east edge.
+struct Layout {
+    std::vector<int> ratio, start;
+};
+
+Layout slab_layout(const Scene& s, const NestDef& n) {
+    Layout l;
+    l.ratio = n.ratio;
+    if (l.ratio.size() == n.x.size()) l.ratio.push_back(1);
+    if (l.ratio.size() != n.x.size() + 1)
+        fail(s.path, "--nest-ratio", "give one ratio per grid: as many as --nest-x interfaces, or one more");
+    if (!n.nested()) fail(s.path, "--nest-ratio", "must be 2 or more for a nested run");
+    for (int r : l.ratio)
+        if (r < 1) fail(s.path, "--nest-ratio", "ratios must be 1 or more");
+    const int finest = int(std::min_element(l.ratio.begin(), l.ratio.end()) - l.ratio.begin());
+    for (std::size_t k = 0; k + 1 < l.ratio.size(); ++k) {
+        const int a = l.ratio[k], b = l.ratio[k + 1], hi = std::max(a, b), lo = std::min(a, b);
+        if (a == b || hi % lo != 0)
+            fail(s.path, "--nest-ratio", "neighbouring grids need different ratios, the larger a multiple of the smaller");
+        if ((int(k) < finest) != (a > b))
+            fail(s.path, "--nest-ratio", "ratios must fall from the west to the finest grid and rise after it");
+    }
+    l.start.push_back(0);
+    for (std::size_t k = 0; k < n.x.size(); ++k) {
+        const int i = int(std::floor((n.x[k] - s.grid.x_min_edge()) / s.grid.dx + 1e-9));
+        const int r = std::max(l.ratio[k], l.ratio[k + 1]);
+        const int snapped = l.ratio[k] > l.ratio[k + 1] ? (i / r) * r : s.grid.nx - ((s.grid.nx - i) / r) * r;
+        l.start.push_back(snapped);
+    }
+    l.start.push_back(s.grid.nx);
+    for (std::size_t k = 0; k < l.ratio.size(); ++k) {
+        int need = 2 * l.ratio[k];  // two of its own cells, and two of a coarser neighbour's
+        if (k > 0) need = std::max(need, 2 * l.ratio[k - 1]);
+        if (k + 1 < l.ratio.size()) need = std::max(need, 2 * l.ratio[k + 1]);
+        if (l.start[k + 1] - l.start[k] < need)
+            fail(s.path, "--nest-x",
+                 "the interfaces must leave each grid at least 2 of its own cells and 2 of a coarser neighbour's (grid " +
+                     std::to_string(k + 1) + " has " + std::to_string(l.start[k + 1] - l.start[k]) + " scene columns, needs " +
+                     std::to_string(need) + ")");
+    }
+    return l;
+}
+
+// The scene's columns [i0, i1) in blocks of rx x ry cells (cell for cell where both are 1).
+Scene slab_scene(const Scene& s, int i0, int i1, int rx, int ry) {
     Scene c;
     c.path = s.path;
-    c.grid.nx = i_nest / rx;
+    c.grid = s.grid;
+    c.grid.nx = (i1 - i0) / rx;
     c.grid.ny = s.grid.ny / ry;
     c.grid.dx = s.grid.dx * rx;
     c.grid.dy = s.grid.dy * ry;
-    c.grid.x0 = s.grid.x0 + 0.5 * (rx - 1) * s.grid.dx;
+    c.grid.x0 = s.grid.x(i0) + 0.5 * (rx - 1) * s.grid.dx;
     c.grid.y0 = s.grid.y0 + 0.5 * (ry - 1) * s.grid.dy;
-    auto average = [&](const std::vector<double>& f) {
-        std::vector<double> out;
+    auto block = [&](const auto& f) {
+        std::remove_cvref_t<decltype(f)> out;
         if (f.empty()) return out;
-        out.assign(c.grid.size(), 0.0);
+        out.reserve(c.grid.size());
         for (int J = 0; J < c.grid.ny; ++J)
             for (int I = 0; I < c.grid.nx; ++I) {
+                if (rx * ry == 1) {
+                    out.push_back(f[s.grid.index(i0 + I, J)]);
+                    continue;
+                }
                 double sum = 0.0;
                 for (int b = 0; b < ry; ++b)
-                    for (int a = 0; a < rx; ++a) sum += f[s.grid.index(I * rx + a, J * ry + b)];
-                out[c.grid.index(I, J)] = sum / double(rx * ry);
+                    for (int a = 0; a < rx; ++a) sum += f[s.grid.index(i0 + I * rx + a, J * ry + b)];
+                out.push_back(sum / double(rx * ry));
             }
         return out;
     };
-    c.z = average(s.z);
-    c.manning_n = average(s.manning_n);
-    c.eta0 = average(s.eta0);
-    c.u0 = average(s.u0);
-    c.v0 = average(s.v0);
+    c.z = block(s.z);
+    c.manning_n = block(s.manning_n);
+    c.eta0 = block(s.eta0);
+    c.u0 = block(s.u0);
+    c.v0 = block(s.v0);
+    if (rx * ry == 1) c.building = block(s.building);
     return c;
 }
 
-// The scene east of the interface, cell for cell.
-Scene fine_scene(const Scene& s, int i_nest) {
-    Scene f;
-    f.path = s.path;
-    f.grid = s.grid;
-    f.grid.nx = s.grid.nx - i_nest;
-    f.grid.x0 = s.grid.x(i_nest);
-    auto crop = [&](const auto& v) {
-        std::remove_cvref_t<decltype(v)> out;
-        if (v.empty()) return out;
-        out.reserve(f.grid.size());
-        for (int j = 0; j < f.grid.ny; ++j)
-            for (int i = 0; i < f.grid.nx; ++i) out.push_back(v[s.grid.index(i + i_nest, j)]);
-        return out;
-    };
-    f.z = crop(s.z);
-    f.manning_n = crop(s.manning_n);
-    f.building = crop(s.building);
-    f.eta0 = crop(s.eta0);
-    f.u0 = crop(s.u0);
-    f.v0 = crop(s.v0);
-    return f;
-}
-
-PhysicsDef side_def(PhysicsDef d, Side nested_side) {
-    (nested_side == Side::east ? d.east : d.west).kind = BoundaryKind::nested;
+PhysicsDef slab_def(PhysicsDef d, bool west_nested, bool east_nested) {
+    if (west_nested) d.west.kind = BoundaryKind::nested;
+    if (east_nested) d.east.kind = BoundaryKind::nested;
     return d;
 }
+
+// Ground of a slab's ghost cells beyond its side (west: columns before i0, east: from i1),
+// layer by layer (GhostState's layout): the scene's cells there in the slab's blocks.
+std::vector<double> ghost_bed(const Scene& s, int i0, int i1, int rx, int ry, Side side) {
+    const int ny = s.grid.ny / ry;
+    std::vector<double> z(std::size_t(kLayers * ny));
+    for (int L = 1; L <= kLayers; ++L)
+        for (int J = 0; J < ny; ++J) {
+            const int first = side == Side::west ? i0 - L * rx : i1 + (L - 1) * rx;
+            double& out = z[std::size_t((L - 1) * ny + J)];
+            if (rx * ry == 1) {
+                out = s.z[s.grid.index(first, J)];
+                continue;
+            }
+            double sum = 0.0;
+            for (int b = 0; b < ry; ++b)
+                for (int a = 0; a < rx; ++a) sum += s.z[s.grid.index(first + a, J * ry + b)];
+            out = sum / double(rx * ry);
+        }
+    return z;
+}
+
 }  // namespace
 
 NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest)
-    : grid_(scene.grid),
-      def_(def),
-      rx_(nest.ratio),
-      ry_(rows_ratio(scene.grid.ny, nest.ratio)),
-      i_nest_(snapped_interface(scene, nest)),
-      z_(scene.z),
-      coarse_(coarse_scene(scene, rx_, ry_, i_nest_), side_def(def, Side::east), fv),
-      fine_(fine_scene(scene, i_nest_), side_def(def, Side::west), fv) {
-    const int rx = rx_, ry = ry_, ny = grid_.ny, ncy = ny / ry;
-    // Ghost ground: the fine grid's west ghosts stand on the scene's own cells west of
-    // the interface; the coarse grid's east ghosts on block averages east of it.
-    std::vector<double> zf(std::size_t(kLayers * ny)), zc(std::size_t(kLayers * ncy));
-    for (int L = 1; L <= kLayers; ++L) {
-        for (int j = 0; j < ny; ++j) zf[std::size_t((L - 1) * ny + j)] = z_[grid_.index(i_nest_ - L, j)];
-        for (int J = 0; J < ncy; ++J) {
-            double sum = 0.0;
-            for (int b = 0; b < ry; ++b)
-                for (int a = 0; a < rx; ++a) sum += z_[grid_.index(i_nest_ + (L - 1) * rx + a, J * ry + b)];
-            zc[std::size_t((L - 1) * ncy + J)] = sum / double(rx * ry);
-        }
+    : grid_(scene.grid), def_(def), z_(scene.z) {
+    const Layout l = slab_layout(scene, nest);
+    const std::size_t n = l.ratio.size();
+    slabs_.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const int rx = l.ratio[k], ry = rows_ratio(scene.grid.ny, rx), i0 = l.start[k], i1 = l.start[k + 1];
+        slabs_.push_back(Slab{i0, i1, rx, ry, Solver(slab_scene(scene, i0, i1, rx, ry), slab_def(def, k > 0, k + 1 < n), fv)});
+        if (k > 0) slabs_.back().solver.set_ghost_bed(Side::west, ghost_bed(scene, i0, i1, rx, ry, Side::west));
+        if (k + 1 < n) slabs_.back().solver.set_ghost_bed(Side::east, ghost_bed(scene, i0, i1, rx, ry, Side::east));
     }
-    fine_.set_ghost_bed(Side::west, zf);
-    coarse_.set_ghost_bed(Side::east, zc);
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+        Interface f;
+        f.west = int(k);
+        f.coarse_west = slabs_[k].rx > slabs_[k + 1].rx;
+        const Slab &c = slabs_[std::size_t(f.coarse())], &fn = slabs_[std::size_t(f.fine())];
+        f.rx = c.rx / fn.rx;
+        if (c.ry % fn.ry != 0)
+            fail(scene.path, "--nest-ratio",
+                 "the grids' cells along y do not nest (" + std::to_string(scene.grid.ny) + " rows): choose ratios that divide them");
+        f.ry = c.ry / fn.ry;
+        f.fine_bed = ghost_bed(scene, fn.i0, fn.i1, fn.rx, fn.ry, f.fine_side());
+        f.coarse_bed = ghost_bed(scene, c.i0, c.i1, c.rx, c.ry, f.coarse_side());
+        interfaces_.push_back(std::move(f));
+    }
+    order_.resize(n);
+    std::iota(order_.begin(), order_.end(), 0);
+    std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) { return slabs_[std::size_t(a)].rx > slabs_[std::size_t(b)].rx; });
+    coarsest_ = slabs_[std::size_t(order_.front())].rx;
+    finest_ = slabs_[std::size_t(order_.back())].rx;
 }
 
 std::string NestedSolver::description() const {
-    return coarse_.description() + "; nested: " + std::to_string(coarse_.grid().dx) +
-           (ry_ == rx_ ? std::string() : " x " + std::to_string(coarse_.grid().dy)) +
-           " m west of x = " + std::to_string(grid_.x_min_edge() + i_nest_ * grid_.dx) + " m, sub-cycled, refluxed";
+    std::string slabs;
+    for (const Slab& b : slabs_) {
+        if (b.rx == finest_) continue;
+        const Grid& g = b.solver.grid();
+        const double x0 = grid_.x_min_edge() + b.i0 * grid_.dx, x1 = grid_.x_min_edge() + b.i1 * grid_.dx;
+        slabs += (slabs.empty() ? "" : ", ") + std::to_string(g.dx) + (b.ry == b.rx ? std::string() : " x " + std::to_string(g.dy)) +
+                 " m" +
+                 (b.i0 == 0             ? " west of x = " + std::to_string(x1)
+                  : b.i1 == grid_.nx ? " east of x = " + std::to_string(x0)
+                                         : " from x = " + std::to_string(x0) + " to " + std::to_string(x1)) +
+                 " m";
+    }
+    return slabs_.front().solver.description() + "; nested: " + slabs + ", sub-cycled, refluxed";
 }
 
 void NestedSolver::set_time(double t) {
     time_ = t;
-    coarse_.set_time(t);
-    fine_.set_time(t);
+    for (Slab& b : slabs_) b.solver.set_time(t);
 }
 
 SolverStats NestedSolver::stats() const {
-    SolverStats s = coarse_.stats();
-    s.negative_depth_fixes += fine_.stats().negative_depth_fixes;
-    s.positivity_redos += fine_.stats().positivity_redos;
-    s.min_depth_seen = std::min(s.min_depth_seen, fine_.stats().min_depth_seen);
-    s.cell_stages += fine_.stats().cell_stages;
-    s.cell_stages_dry += fine_.stats().cell_stages_dry;
+    SolverStats s = slabs_.front().solver.stats();
+    for (std::size_t k = 1; k < slabs_.size(); ++k) {
+        const SolverStats& f = slabs_[k].solver.stats();
+        s.negative_depth_fixes += f.negative_depth_fixes;
+        s.positivity_redos += f.positivity_redos;
+        s.min_depth_seen = std::min(s.min_depth_seen, f.min_depth_seen);
+        s.cell_stages += f.cell_stages;
+        s.cell_stages_dry += f.cell_stages_dry;
+    }
     return s;
 }
 
-GhostState NestedSolver::coarse_ghosts_from_fine() const {
-    const int rx = rx_, ry = ry_, ncy = grid_.ny / ry;
+double NestedSolver::volume() const {
+    double v = 0.0;
+    for (const Slab& b : slabs_) v += b.solver.volume();
+    return v;
+}
+
+std::vector<std::vector<double>*> NestedSolver::state_arrays() {
+    std::vector<std::vector<double>*> a;
+    for (Slab& b : slabs_)
+        for (std::vector<double>* v : b.solver.state_arrays()) a.push_back(v);
+    return a;
+}
+
+GhostState NestedSolver::coarse_ghosts_from_fine(const Interface& f) const {
+    const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+    const int rx = f.rx, ry = f.ry, ncy = slabs_[std::size_t(f.coarse())].solver.grid().ny, nxf = fine.grid().nx;
     GhostState g;
     for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ncy), 0.0);
     for (int L = 1; L <= kLayers; ++L)
         for (int J = 0; J < ncy; ++J) {
-            double h = 0.0, hu = 0.0, hv = 0.0;
+            double h = 0.0, hu = 0.0, hv = 0.0, wet_level = 0.0, wet_h = 0.0;
+            int wet = 0;
+            const int first = f.coarse_west ? (L - 1) * rx : nxf - L * rx;  // the fine cells under ghost layer L
             for (int b = 0; b < ry; ++b)
                 for (int a = 0; a < rx; ++a) {
-                    const int i = (L - 1) * rx + a, j = J * ry + b;
-                    h += fine_.depth(i, j);
-                    hu += fine_.x_discharge(i, j);
-                    hv += fine_.y_discharge(i, j);
+                    const int i = first + a, j = J * ry + b;
+                    h += fine.depth(i, j);
+                    hu += fine.x_discharge(i, j);
+                    hv += fine.y_discharge(i, j);
+                    if (fine.depth(i, j) > def_.dry_depth) {
+                        ++wet;
+                        wet_level += fine.level(i, j);
+                        wet_h += fine.depth(i, j);
+                    }
                 }
             const std::size_t q = std::size_t((L - 1) * ncy + J);
             const double inv = 1.0 / double(rx * ry);
             g.h[q] = h * inv;
             g.hu[q] = hu * inv;
             g.hv[q] = hv * inv;
+            if (wet > 0 && wet < rx * ry) {
+                // Water beside dry fine ground (a shore, a building): the block's mean depth
+                // over the ghost's mean ground would lift the level; the wet cells' level
+                // over it keeps water at rest at rest (the reflux keeps the volume).
+                const double depth = std::max(0.0, wet_level / wet - f.coarse_bed[q]);
+                g.h[q] = depth;
+                g.hu[q] = depth * hu / wet_h;
+                g.hv[q] = depth * hv / wet_h;
+            }
         }
     return g;
 }
 
-GhostState NestedSolver::fine_ghosts_from_coarse() const {
-    const Grid& cg = coarse_.grid();
-    const int ny = grid_.ny, I = cg.nx - 1;  // the coarse column along the interface
+GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
+    const Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
+    const Grid &cg = coarse.grid(), &fg = slabs_[std::size_t(f.fine())].solver.grid();
+    const int ny = fg.ny, I = f.coarse_west ? cg.nx - 1 : 0;  // the coarse column along the interface
     const double dry = def_.dry_depth;
     GhostState g;
     for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ny), 0.0);
     for (int j = 0; j < ny; ++j) {
         // Linear in y between the coarse row centres (held beyond the first and last);
         // from a single cell where a neighbour is dry.
-        const double fy = std::clamp((grid_.y(j) - cg.y0) / cg.dy, 0.0, double(cg.ny - 1));
+        const double fy = std::clamp((fg.y(j) - cg.y0) / cg.dy, 0.0, double(cg.ny - 1));
         const int J0 = std::min(int(fy), cg.ny - 2 < 0 ? 0 : cg.ny - 2);
         const int J1 = std::min(J0 + 1, cg.ny - 1);
         double w = fy - J0;
-        if (coarse_.depth(I, J0) <= dry || coarse_.depth(I, J1) <= dry) w = w < 0.5 ? 0.0 : 1.0;
-        const double eta = (1 - w) * coarse_.level(I, J0) + w * coarse_.level(I, J1);
-        const double u = (1 - w) * coarse_.x_velocity(I, J0) + w * coarse_.x_velocity(I, J1);
-        const double v = (1 - w) * coarse_.y_velocity(I, J0) + w * coarse_.y_velocity(I, J1);
+        bool dry_source = false;  // a dry coarse cell gives no water to lower fine ground beside it
+        if (coarse.depth(I, J0) <= dry || coarse.depth(I, J1) <= dry) {
+            w = w < 0.5 ? 0.0 : 1.0;
+            dry_source = coarse.depth(I, w == 0.0 ? J0 : J1) <= dry;
+        }
+        const double eta = (1 - w) * coarse.level(I, J0) + w * coarse.level(I, J1);
+        const double u = (1 - w) * coarse.x_velocity(I, J0) + w * coarse.x_velocity(I, J1);
+        const double v = (1 - w) * coarse.y_velocity(I, J0) + w * coarse.y_velocity(I, J1);
         for (int L = 1; L <= kLayers; ++L) {
             const std::size_t q = std::size_t((L - 1) * ny + j);
-            const double h = std::max(0.0, eta - z_[grid_.index(i_nest_ - L, j)]);
+            const double h = dry_source ? 0.0 : std::max(0.0, eta - f.fine_bed[q]);
             g.h[q] = h;
             g.hu[q] = h > dry ? h * u : 0.0;
             g.hv[q] = h > dry ? h * v : 0.0;
@@ -191,18 +287,22 @@ GhostState NestedSolver::fine_ghosts_from_coarse() const {
     return g;
 }
 
-void NestedSolver::reflux() {
-    const int ry = ry_, ncy = grid_.ny / ry, I = coarse_.grid().nx - 1;
-    const std::vector<double>& tc = coarse_.side_transfer(Side::east);
-    const std::vector<double>& tf = fine_.side_transfer(Side::west);
-    const double dxc = coarse_.grid().dx;
-    std::vector<double>& h = coarse_.depth_data();
+void NestedSolver::reflux(const Interface& f) {
+    Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
+    const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+    const int ry = f.ry, ncy = coarse.grid().ny, I = f.coarse_west ? coarse.grid().nx - 1 : 0;
+    // Transfers are positive toward +x: out of a coarse cell west of the interface, into
+    // one east of it.
+    const std::vector<double>& tc = coarse.side_transfer(f.coarse_side());
+    const std::vector<double>& tf = fine.side_transfer(f.fine_side());
+    const double dxc = coarse.grid().dx;
+    std::vector<double>& h = coarse.depth_data();
     for (int J = 0; J < ncy; ++J) {
         double fine_sum = 0.0;  // the fine faces along coarse row J, per unit length of it
         for (int b = 0; b < ry; ++b) fine_sum += tf[std::size_t(J * ry + b)];
         fine_sum /= double(ry);
-        double& hc = h[coarse_.at(I, J)];
-        hc += (tc[std::size_t(J)] - fine_sum) / dxc;
+        double& hc = h[coarse.at(I, J)];
+        hc += (f.coarse_west ? tc[std::size_t(J)] - fine_sum : fine_sum - tc[std::size_t(J)]) / dxc;
         if (hc < 0.0) {
             hc = 0.0;
             ++reflux_clamps_;
@@ -211,81 +311,125 @@ void NestedSolver::reflux() {
 }
 
 double NestedSolver::stable_dt() const {
-    const double coarse = coarse_.stable_dt(), fine = fine_.stable_dt();
-    const double ratio = coarse / fine;
-    if (!(ratio > 1.0)) return coarse;
-    const double up = std::ceil(ratio - 1e-9), down = std::floor(ratio + 1e-9);
-    // Cell-updates per simulated second: the coarse cells once per coarse step, the
-    // fine cells once per sub-step.
-    const double nc = double(coarse_.grid().size()), nf = double(fine_.grid().size());
-    const double cost_coarse_step = (nc + up * nf) / coarse, cost_whole_fine = (nc + down * nf) / (down * fine);
-    return cost_whole_fine < cost_coarse_step ? down * fine : coarse;
+    // The coarsest slabs take one step; each other slab k ceil(dt / limit_k) sub-steps.
+    double coarse = slabs_[std::size_t(order_.front())].solver.stable_dt();
+    std::vector<double> limit(slabs_.size());
+    for (std::size_t k = 0; k < slabs_.size(); ++k) {
+        limit[k] = slabs_[k].solver.stable_dt();
+        if (slabs_[k].rx == coarsest_) coarse = std::min(coarse, limit[k]);
+    }
+    // Cell-updates per simulated second, the slabs in stepping order.
+    auto cost = [&](double dt) {
+        double updates = 0.0;
+        for (int k : order_) {
+            const Slab& b = slabs_[std::size_t(k)];
+            const double steps = b.rx == coarsest_ ? 1.0 : std::ceil(dt / limit[std::size_t(k)] - 1e-9);
+            updates += steps * double(b.solver.grid().size());
+        }
+        return updates / dt;
+    };
+    // The coarse step, or a whole number of a finer slab's steps at its limit.
+    double best = coarse, best_cost = -1.0;
+    for (int k : order_) {
+        const double ratio = coarse / limit[std::size_t(k)];
+        if (slabs_[std::size_t(k)].rx == coarsest_ || !(ratio > 1.0)) continue;
+        if (best_cost < 0.0) best_cost = cost(coarse);
+        const double down = std::floor(ratio + 1e-9), dt = down * limit[std::size_t(k)];
+        const double c = cost(dt);
+        if (c < best_cost) {
+            best = dt;
+            best_cost = c;
+        }
+    }
+    return best;
 }
 
 void NestedSolver::step(double dt) {
     const double t0 = time_, t1 = time_ + dt;
-    const GhostState from_fine = coarse_ghosts_from_fine();
-    coarse_.set_nested_ghosts(Side::east, t0, from_fine, t0, from_fine);
-    const GhostState before = fine_ghosts_from_coarse();
-    coarse_.reset_side_transfer();
-    fine_.reset_side_transfer();
-
-    coarse_.step(dt);
-    cell_updates_ += double(coarse_.grid().size());
-    fine_.set_nested_ghosts(Side::west, t0, before, t1, fine_ghosts_from_coarse());
-    // Sub-steps: as few as the fine CFL allows, of equal length over what is left.
-    while (fine_.time() < t1 - 1e-12 * std::max(1.0, t1)) {
-        const double left = t1 - fine_.time();
-        const double n = std::ceil(left / fine_.stable_dt() - 1e-9);
-        const double dts = n <= 1.0 ? left : left / n;
-        fine_.step(dts);
-        ++fine_steps_;
-        cell_updates_ += double(fine_.grid().size());
+    for (Interface& f : interfaces_) {
+        const GhostState from_fine = coarse_ghosts_from_fine(f);
+        slabs_[std::size_t(f.coarse())].solver.set_nested_ghosts(f.coarse_side(), t0, from_fine, t0, from_fine);
+        f.before = fine_ghosts_from_coarse(f);
     }
-    fine_.set_time(t1);
-    coarse_.set_time(t1);
-    reflux();
+    for (Slab& b : slabs_) b.solver.reset_side_transfer();
+    for (int k : order_) {
+        Slab& b = slabs_[std::size_t(k)];
+        // Its ghosts from coarser neighbours, which have stepped: linear in time over the step.
+        for (const Interface& f : interfaces_)
+            if (f.fine() == k) b.solver.set_nested_ghosts(f.fine_side(), t0, f.before, t1, fine_ghosts_from_coarse(f));
+        if (b.rx == coarsest_) {
+            b.solver.step(dt);
+            cell_updates_ += double(b.solver.grid().size());
+            continue;
+        }
+        // Sub-steps: as few as the slab's CFL allows, of equal length over what is left.
+        while (b.solver.time() < t1 - 1e-12 * std::max(1.0, t1)) {
+            const double left = t1 - b.solver.time();
+            const double n = std::ceil(left / b.solver.stable_dt() - 1e-9);
+            const double dts = n <= 1.0 ? left : left / n;
+            b.solver.step(dts);
+            if (b.rx == finest_) ++fine_steps_;
+            cell_updates_ += double(b.solver.grid().size());
+        }
+    }
+    for (Slab& b : slabs_) b.solver.set_time(t1);
+    for (const Interface& f : interfaces_) reflux(f);
     time_ = t1;
 }
 
+const NestedSolver::Slab& NestedSolver::slab_of(int i) const {
+    for (const Slab& b : slabs_)
+        if (i < b.i1) return b;
+    return slabs_.back();
+}
+
 double NestedSolver::depth(int i, int j) const {
-    if (i >= i_nest_) return fine_.depth(i - i_nest_, j);
-    const int I = i / rx_, J = j / ry_;
-    if (coarse_.depth(I, J) <= def_.dry_depth) return 0.0;
-    return std::max(0.0, coarse_.level(I, J) - z_[grid_.index(i, j)]);
+    const Slab& b = slab_of(i);
+    if (b.rx * b.ry == 1) return b.solver.depth(i - b.i0, j);
+    const int I = (i - b.i0) / b.rx, J = j / b.ry;
+    if (b.solver.depth(I, J) <= def_.dry_depth) return 0.0;
+    return std::max(0.0, b.solver.level(I, J) - z_[grid_.index(i, j)]);
 }
 
 void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double* v) const {
-    const int split = std::clamp(i_nest_, i0, i1);  // the range's first fine cell
-    if (split < i1) fine_.state_row(j, split - i_nest_, i1 - i_nest_, h + (split - i0), u + (split - i0), v + (split - i0));
-    // West of the interface: as depth() and x_velocity(), the coarse cell's level over
-    // the scene's ground.
     const double dry = def_.dry_depth;
-    const int J = j / ry_;
-    for (int I = i0 / rx_; I * rx_ < split; ++I) {
-        const double h_coarse = coarse_.depth(I, J);
-        const bool coarse_wet = h_coarse > dry;
-        const double level = coarse_.level(I, J), u_coarse = coarse_.x_velocity(I, J), v_coarse = coarse_.y_velocity(I, J);
-        // A non-finite coarse state is passed on as it is, so the state checks name its cells.
-        const bool finite = std::isfinite(h_coarse) && std::isfinite(u_coarse) && std::isfinite(v_coarse);
-        for (int i = std::max(i0, I * rx_); i < std::min(split, (I + 1) * rx_); ++i) {
-            const double d = !finite ? h_coarse : coarse_wet ? std::max(0.0, level - z_[grid_.index(i, j)]) : 0.0;
-            const bool wet = !finite || d > dry;
-            h[i - i0] = d;
-            u[i - i0] = wet ? u_coarse : 0.0;
-            v[i - i0] = wet ? v_coarse : 0.0;
+    for (const Slab& b : slabs_) {
+        const int lo = std::max(i0, b.i0), hi = std::min(i1, b.i1);
+        if (lo >= hi) continue;
+        if (b.rx * b.ry == 1) {
+            b.solver.state_row(j, lo - b.i0, hi - b.i0, h + (lo - i0), u + (lo - i0), v + (lo - i0));
+            continue;
+        }
+        // A coarse slab: as depth() and x_velocity(), the coarse cell's level over the
+        // scene's ground.
+        const int J = j / b.ry;
+        for (int I = (lo - b.i0) / b.rx; b.i0 + I * b.rx < hi; ++I) {
+            const double h_coarse = b.solver.depth(I, J);
+            const bool coarse_wet = h_coarse > dry;
+            const double level = b.solver.level(I, J), u_coarse = b.solver.x_velocity(I, J), v_coarse = b.solver.y_velocity(I, J);
+            // A non-finite coarse state is passed on as it is, so the state checks name its cells.
+            const bool finite = std::isfinite(h_coarse) && std::isfinite(u_coarse) && std::isfinite(v_coarse);
+            for (int i = std::max(lo, b.i0 + I * b.rx); i < std::min(hi, b.i0 + (I + 1) * b.rx); ++i) {
+                const double d = !finite ? h_coarse : coarse_wet ? std::max(0.0, level - z_[grid_.index(i, j)]) : 0.0;
+                const bool wet = !finite || d > dry;
+                h[i - i0] = d;
+                u[i - i0] = wet ? u_coarse : 0.0;
+                v[i - i0] = wet ? v_coarse : 0.0;
+            }
         }
     }
 }
 
 double NestedSolver::x_velocity(int i, int j) const {
-    if (i >= i_nest_) return fine_.x_velocity(i - i_nest_, j);
-    return depth(i, j) > def_.dry_depth ? coarse_.x_velocity(i / rx_, j / ry_) : 0.0;
+    const Slab& b = slab_of(i);
+    if (b.rx * b.ry == 1) return b.solver.x_velocity(i - b.i0, j);
+    return depth(i, j) > def_.dry_depth ? b.solver.x_velocity((i - b.i0) / b.rx, j / b.ry) : 0.0;
 }
 
 double NestedSolver::y_velocity(int i, int j) const {
-    if (i >= i_nest_) return fine_.y_velocity(i - i_nest_, j);
-    return depth(i, j) > def_.dry_depth ? coarse_.y_velocity(i / rx_, j / ry_) : 0.0;
+    const Slab& b = slab_of(i);
+    if (b.rx * b.ry == 1) return b.solver.y_velocity(i - b.i0, j);
+    return depth(i, j) > def_.dry_depth ? b.solver.y_velocity((i - b.i0) / b.rx, j / b.ry) : 0.0;
 }
 
 }  // namespace flotsam::hydro

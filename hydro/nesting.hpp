@@ -1,27 +1,31 @@
-// Two grids for one scene: model no more than the scene needs.
+// Grids of different spacing side by side for one scene: model no more than the scene needs.
 //
 // In the flume the water is 0.88 m deep, so the long-wave speed sqrt(g h) ≈ 2.9 m/s sets
 // the time step of the whole grid, while the flow there is a smooth, nearly 1D wave that
 // a coarse grid resolves. The city, a few centimetres deep, needs the fine grid but
-// tolerates a step several times longer. So: a coarse grid (`ratio` × the scene's
-// spacing, the scene's cells averaged in blocks) west of x = `x`, the scene's own grid
-// east of it, and per coarse step as many fine sub-steps as the fine grid's CFL asks.
+// tolerates a step several times longer; and where no debris goes (the far east of a
+// port) a coarser grid serves again. So: north-south slabs, west to east, each with its
+// own spacing (`ratio` × the scene's, the scene's cells averaged in blocks), and per step
+// of the coarsest as many sub-steps of each finer slab as its own CFL asks.
 //
-// Coupling across the north-south interface (two-way, with time sub-cycling):
-//   1. the coarse grid steps from t to t + Δt; its east ghost cells hold the block
-//      averages of the fine cells next to the interface at t;
-//   2. the fine grid sub-steps to t + Δt; its west ghost cells take the coarse level
-//      and velocity (linear in y, linear in time between t and t + Δt) over the fine
-//      ghost cells' own ground, so a lake at rest stays at rest across the interface;
+// Coupling across each north-south interface between a coarse and a fine slab (two-way,
+// with time sub-cycling), in the order coarsest slab first:
+//   1. the coarse slab steps from t to t + Δt; its ghost cells at the interface hold the
+//      block averages of the fine cells next to it at t;
+//   2. the fine slab sub-steps to t + Δt; its ghost cells there take the coarse level and
+//      velocity (linear in y, linear in time between t and t + Δt) over the fine ghost
+//      cells' own ground, so a lake at rest stays at rest across the interface;
 //   3. refluxing: the coarse cells along the interface get the volume the fine faces
 //      actually passed instead of the coarse face's estimate, so the total volume is
 //      conserved to round-off. (Momentum is not refluxed: the momentum mismatch is of
 //      the size of the interface's truncation error.)
 //
-// Keep the interface in water that stays wet and smooth (the flume's slope at
-// 0.2–0.3 m depth is a good place): the coupling is first order there in x.
+// Keep each interface in water that stays wet and smooth (the flume's slope at 0.2–0.3 m
+// depth is a good place), or on ground the flow does not reach: the coupling is first
+// order there in x.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "formats/scene.hpp"
@@ -29,9 +33,19 @@
 
 namespace flotsam::hydro {
 
+// The slabs, west to east: ratio[k] × the scene's spacing between interfaces x[k - 1]
+// and x[k] (the scene's edges at the ends). Ratios fall from the west to the finest slab
+// and rise after it; neighbours differ, the larger a multiple of the smaller. One ratio
+// fewer than slabs means the scene's own grid (1) east of the last interface: {x, ratio}
+// = a coarse grid west of x, the scene's grid east of it.
 struct NestDef {
-    double x = -2.0;  // interface [m]; moved west to the nearest multiple of `ratio` cells
-    int ratio = 1;    // coarse spacing / scene spacing (2, 3, 4 ...); 1: one uniform grid, no nesting
+    std::vector<double> x{-2.0};  // interfaces [m], west to east; each moved toward its coarser slab's edge of the scene to a whole number of that slab's cells
+    std::vector<int> ratio{1};    // per slab: its spacing / the scene's (1, 2, 3, 4 ...); all 1: one uniform grid, no nesting
+    NestDef() = default;
+    NestDef(double x1, int ratio1) : x{x1}, ratio{ratio1} {}
+    NestDef(std::vector<double> xs, std::vector<int> ratios) : x(std::move(xs)), ratio(std::move(ratios)) {}
+    // More than one grid (some ratio above 1).
+    bool nested() const;
 };
 // The coarse grid's ratio along y: `ratio`, or where the scene's rows are not a multiple
 // of it, the largest number below it that divides them (50 rows, ratio 4: 2), so that
@@ -42,16 +56,17 @@ NestDef default_nest_def();
 
 class NestedSolver {
 public:
-    // `def`'s west/south/north boundaries apply to the coarse grid, its east/south/north
-    // ones to the fine grid. The coarse cells are nest.ratio x rows_ratio(rows, ratio)
-    // scene cells. Errors (naming the option) when the interface leaves fewer than 2
-    // coarse or 2 × ratio fine columns.
+    // `def`'s west boundary applies to the west slab, its east one to the east slab, its
+    // south and north ones to every slab. A slab's cells are ratio x rows_ratio(rows,
+    // ratio) scene cells. Errors (naming the option) for ratios that do not nest and for
+    // interfaces that leave a slab fewer than 2 of its own cells or 2 of a coarser
+    // neighbour's.
     NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest);
 
-    // The coarse step (the fine grid sub-cycles inside it) [s]: the coarse grid's own, or
-    // a whole number of fine steps at their CFL limit when that costs fewer cell-updates
-    // per simulated second (a ratio of 2.07 then gives two fine sub-steps at the limit,
-    // not three at 69 % of it).
+    // The step of the coarsest slabs (the finer ones sub-cycle inside it) [s]: their own,
+    // or a whole number of a finer slab's steps at its CFL limit when that costs fewer
+    // cell-updates per simulated second (a ratio of 2.07 then gives two fine sub-steps at
+    // the limit, not three at 69 % of it).
     double stable_dt() const;
     void step(double dt);
 
@@ -60,18 +75,18 @@ public:
     const Grid& grid() const { return grid_; }  // the scene's grid (output, gauges)
     const PhysicsDef& def() const { return def_; }
     SolverStats stats() const;
-    double volume() const { return coarse_.volume() + fine_.volume(); }
-    // Cell updates done so far (coarse cells × coarse steps + fine cells × fine steps).
+    double volume() const;
+    // Cell updates done so far (each slab's cells × its steps).
     double cell_updates() const { return cell_updates_; }
-    // The scheme and the two grids in words (the flow file's `source`).
+    // The scheme and the slabs in words (the flow file's `source`).
     std::string description() const;
-    long fine_steps() const { return fine_steps_; }
-    int interface_column() const { return i_nest_; }  // first fine column on the scene grid
-    const Solver& coarse() const { return coarse_; }
-    const Solver& fine() const { return fine_; }
+    long fine_steps() const { return fine_steps_; }  // steps of the finest slab
+    int slabs() const { return int(slabs_.size()); }
+    const Solver& slab(int k) const { return slabs_[std::size_t(k)].solver; }  // west to east
+    const Solver& coarse() const { return slab(0); }
 
-    // The state on the scene's grid. West of the interface: the coarse cell's level over
-    // the scene's own ground (depth ≥ 0) and the coarse cell's velocity.
+    // The state on the scene's grid. In a coarse slab: the coarse cell's level over the
+    // scene's own ground (depth ≥ 0) and the coarse cell's velocity.
     double depth(int i, int j) const;
     double bed(int i, int j) const { return z_[grid_.index(i, j)]; }
     double level(int i, int j) const { return depth(i, j) + bed(i, j); }
@@ -80,26 +95,44 @@ public:
     // The three above for the cells i0 <= i < i1 of row j (as Solver::state_row).
     void state_row(int j, int i0, int i1, double* h, double* u, double* v) const;
 
-    double pump_level_at_stop() const { return coarse_.pump_level_at_stop(); }
-    void set_pump_level_at_stop(double v) { coarse_.set_pump_level_at_stop(v); }
-    // The coarse then the fine grid's exact state (Solver::state_arrays), for checkpoints.
-    std::vector<std::vector<double>*> state_arrays() {
-        std::vector<std::vector<double>*> a = coarse_.state_arrays();
-        for (std::vector<double>* v : fine_.state_arrays()) a.push_back(v);
-        return a;
-    }
+    double pump_level_at_stop() const { return slabs_.front().solver.pump_level_at_stop(); }
+    void set_pump_level_at_stop(double v) { slabs_.front().solver.set_pump_level_at_stop(v); }
+    // Each slab's exact state (Solver::state_arrays), west to east, for checkpoints.
+    std::vector<std::vector<double>*> state_arrays();
     long reflux_clamps() const { return reflux_clamps_; }  // interface cells refluxed below h = 0
 
 private:
-    GhostState fine_ghosts_from_coarse() const;
-    GhostState coarse_ghosts_from_fine() const;
-    void reflux();
+    struct Slab {
+        int i0, i1;  // scene columns [i0, i1)
+        int rx, ry;  // scene cells per cell along x and y
+        Solver solver;
+    };
+    // An interface between slabs `west` and `east` = west + 1; the coarse one's ghosts there
+    // are the fine one's block averages, the fine one's the coarse level over their own
+    // ground (layer by layer, as GhostState).
+    struct Interface {
+        int west = 0;
+        bool coarse_west = true;
+        int rx = 1, ry = 1;  // coarse cells per fine cell
+        std::vector<double> fine_bed, coarse_bed;  // ghost ground of each side
+        GhostState before;  // the fine side's ghosts at the start of the step
+        int coarse() const { return coarse_west ? west : west + 1; }
+        int fine() const { return coarse_west ? west + 1 : west; }
+        Side coarse_side() const { return coarse_west ? Side::east : Side::west; }
+        Side fine_side() const { return coarse_west ? Side::west : Side::east; }
+    };
+    GhostState fine_ghosts_from_coarse(const Interface& f) const;
+    GhostState coarse_ghosts_from_fine(const Interface& f) const;
+    void reflux(const Interface& f);
+    const Slab& slab_of(int i) const;  // the slab holding scene column i
 
     Grid grid_;
     PhysicsDef def_;
-    int rx_ = 1, ry_ = 1, i_nest_ = 0;  // coarse cells along x and y per scene cell; first fine column
-    std::vector<double> z_;             // scene bed [m]
-    Solver coarse_, fine_;
+    std::vector<double> z_;  // scene bed [m]
+    std::vector<Slab> slabs_;
+    std::vector<Interface> interfaces_;
+    std::vector<int> order_;  // slabs by ratio, coarsest first (west first among equals)
+    int coarsest_ = 1, finest_ = 1;
     double time_ = 0.0;
     double cell_updates_ = 0.0;
     long fine_steps_ = 0;

@@ -584,16 +584,22 @@ RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
         if (!b->series_file.empty())
             require_coverage(read_time_series_csv(b->series_file), 0.0, b->series_end == SeriesEnd::error ? run.duration : 0.0);
     if (run.scheme == Scheme::leapfrog) {
-        if (run.nest.ratio > 1)
+        if (run.nest.nested()) {
+            std::string ratios;
+            for (int r : run.nest.ratio) {
+                if (!ratios.empty()) ratios += ',';
+                ratios += std::to_string(r);
+            }
             fail("", "--nest-ratio",
-                 "nested grids are written for the finite-volume scheme: use --scheme fv with --nest-ratio " +
-                     std::to_string(run.nest.ratio) + ", or --scheme leapfrog with --nest-ratio 1");
+                 "nested grids are written for the finite-volume scheme: use --scheme fv with --nest-ratio " + ratios +
+                     ", or --scheme leapfrog with --nest-ratio 1");
+        }
         LeapfrogDef lf = run.leapfrog;
         lf.step_divides = run.output_interval;
         LeapfrogSolver solver(scene, physics, lf);
         return run_with(solver, scene, run, physics);
     }
-    if (run.nest.ratio > 1) {
+    if (run.nest.nested()) {
         NestedSolver solver(scene, physics, run.finite_volume, run.nest);
         return run_with(solver, scene, run, physics);
     }

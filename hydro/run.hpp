@@ -56,7 +56,7 @@ struct RunDef {
     Scheme scheme = Scheme::finite_volume;
     FiniteVolumeDef finite_volume;                  // --scheme fv only
     LeapfrogDef leapfrog = default_leapfrog_def();  // --scheme leapfrog only; its step divides output_interval
-    NestDef nest = default_nest_def();              // ratio > 1: coarse grid in the flume (hydro/nesting.hpp); fv only
+    NestDef nest = default_nest_def();              // nested(): coarse grids in the flume, or where no debris goes (hydro/nesting.hpp); fv only
     double arrival_depth = 0.025;                   // [m] threshold of the arrival-time map (the draft)
     double flood_depth = 0.001;                     // [m] threshold of the flooded flag and the runup
     double checkpoint_interval = 0.0;               // [s] simulated time between checkpoints; 0: none

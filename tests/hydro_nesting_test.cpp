@@ -177,3 +177,43 @@ TEST(Nesting, CoarseStepIsWholeFineStepsWhereThatIsCheaper) {
     EXPECT_NEAR(coarse / fine, 2.99, 0.001);
     EXPECT_NEAR(near_three, coarse, 1e-15);
 }
+
+// More slabs (NestDef with lists): a coarse grid west of x = 4 m, the scene's own to
+// x = 7.6 m, one twice as coarse east of it (on the shelf past its block); and a chain
+// 4, 2, 1 with the middle slab on the slope. Lake at rest, volume and the wave on the
+// shelf hold as with two grids.
+TEST(Nesting, ThreeSlabsKeepRestVolumeAndTheWave) {
+    for (const NestDef& nest : {NestDef({4.0, 7.6}, {4, 1, 2}), NestDef({2.4, 4.0}, {4, 2, 1})}) {
+        const Scene rest = mini_flume(0.0);
+        NestedSolver still(rest, test::closed_def(), {}, nest);
+        ASSERT_EQ(still.slabs(), 3);
+        run_to(still, 1.0);
+        double drift = 0.0, speed = 0.0;
+        for (int j = 0; j < rest.grid.ny; ++j)
+            for (int i = 0; i < rest.grid.nx; ++i) {
+                if (still.depth(i, j) <= 0.0) continue;
+                drift = std::max(drift, std::abs(still.level(i, j)));
+                speed = std::max(speed, std::hypot(still.x_velocity(i, j), still.y_velocity(i, j)));
+            }
+        EXPECT_LT(drift, 1e-12);
+        EXPECT_LT(speed, 1e-12);
+
+        const Scene scene = mini_flume(0.05);
+        Solver fine(scene, test::closed_def());
+        NestedSolver nested(scene, test::closed_def(), {}, nest);
+        const double v0 = nested.volume();
+        const int gi = scene.grid.cell_i(7.2), gj = 3;
+        double peak_fine = 0.0, peak_nested = 0.0;
+        for (double t = 0.05; t <= 6.0 + 1e-9; t += 0.05) {
+            run_to(fine, t);
+            run_to(nested, t);
+            peak_fine = std::max(peak_fine, fine.level(gi, gj));
+            peak_nested = std::max(peak_nested, nested.level(gi, gj));
+        }
+        std::printf("%s: peak fine %.5f, nested %.5f, work ratio %.3f\n", nested.description().c_str(), peak_fine, peak_nested,
+                    nested.cell_updates() / (double(fine.stats().steps) * double(scene.grid.size())));
+        EXPECT_LT(std::abs(peak_nested - peak_fine) / peak_fine, 0.03);
+        EXPECT_LT(std::abs(nested.volume() - v0) / v0, 1e-12);
+        EXPECT_EQ(nested.reflux_clamps(), 0);
+    }
+}
