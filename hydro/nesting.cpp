@@ -256,7 +256,8 @@ GhostState NestedSolver::coarse_ghosts_from_fine(const Interface& f) const {
 
 GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
     const Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
-    const Grid &cg = coarse.grid(), &fg = slabs_[std::size_t(f.fine())].solver.grid();
+    const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+    const Grid &cg = coarse.grid(), &fg = fine.grid();
     const int ny = fg.ny, I = f.coarse_west ? cg.nx - 1 : 0;  // the coarse column along the interface
     const double dry = def_.dry_depth;
     GhostState g;
@@ -268,7 +269,7 @@ GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
         const int J0 = std::min(int(fy), cg.ny - 2 < 0 ? 0 : cg.ny - 2);
         const int J1 = std::min(J0 + 1, cg.ny - 1);
         double w = fy - J0;
-        bool dry_source = false;  // a dry coarse cell gives no water to lower fine ground beside it
+        bool dry_source = false;  // the coarse cell the ghost takes is dry
         if (coarse.depth(I, J0) <= dry || coarse.depth(I, J1) <= dry) {
             w = w < 0.5 ? 0.0 : 1.0;
             dry_source = coarse.depth(I, w == 0.0 ? J0 : J1) <= dry;
@@ -278,7 +279,18 @@ GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
         const double v = (1 - w) * coarse.y_velocity(I, J0) + w * coarse.y_velocity(I, J1);
         for (int L = 1; L <= kLayers; ++L) {
             const std::size_t q = std::size_t((L - 1) * ny + j);
-            const double h = dry_source ? 0.0 : std::max(0.0, eta - f.fine_bed[q]);
+            if (dry_source) {
+                // The coarse grid sees dry ground here (a building or a shore averaged into
+                // its cell): a wall for the fine water, whose level and flow along it the
+                // ghost mirrors over its own ground.
+                const int e = f.coarse_west ? L - 1 : fg.nx - L;
+                const double he = fine.depth(e, j), h = he > dry ? std::max(0.0, fine.level(e, j) - f.fine_bed[q]) : 0.0;
+                g.h[q] = h;
+                g.hu[q] = h > dry ? -h * fine.x_velocity(e, j) : 0.0;
+                g.hv[q] = h > dry ? h * fine.y_velocity(e, j) : 0.0;
+                continue;
+            }
+            const double h = std::max(0.0, eta - f.fine_bed[q]);
             g.h[q] = h;
             g.hu[q] = h > dry ? h * u : 0.0;
             g.hv[q] = h > dry ? h * v : 0.0;

@@ -183,7 +183,14 @@ TEST(Nesting, CoarseStepIsWholeFineStepsWhereThatIsCheaper) {
 // 4, 2, 1 with the middle slab on the slope. Lake at rest, volume and the wave on the
 // shelf hold as with two grids.
 TEST(Nesting, ThreeSlabsKeepRestVolumeAndTheWave) {
-    for (const NestDef& nest : {NestDef({4.0, 7.6}, {4, 1, 2}), NestDef({2.4, 4.0}, {4, 2, 1})}) {
+    // The third has its east interface through the block (2 x 2 coarse cells half block,
+    // half water along its north and south sides): at rest all the same.
+    struct Case {
+        NestDef nest;
+        bool wave;  // also the wave on the shelf (not beside an interface)
+    };
+    for (const auto& [nest, wave] : {Case{NestDef({4.0, 7.6}, {4, 1, 2}), true}, Case{NestDef({2.4, 4.0}, {4, 2, 1}), true},
+                                     Case{NestDef({4.0, 7.44}, {4, 1, 2}), false}}) {
         const Scene rest = mini_flume(0.0);
         NestedSolver still(rest, test::closed_def(), {}, nest);
         ASSERT_EQ(still.slabs(), 3);
@@ -195,9 +202,10 @@ TEST(Nesting, ThreeSlabsKeepRestVolumeAndTheWave) {
                 drift = std::max(drift, std::abs(still.level(i, j)));
                 speed = std::max(speed, std::hypot(still.x_velocity(i, j), still.y_velocity(i, j)));
             }
-        EXPECT_LT(drift, 1e-12);
-        EXPECT_LT(speed, 1e-12);
+        EXPECT_LT(drift, 1e-12) << still.description();
+        EXPECT_LT(speed, 1e-12) << still.description();
 
+        if (!wave) continue;
         const Scene scene = mini_flume(0.05);
         Solver fine(scene, test::closed_def());
         NestedSolver nested(scene, test::closed_def(), {}, nest);
