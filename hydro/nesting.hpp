@@ -137,6 +137,8 @@ private:
     double cell_updates_ = 0.0;
     long fine_steps_ = 0;
     long reflux_clamps_ = 0;
+    double reflux_made_ = 0.0;   // water made by clamping refluxed cells at 0 [m^3]
+    double volume_start_ = 0.0;  // [m^3]
 };
 
 }  // namespace flotsam::hydro

@@ -225,3 +225,20 @@ TEST(Nesting, ThreeSlabsKeepRestVolumeAndTheWave) {
         EXPECT_EQ(nested.reflux_clamps(), 0);
     }
 }
+
+// An interface across ground that wets and dries (the block on the shelf, half in each
+// grid's cells, with the wave running onto it): the fine grid draws water through the
+// interface that the coarse cell beside it does not hold. Clamping that would make water
+// without a word (at 4 cm on the real layout, 44 m^3 in 140 s with an interface through
+// the city): the run stops and names --nest-x.
+TEST(Nesting, AnInterfaceWhereTheGridsSeeDifferentShoresIsRefused) {
+    Scene scene = mini_flume(0.05);
+    // A dry bank across the shelf's east end, 1 cm above still water, rows 0-7 only.
+    for (int j = 0; j < 8; ++j)
+        for (int i = 360; i < 400; ++i) scene.z[scene.grid.index(i, j)] = 0.01 * (i - 359) / 40.0 + 0.002 * j;
+    NestedSolver nested(scene, test::closed_def(), {}, NestDef({4.0, 7.3}, {4, 1, 4}));
+    const std::string msg = test::error_of([&] { run_to(nested, 8.0); });
+    EXPECT_NE(msg.find("--nest-x"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("wets and dries"), std::string::npos) << msg;
+    std::printf("%s\n", msg.c_str());
+}
