@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
 
 #include "cases/hydro_cases.hpp"
 #include "hydro/nesting.hpp"
@@ -38,19 +41,49 @@ void run_to(S& s, double t_end) {
     while (s.time() < t_end - 1e-12) s.step(std::min(s.stable_dt(), t_end - s.time()));
 }
 
+// The largest |level| and speed over the wet cells (a lake at rest: both 0).
+std::pair<double, double> rest_drift(const NestedSolver& s) {
+    double drift = 0.0, speed = 0.0;
+    for (int j = 0; j < s.grid().ny; ++j)
+        for (int i = 0; i < s.grid().nx; ++i) {
+            if (s.depth(i, j) <= 0.0) continue;
+            drift = std::max(drift, std::abs(s.level(i, j)));
+            speed = std::max(speed, std::hypot(s.x_velocity(i, j), s.y_velocity(i, j)));
+        }
+    return {drift, speed};
+}
+
+// The wave of mini_flume(0.05, rows) on the shelf (x = 7.2 m) over 6 s, on the uniform
+// grid and nested: the peaks and the nested run's relative volume change.
+struct ShelfWave {
+    double peak_fine = 0.0, peak_nested = 0.0, volume_change = 0.0;
+};
+ShelfWave shelf_wave(const NestDef& nest, int rows = 16) {
+    const Scene scene = mini_flume(0.05, rows);
+    Solver fine(scene, test::closed_def());
+    NestedSolver nested(scene, test::closed_def(), {}, nest);
+    const double v0 = nested.volume();
+    const int gi = scene.grid.cell_i(7.2), gj = 3;
+    ShelfWave w;
+    for (double t = 0.05; t <= 6.0 + 1e-9; t += 0.05) {
+        run_to(fine, t);
+        run_to(nested, t);
+        w.peak_fine = std::max(w.peak_fine, fine.level(gi, gj));
+        w.peak_nested = std::max(w.peak_nested, nested.level(gi, gj));
+    }
+    w.volume_change = std::abs(nested.volume() - v0) / v0;
+    std::printf("%s, %d rows: peak fine %.5f, nested %.5f\n", nested.description().c_str(), rows, w.peak_fine, w.peak_nested);
+    EXPECT_EQ(nested.reflux_clamps(), 0);
+    return w;
+}
+
 }  // namespace
 
 TEST(Nesting, LakeAtRestStaysAtRestAcrossTheInterface) {
     const Scene scene = mini_flume(0.0);
     NestedSolver s(scene, test::closed_def(), {}, NestDef{4.0, 4});
     run_to(s, 1.0);
-    double drift = 0.0, speed = 0.0;
-    for (int j = 0; j < scene.grid.ny; ++j)
-        for (int i = 0; i < scene.grid.nx; ++i) {
-            if (s.depth(i, j) <= 0.0) continue;
-            drift = std::max(drift, std::abs(s.level(i, j)));
-            speed = std::max(speed, std::hypot(s.x_velocity(i, j), s.y_velocity(i, j)));
-        }
+    const auto [drift, speed] = rest_drift(s);
     EXPECT_LT(drift, 1e-12);
     EXPECT_LT(speed, 1e-12);
 }
@@ -107,26 +140,10 @@ TEST(Nesting, RowsThatAreNotAMultipleOfTheRatio) {
     EXPECT_EQ(still.coarse().grid().ny, 6);
     EXPECT_NEAR(still.coarse().grid().dy, 0.06, 1e-15);
     run_to(still, 1.0);
-    double drift = 0.0;
-    for (int j = 0; j < rest.grid.ny; ++j)
-        for (int i = 0; i < rest.grid.nx; ++i)
-            if (still.depth(i, j) > 0.0) drift = std::max(drift, std::abs(still.level(i, j)));
-    EXPECT_LT(drift, 1e-12);
-    const Scene scene = mini_flume(0.05, 18);
-    Solver fine(scene, test::closed_def());
-    NestedSolver nested(scene, test::closed_def(), {}, NestDef{4.0, 4});
-    const double v0 = nested.volume();
-    const int gi = scene.grid.cell_i(7.2), gj = 3;
-    double peak_fine = 0.0, peak_nested = 0.0;
-    for (double t = 0.05; t <= 6.0 + 1e-9; t += 0.05) {
-        run_to(fine, t);
-        run_to(nested, t);
-        peak_fine = std::max(peak_fine, fine.level(gi, gj));
-        peak_nested = std::max(peak_nested, nested.level(gi, gj));
-    }
-    std::printf("18 rows, ratio 4 (coarse 4 x 3): peak fine %.5f, nested %.5f\n", peak_fine, peak_nested);
-    EXPECT_LT(std::abs(peak_nested - peak_fine) / peak_fine, 0.03);
-    EXPECT_LT(std::abs(nested.volume() - v0) / v0, 1e-12);
+    EXPECT_LT(rest_drift(still).first, 1e-12);
+    const ShelfWave w = shelf_wave(NestDef{4.0, 4}, 18);  // coarse cells 4 x 3
+    EXPECT_LT(std::abs(w.peak_nested - w.peak_fine) / w.peak_fine, 0.03);
+    EXPECT_LT(w.volume_change, 1e-12);
 }
 
 TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
@@ -195,34 +212,13 @@ TEST(Nesting, ThreeSlabsKeepRestVolumeAndTheWave) {
         NestedSolver still(rest, test::closed_def(), {}, nest);
         ASSERT_EQ(still.slabs(), 3);
         run_to(still, 1.0);
-        double drift = 0.0, speed = 0.0;
-        for (int j = 0; j < rest.grid.ny; ++j)
-            for (int i = 0; i < rest.grid.nx; ++i) {
-                if (still.depth(i, j) <= 0.0) continue;
-                drift = std::max(drift, std::abs(still.level(i, j)));
-                speed = std::max(speed, std::hypot(still.x_velocity(i, j), still.y_velocity(i, j)));
-            }
+        const auto [drift, speed] = rest_drift(still);
         EXPECT_LT(drift, 1e-12) << still.description();
         EXPECT_LT(speed, 1e-12) << still.description();
-
         if (!wave) continue;
-        const Scene scene = mini_flume(0.05);
-        Solver fine(scene, test::closed_def());
-        NestedSolver nested(scene, test::closed_def(), {}, nest);
-        const double v0 = nested.volume();
-        const int gi = scene.grid.cell_i(7.2), gj = 3;
-        double peak_fine = 0.0, peak_nested = 0.0;
-        for (double t = 0.05; t <= 6.0 + 1e-9; t += 0.05) {
-            run_to(fine, t);
-            run_to(nested, t);
-            peak_fine = std::max(peak_fine, fine.level(gi, gj));
-            peak_nested = std::max(peak_nested, nested.level(gi, gj));
-        }
-        std::printf("%s: peak fine %.5f, nested %.5f, work ratio %.3f\n", nested.description().c_str(), peak_fine, peak_nested,
-                    nested.cell_updates() / (double(fine.stats().steps) * double(scene.grid.size())));
-        EXPECT_LT(std::abs(peak_nested - peak_fine) / peak_fine, 0.03);
-        EXPECT_LT(std::abs(nested.volume() - v0) / v0, 1e-12);
-        EXPECT_EQ(nested.reflux_clamps(), 0);
+        const ShelfWave w = shelf_wave(nest);
+        EXPECT_LT(std::abs(w.peak_nested - w.peak_fine) / w.peak_fine, 0.03);
+        EXPECT_LT(w.volume_change, 1e-12);
     }
 }
 
