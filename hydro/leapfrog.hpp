@@ -71,6 +71,7 @@
 
 #include "formats/scene.hpp"
 #include "hydro/boundary.hpp"
+#include "hydro/column_range.hpp"
 #include "hydro/physics.hpp"
 
 namespace flotsam::hydro {
@@ -123,6 +124,8 @@ public:
         }
     }
     double volume() const;  // [m^3]
+    // The columns of row j outside which the state is exactly zero: here, the whole row.
+    ColumnRange wet_columns(int) const { return {0, grid_.nx}; }
     // Interior cells x steps since construction.
     double cell_updates() const { return double(stats_.steps) * double(grid_.size()); }
     // The scheme in words, with its fixed step (the flow file's `source`).

@@ -406,6 +406,15 @@ void NestedSolver::step(double dt) {
     }
 }
 
+ColumnRange NestedSolver::wet_columns(int j) const {
+    ColumnRange c;
+    for (const Slab& b : slabs_) {
+        const ColumnRange s = b.solver.wet_columns(j / b.ry);
+        if (!s.empty()) c = hull(c, {b.i0 + s.begin * b.rx, b.i0 + s.end * b.rx});
+    }
+    return c;
+}
+
 const NestedSolver::Slab& NestedSolver::slab_of(int i) const {
     for (const Slab& b : slabs_)
         if (i < b.i1) return b;

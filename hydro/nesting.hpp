@@ -76,6 +76,8 @@ public:
     const PhysicsDef& def() const { return def_; }
     SolverStats stats() const;
     double volume() const;
+    // The scene's columns of row j outside which every slab's state is exactly zero.
+    ColumnRange wet_columns(int j) const;
     // Cell updates done so far (each slab's cells × its steps).
     double cell_updates() const { return cell_updates_; }
     // The scheme and the slabs in words (the flow file's `source`).

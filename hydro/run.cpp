@@ -229,12 +229,24 @@ void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
     }
 }
 
+// Every step, so only where a row may hold water: a cell whose state is exactly zero
+// raises no maximum and does not arrive (the maps start at 0 and the fill value).
 template <class S>
 void accumulate(Summary& sum, const S& s, const Window& win, double t, double arrival_depth) {
-    for_each_window_row(s, win, [&](std::size_t q0, const double* h, const double* u, const double* v) {
-        accumulate_row(std::size_t(win.grid.nx), h, u, v, t, arrival_depth, sum.max_depth.data() + q0, sum.max_speed.data() + q0,
-                       sum.arrival.data() + q0);
-    });
+#pragma omp parallel
+    {
+        std::vector<double> h(std::size_t(win.grid.nx)), u(h.size()), v(h.size());
+#pragma omp for schedule(static)
+        for (int j = win.j0; j <= win.j1; ++j) {
+            const ColumnRange c = s.wet_columns(j);
+            const int i0 = std::max(win.i0, c.begin), i1 = std::min(win.i1 + 1, c.end);
+            if (i0 >= i1) continue;
+            s.state_row(j, i0, i1, h.data(), u.data(), v.data());
+            const std::size_t q0 = win.grid.index(i0 - win.i0, j - win.j0);
+            accumulate_row(std::size_t(i1 - i0), h.data(), u.data(), v.data(), t, arrival_depth, sum.max_depth.data() + q0,
+                           sum.max_speed.data() + q0, sum.arrival.data() + q0);
+        }
+    }
 }
 
 // ---- checkpoints ----

@@ -36,6 +36,7 @@ concept RunnableSolver = requires(S& s, const S& c, double t, int i, int j, doub
     { c.x_velocity(i, j) } -> std::same_as<double>;    // [m/s]
     { c.y_velocity(i, j) } -> std::same_as<double>;    // [m/s]
     c.state_row(j, i, i, row, row, row);               // depth, velocities of a row (frames, maxima)
+    { c.wet_columns(j) } -> std::same_as<ColumnRange>;  // outside them row j's state is exactly zero
     { c.volume() } -> std::same_as<double>;            // [m^3]
     { c.stats() } -> std::convertible_to<SolverStats>;
     { c.cell_updates() } -> std::same_as<double>;                             // cells x steps done by this object

@@ -88,6 +88,9 @@ public:
     void state_row(int j, int i0, int i1, double* h, double* u, double* v) const;
     // Total water volume [m^3].
     double volume() const;
+    // The columns of row j outside which h, hu and hv are exactly zero (dry land the water
+    // has not reached): where the last step computed, or the whole row.
+    ColumnRange wet_columns(int j) const { return state_changed_outside_ ? ColumnRange{0, grid_.nx} : bound_[std::size_t(j)]; }
     // Interior cells x steps since construction.
     double cell_updates() const { return double(stats_.steps) * double(grid_.size()); }
     // The scheme in words (the flow file's `source`).
