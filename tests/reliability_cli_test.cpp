@@ -86,6 +86,21 @@ TEST(ReliabilityCli, RestartGivesTheBytesOfAnUninterruptedRun) {
     EXPECT_EQ(sha256_file(f), sha256_file(ref));
 }
 
+// Three grids from the command line (lists), stopped and restarted: the checkpoint
+// carries every slab, and the file is the uninterrupted run's bytes.
+TEST(ReliabilityCli, ThreeSlabsRestartGivesTheBytesOfAnUninterruptedRun) {
+    const SmallCase c = small_case("cli_restart_slabs");
+    std::string out;
+    const std::string ref = c.dir + "/ref.nc", f = c.dir + "/f.nc", slabs = " --nest-ratio 4,2,1 --nest-x -4.0,-1.2";
+    ASSERT_EQ(test::run_cli(hydro_args(c, ref) + slabs + " --threads 1", &out), 0) << out;
+    ASSERT_EQ(test::run_cli(hydro_args(c, f) + slabs + " --threads 1 --checkpoint-interval 1 --stop-after 2.5", &out), 0) << out;
+    ASSERT_EQ(test::run_cli(hydro_args(c, f) + slabs + " --threads 2 --checkpoint-interval 1 --restart", &out), 0) << out;
+    EXPECT_EQ(sha256_file(f), sha256_file(ref));
+    const std::string source = nc::File::open_read(ref).att_text(NC_GLOBAL, "source").value_or("");
+    EXPECT_NE(source.find("0.640000 x 0.160000 m west of x = -4.045000 m, 0.320000 x 0.160000 m from x = -4.045000 to -1.485000 m"), std::string::npos)
+        << source;
+}
+
 // A restart with other settings is refused, names what differs, and leaves the
 // interrupted run's files as they were; a fresh run over them is refused too.
 TEST(ReliabilityCli, RefusedRestartNamesTheSettingsAndKeepsThePartialWork) {
