@@ -3,7 +3,7 @@
 // In the flume the water is 0.88 m deep, so the long-wave speed sqrt(g h) ≈ 2.9 m/s sets
 // the time step of the whole grid, while the flow there is a smooth, nearly 1D wave that
 // a coarse grid resolves. The city, a few centimetres deep, needs the fine grid but
-// tolerates a step several times longer; and where no debris goes (the far east of a
+// tolerates a step several times longer; and where no debris goes (open sea east of a
 // port) a coarser grid serves again. So: north-south slabs, west to east, each with its
 // own spacing (`ratio` × the scene's, the scene's cells averaged in blocks), and per step
 // of the coarsest as many sub-steps of each finer slab as its own CFL asks.
@@ -20,9 +20,11 @@
 //      conserved to round-off. (Momentum is not refluxed: the momentum mismatch is of
 //      the size of the interface's truncation error.)
 //
-// Keep each interface in water that stays wet and smooth (the flume's slope at 0.2–0.3 m
-// depth is a good place), or on ground the flow does not reach: the coupling is first
-// order there in x.
+// Keep each interface in water that stays wet and smooth (the flume's slope at 0.1–0.3 m
+// depth is a good place): the coupling is first order there in x, and where the flow wets
+// and dries ground at an interface the two grids see different shores, refluxing can
+// draw more water than a coarse cell holds, and a run that makes water so is stopped
+// (docs/accuracy.md, "More than two grids": through the city it did).
 #pragma once
 #include <string>
 #include <utility>

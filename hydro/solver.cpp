@@ -768,7 +768,6 @@ void Solver::stage(Stage which, double dt, double t) {
             if (j0 < j1 - 1) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j1 - 1);
         }
     }
-
     stats_.negative_depth_fixes += fixes;
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
     (corrector ? bound2_ : bound1_) = active_;
