@@ -29,7 +29,7 @@
 // Wet and dry: one tolerance eps (PhysicsDef::dry_depth, 1e-9 m). It desingularises the
 // velocity, u = 2 h q / (h^2 + max(h^2, eps^2)) (q/h above eps, bounded by q/eps and
 // vanishing with h below it), and switches the reconstruction to first order next to a
-// cell below it. It does not remove water or momentum: a thin layer keeps its discharge,
+// cell below it, and where the ground cuts the surface (surface_spans). It does not remove water or momentum: a thin layer keeps its discharge,
 // so the water at a front moves on. What a cell average still loses at a dry-bed front
 // (the thin water's speed) the front treatment restores (front_kernels.hpp, front.hpp).
 //
@@ -43,6 +43,28 @@
 #include <cstring>
 
 namespace flotsam::hydro {
+
+// Whether a cell's surface may be given a slope from its two neighbours along a direction
+// (depth h, level eta = h + z; m before, 0 the cell, p after): all three wetter than the
+// dry tolerance, and either the ground between them is monotone or the water covers it
+// (at each of the cell's faces both sides' water stands above the higher bed: the
+// first-order hydrostatic reconstruction is wet on both sides).
+//
+// Where the ground cuts the surface at a pit or a ridge, the neighbours' levels are their
+// films on the ground either side, and a line through them is a tilt the ground does not
+// have: it tilts the cell's implied bed z = eta - h and pushes its water with a force no
+// flux balances, while the film's face, lifted by the same line, shuts the outflow (a
+// puddle in a pit then ran at 1.4 m/s for minutes; docs/hydro.md, "A puddle in a pit").
+// On a monotone slope the line is the ground's own slope, and a film running down it
+// needs it (first order there runs at a fifth of the normal-flow speed). Over a lake at
+// rest, and wherever the water covers the ground, nothing changes.
+inline bool surface_spans(double hm, double eta_m, double h0, double eta_0, double hp, double eta_p, double dry) {
+    const double zm = eta_m - hm, z0 = eta_0 - h0, zp = eta_p - hp;
+    const bool wet = (hm > dry) & (h0 > dry) & (hp > dry);
+    const bool monotone = (z0 - zm) * (zp - z0) >= 0.0;
+    const bool covered = (std::min(eta_m, eta_0) - std::max(zm, z0) > dry) & (std::min(eta_p, eta_0) - std::max(zp, z0) > dry);
+    return wet & (monotone | covered);
+}
 
 // Generalised minmod limiter of the one-sided differences dl, dr: theta = 1 is minmod
 // (most diffusive), theta = 2 is monotonised central (sharpest).

@@ -161,6 +161,40 @@ TEST(Solver, DryDamBreakConvergesToRitter) {
     EXPECT_GT(order, 0.6);
 }
 
+// A puddle in a pit between two higher cells that hold only films, the beds of a pit in
+// the 2 cm city flow (docs/hydro.md, "A puddle in a pit"): 2 cm cells along the strip,
+// bed [3.0, 3.0, 5.45, 4.26, 4.73, 3.32, 3.32, 3.32] cm, a pool west at 4.0 cm, the pit
+// filled to 5.19 cm, 0.1 um films on its two walls, a pool east at 4.32 cm; Manning 0.013,
+// walls all round. The water above the east wall (4.73 cm) spills into the east pool
+// (which rises 4.6 / 3 = 1.5 mm, staying below the wall) and the pit keeps exactly
+// 4.73 - 4.26 = 4.7 mm, at rest: a weir's head H falls as dH/dt = -1.70 H^1.5 / dx, to
+// 1e-6 m in 20 s. When the walls' films gave the pit a slope of the ground's V, its
+// water ran at 1.39 m/s against a shut face for minutes instead. Along x and along y.
+TEST(Solver, PuddleInAPitDrainsToItsSillAndStops) {
+    const std::vector<double> bed{0.030, 0.030, 0.0545, 0.0426, 0.0473, 0.0332, 0.0332, 0.0332};
+    const std::vector<double> level{0.040, 0.040, 0.0545 + 1e-7, 0.0519, 0.0473 + 1e-7, 0.0432, 0.0432, 0.0432};
+    for (const bool along_y : {false, true}) {
+        const int n = int(bed.size());
+        Scene s = along_y ? test::flat_scene(3, n, 0.02, 0.0, 0.0) : test::flat_scene(n, 3, 0.02, 0.0, 0.0);
+        s.eta0.assign(s.grid.size(), 0.0);
+        for (int k = 0; k < n; ++k)
+            for (int m = 0; m < 3; ++m) {
+                const std::size_t c = along_y ? s.grid.index(m, k) : s.grid.index(k, m);
+                s.z[c] = bed[std::size_t(k)];
+                s.eta0[c] = level[std::size_t(k)];
+            }
+        PhysicsDef d = closed_def();
+        d.default_manning_n = 0.013;
+        Solver solver(s, d);
+        while (solver.time() < 20.0) solver.step(std::min(solver.stable_dt(), 20.0 - solver.time()));
+        const int i = along_y ? 1 : 3, j = along_y ? 3 : 1;
+        const double speed = std::hypot(solver.x_velocity(i, j), solver.y_velocity(i, j));
+        std::printf("along %s: pit %.5f m deep at %.2e m/s\n", along_y ? "y" : "x", solver.depth(i, j), speed);
+        EXPECT_NEAR(solver.depth(i, j), 0.0473 - 0.0426, 5e-5) << (along_y ? "along y" : "along x");
+        EXPECT_LT(speed, 0.01) << (along_y ? "along y" : "along x");
+    }
+}
+
 TEST(Solver, ThinFilmWithFrictionOnSlopeStaysFiniteAtItsNormalFlowSpeed) {
     // A 0.1 mm film on a 1:10 slope with n = 0.025 at 1 cm cells: explicit friction
     // would blow up (dt g n^2 |u| / h^(4/3) >> 1); the implicit one must stay bounded,
