@@ -44,6 +44,23 @@ TEST(Kernels, LimiterAndLakeAtRestFlux) {
     EXPECT_NEAR(f.normal_R, 0.5 * 9.81 * 0.01, 1e-15);
 }
 
+TEST(Kernels, SurfaceSlopesStopWhereTheGroundCutsAPitOrRidge) {
+    const double dry = 1e-9;
+    auto spans = [&](double zm, double hm, double z0, double h0, double zp, double hp) {
+        return surface_spans(hm, zm + hm, h0, z0 + h0, hp, zp + hp, dry);
+    };
+    EXPECT_TRUE(spans(0.0, 0.1, 0.0, 0.1, 0.0, 0.1));           // flat, wet
+    EXPECT_FALSE(spans(0.0, 0.1, 0.0, 0.1, 0.0, 0.0));          // a dry neighbour
+    EXPECT_TRUE(spans(0.002, 1e-4, 0.001, 1e-4, 0.0, 1e-4));    // a film down a 1:10 slope (monotone, cut)
+    EXPECT_TRUE(spans(0.05, 0.01, 0.04, 0.02, 0.05, 0.01));     // a pit the water covers (levels 6 cm)
+    EXPECT_FALSE(spans(0.0545, 1e-7, 0.0426, 0.0093, 0.0473, 1e-7));  // the city's pit: films either side above its level
+    EXPECT_FALSE(spans(0.0426, 0.0093, 0.0473, 1e-7, 0.0332, 0.01));  // the film on its ridge
+    // A pit whose level stands 2e-9 m over its walls' ground is covered (the dry tolerance
+    // is 1e-9 m); 5e-10 m under it, it is cut.
+    EXPECT_TRUE(spans(0.05, 3e-9, 0.04, 0.01 + 2e-9, 0.05, 3e-9));
+    EXPECT_FALSE(spans(0.05, 3e-9, 0.04, 0.01 - 5e-10, 0.05, 3e-9));
+}
+
 TEST(Kernels, FrictionNeverReverses) {
     const double gn2 = 9.81 * 0.025 * 0.025;
     for (double h : {1e-6, 1e-4, 1e-2, 1.0}) {
