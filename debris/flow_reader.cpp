@@ -567,26 +567,51 @@ void FlowReader::depth_over_ground(Frame& f, const Area& a) const {
 void FlowReader::depth_over_ground(Frame& f, const CellWindow& w, const CellWindow& r) const {
     const Grid& g = ground_grid_;
     const CellWindow gw = ground_window(w), gr = ground_window(r);
-    const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0, gnx = gw.i1 - gw.i0;
+    const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0, gnx = gw.i1 - gw.i0, rnx = gr.i1 - gr.i0;
+    // A ground column's flow stencil (column i of the window, weight wx of column i + 1)
+    // is the same in every row: worked out once per column.
+    std::vector<int> column(static_cast<std::size_t>(rnx));
+    std::vector<double> wx_of(static_cast<std::size_t>(rnx));
+    for (int k = 0; k < rnx; ++k) {
+        const double fx = (g.x(gr.i0 + k) - grid_.x0) / grid_.dx;
+        column[std::size_t(k)] = std::clamp(int(std::floor(fx)) - w.i0, 0, wnx - 2);
+        wx_of[std::size_t(k)] = std::clamp(fx - double(column[std::size_t(k)] + w.i0), 0.0, 1.0);
+    }
+    // Per flow node of the two rows in use: the level h + z and whether it is wet.
+    std::vector<double> level_of(2 * std::size_t(wnx));
+    std::vector<char> wet_of(2 * std::size_t(wnx));
+    int rows_held = -1;  // the window row j whose pair (j, j + 1) the arrays hold
     for (int gj = gr.j0; gj < gr.j1; ++gj) {
         const double fy = (g.y(gj) - grid_.y0) / grid_.dy;
         const int j = std::clamp(int(std::floor(fy)) - w.j0, 0, wny - 2);
         const double wy = std::clamp(fy - double(j + w.j0), 0.0, 1.0);
+        if (j != rows_held) {
+            for (int row = 0; row < 2; ++row)
+                for (int i = 0; i < wnx; ++i) {
+                    const std::size_t n = std::size_t(j + row) * std::size_t(wnx) + std::size_t(i);
+                    const double h = f.h[n];
+                    wet_of[std::size_t(row * wnx + i)] = h > dry_depth_;
+                    level_of[std::size_t(row * wnx + i)] = h + double(z_[grid_.index(w.i0 + i, w.j0 + j + row)]);
+                }
+            rows_held = j;
+        }
         float* out = f.ground_depth.data() + std::size_t(gj - gw.j0) * std::size_t(gnx) + std::size_t(gr.i0 - gw.i0);
-        for (int gi = gr.i0; gi < gr.i1; ++gi) {
-            const double fx = (g.x(gi) - grid_.x0) / grid_.dx;
-            const int i = std::clamp(int(std::floor(fx)) - w.i0, 0, wnx - 2);
-            const double wx = std::clamp(fx - double(i + w.i0), 0.0, 1.0);
+        const float* ground_z = ground_z_.data() + g.index(gr.i0, gj);
+        for (int k = 0; k < rnx; ++k) {
+            const int i = column[std::size_t(k)];
+            const double wx = wx_of[std::size_t(k)];
             const double wc[4] = {(1.0 - wx) * (1.0 - wy), wx * (1.0 - wy), (1.0 - wx) * wy, wx * wy};
+            const std::size_t node[4] = {std::size_t(i), std::size_t(i + 1), std::size_t(wnx + i), std::size_t(wnx + i + 1)};
+            // The level bilinear over the wet nodes, their weights renormalised. A dry
+            // node adds a zero to both sums (never -0: they start at +0), which leaves
+            // them as they are: the same bits as skipping it, without the branch.
             double wet = 0.0, level = 0.0;
             for (int c = 0; c < 4; ++c) {
-                const int ni = i + (c & 1), nj = j + (c >> 1);
-                const double h = f.h[std::size_t(nj) * std::size_t(wnx) + std::size_t(ni)];
-                if (!(h > dry_depth_)) continue;
-                wet += wc[c];
-                level += wc[c] * (h + double(z_[grid_.index(w.i0 + ni, w.j0 + nj)]));
+                const double weight = wet_of[node[c]] ? wc[c] : 0.0;
+                wet += weight;
+                level += weight * level_of[node[c]];
             }
-            *out++ = wet > 0.0 ? float(std::max(0.0, level / wet - double(ground_z_[g.index(gi, gj)]))) : 0.0f;
+            out[k] = wet > 0.0 ? float(std::max(0.0, level / wet - double(ground_z[k]))) : 0.0f;
         }
     }
 }
