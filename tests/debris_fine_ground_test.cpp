@@ -4,6 +4,7 @@
 // a pit inland of the flow's shoreline stays dry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cases/debris_flows.hpp"
@@ -249,4 +250,80 @@ TEST(FineGround, FootprintCacheGivesTheFreshClipForEveryPose) {
     EXPECT_TRUE(same(cache.patches(boxes[0], coarse), fresh(boxes[0], coarse)));
     EXPECT_TRUE(same(cache.patches(boxes[0], fine), fresh(boxes[0], fine)));
     EXPECT_FALSE(same(fresh(boxes[0], fine), fresh(boxes[3], fine)));  // the moves above do change the patches
+}
+
+// The depth over the ground, worked out here from its definition (at each ground centre:
+// the flow's level h + z bilinear over the wet nodes of the flow stencil, weights
+// renormalised, less the ground; then linear in time and bilinear between the ground's
+// centres), against the reader on the whole grid and on two windows: one touching the
+// grid's west, south and north edges, one in the east with its west edge inside the
+// grid. Points run up to the windows' edges, over the wetting front and the dry quay.
+TEST(FineGround, DepthOverTheGroundFollowsItsDefinitionOnEveryWindow) {
+    const auto dir = test::scratch_dir("fine_ground_definition");
+    const std::string path = test::write_flow(dir + "/flow.nc", coarse, {0.0, 10.0}, coarse_bed, [](double x, double y, double t) {
+        // The level rises in time and toward the north; the quay (z = 0.05 m) wets late.
+        const double h = std::max(level + 0.002 * t + 0.05 * y - coarse_bed(x, y), 0.0);
+        return test::FlowState{float(h), float(speed), 0.0f};
+    });
+    const std::vector<float> ground_z = on_grid(fine, fine_bed);
+    const double t = 6.5, a = t / 10.0;
+    // The ground centre's depth in frame `frame` by the definition.
+    const auto depth_at_centre = [&](const FlowReader& r, int frame, int gi, int gj) {
+        const double frame_t = frame == 0 ? 0.0 : 10.0;
+        const double fx = (fine.x(gi) - coarse.x0) / coarse.dx, fy = (fine.y(gj) - coarse.y0) / coarse.dy;
+        const int i = std::clamp(int(std::floor(fx)), 0, coarse.nx - 2), j = std::clamp(int(std::floor(fy)), 0, coarse.ny - 2);
+        const double wx = std::clamp(fx - i, 0.0, 1.0), wy = std::clamp(fy - j, 0.0, 1.0);
+        double wet = 0.0, level_sum = 0.0;
+        for (int c = 0; c < 4; ++c) {
+            const int ni = i + (c & 1), nj = j + (c >> 1);
+            const double x = coarse.x(ni), y = coarse.y(nj);
+            const double h = double(float(std::max(level + 0.002 * frame_t + 0.05 * y - coarse_bed(x, y), 0.0)));
+            if (!(h > r.dry_depth())) continue;
+            const double w = ((c & 1) ? wx : 1.0 - wx) * ((c >> 1) ? wy : 1.0 - wy);
+            wet += w;
+            level_sum += w * (h + double(float(coarse_bed(x, y))));
+        }
+        return wet > 0.0 ? double(float(std::max(0.0, level_sum / wet - double(ground_z[fine.index(gi, gj)])))) : 0.0;
+    };
+    const CellWindow whole{0, coarse.nx, 0, coarse.ny}, west{0, 3, 0, 4}, east{2, 6, 1, 4};
+    int wet_points = 0, dry_points = 0;
+    for (const CellWindow& w : {whole, west, east}) {
+        FlowReader r(path);
+        r.set_ground(fine, ground_z);
+        r.set_window(w);
+        r.prepare(t);
+        std::vector<Vec2> points;
+        // From the window's first node to its last, both included where the window ends
+        // at the grid's edge; one ground cell in from a node inside the grid (a point
+        // nearer takes a ground centre whose flow stencil lies outside the window; the
+        // world keeps region_margin flow cells from there).
+        const auto inner = [](int edge, int grid_edge) { return edge == grid_edge ? 0.0 : fine.dx; };
+        const double x0 = coarse.x(w.i0) + inner(w.i0, 0), x1 = coarse.x(w.i1 - 1) - inner(w.i1, coarse.nx);
+        const double y0 = coarse.y(w.j0) + inner(w.j0, 0), y1 = coarse.y(w.j1 - 1) - inner(w.j1, coarse.ny);
+        for (double x = x0; x <= x1 + 1e-12; x += 0.0031)
+            for (double y = y0; y <= y1 + 1e-12; y += 0.0047) points.push_back({x, y});
+        for (const Vec2& p : points) {
+            const double fx = std::clamp((p.x - fine.x0) / fine.dx, 0.0, double(fine.nx - 1)),
+                         fy = std::clamp((p.y - fine.y0) / fine.dy, 0.0, double(fine.ny - 1));
+            const int gi = std::min(int(std::floor(fx)), fine.nx - 2), gj = std::min(int(std::floor(fy)), fine.ny - 2);
+            const double wx = fx - gi, wy = fy - gj;
+            double expected = 0.0;
+            for (int c = 0; c < 4; ++c) {
+                const int ci = gi + (c & 1), cj = gj + (c >> 1);
+                const double in_time = (1.0 - a) * depth_at_centre(r, 0, ci, cj) + a * depth_at_centre(r, 1, ci, cj);
+                expected += ((c & 1) ? wx : 1.0 - wx) * ((c >> 1) ? wy : 1.0 - wy) * in_time;
+            }
+            const double got = r.depth(p.x, p.y, t);
+            EXPECT_NEAR(got, expected, 1e-12) << p.x << ", " << p.y << " on window " << w.i0 << ".." << w.i1;
+            (expected > 0.0 ? wet_points : dry_points) += 1;
+        }
+        // Many points at once (more than one block of the batched sampler) give the bits
+        // of one at a time.
+        std::vector<double> together(points.size());
+        r.depth(points.data(), int(points.size()), r.at_time(t), together.data());
+        for (std::size_t k = 0; k < points.size(); ++k) EXPECT_EQ(together[k], r.depth(points[k].x, points[k].y, t)) << k;
+        EXPECT_GT(points.size(), 64u * 2);
+    }
+    EXPECT_GT(wet_points, 100);
+    EXPECT_GT(dry_points, 100);
 }
