@@ -642,16 +642,31 @@ void linear_depths(const Grid& g, const CellWindow& w, const float* now, const f
                    double* out) {
     const int wnx = w.i1 - w.i0, wny = w.j1 - w.j0;
     double wx[points_per_block], wy[points_per_block];
-    std::size_t node[points_per_block];
+    int node[points_per_block];  // the 00 node's offset in the window arrays
+    // std::clamp and int(std::floor(v)) spelled out in selects and a truncation (the same
+    // values), which vectorise.
+    const auto unit = [](double v) { return v < 0.0 ? 0.0 : (1.0 < v ? 1.0 : v); };
+    const auto floor_int = [](double v) {
+        const int t = int(v);  // toward zero
+        return double(t) > v ? t - 1 : t;
+    };
+    double px[points_per_block], py[points_per_block];  // the points as arrays of x and y, for the vectoriser
     for (int k = 0; k < n; ++k) {
-        const double fx = (p[k].x - g.x0) / g.dx, fy = (p[k].y - g.y0) / g.dy;
-        const int i = std::clamp(int(std::floor(fx)) - w.i0, 0, wnx - 2), j = std::clamp(int(std::floor(fy)) - w.j0, 0, wny - 2);
-        wx[k] = std::clamp(fx - double(i + w.i0), 0.0, 1.0);
-        wy[k] = std::clamp(fy - double(j + w.j0), 0.0, 1.0);
-        node[k] = std::size_t(j) * std::size_t(wnx) + std::size_t(i);
+        px[k] = p[k].x;
+        py[k] = p[k].y;
+    }
+    const double x0 = g.x0, y0 = g.y0, dx = g.dx, dy = g.dy;
+    const int i0 = w.i0, j0 = w.j0;
+    for (int k = 0; k < n; ++k) {
+        const double fx = (px[k] - x0) / dx, fy = (py[k] - y0) / dy;
+        const int i = std::min(std::max(floor_int(fx) - i0, 0), wnx - 2);
+        const int j = std::min(std::max(floor_int(fy) - j0, 0), wny - 2);
+        wx[k] = unit(fx - double(i + i0));
+        wy[k] = unit(fy - double(j + j0));
+        node[k] = j * wnx + i;
     }
     for (int k = 0; k < n; ++k) {
-        const std::size_t n0 = node[k], n2 = n0 + std::size_t(wnx);
+        const std::size_t n0 = std::size_t(node[k]), n2 = n0 + std::size_t(wnx);
         const double v[4] = {linear_in_time(a, now[n0], next[n0]), linear_in_time(a, now[n0 + 1], next[n0 + 1]),
                              linear_in_time(a, now[n2], next[n2]), linear_in_time(a, now[n2 + 1], next[n2 + 1])};
         out[k] = (1.0 - wy[k]) * ((1.0 - wx[k]) * v[0] + wx[k] * v[1]) + wy[k] * ((1.0 - wx[k]) * v[2] + wx[k] * v[3]);
