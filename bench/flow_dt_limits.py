@@ -9,14 +9,15 @@ time goes at 1 cm"). Reads what a run leaves; runs nothing.
       (X0: the west edge of the grid [m]; the fine grid starts at the nesting interface)
 
 The step is the solver's: dt = cfl / ((|u| + c) / dx + (|v| + c) / dy), c = sqrt(g h),
-cfl = 0.45 (FiniteVolumeDef's default), over cells deeper than the dry tolerance 1e-5 m.
+cfl = 0.8 (FiniteVolumeDef's default, --cfl), over cells deeper than the dry tolerance
+1e-9 m (PhysicsDef's, --dry-depth). The two wet shares printed use 1e-9 m and 1 mm.
 """
 import sys
 
 import numpy as np
 from netCDF4 import Dataset
 
-G, CFL, DRY = 9.81, 0.45, 1e-5
+G, CFL, DRY = 9.81, 0.8, 1e-9
 
 
 def rates(h, u, v, dx):
@@ -38,7 +39,7 @@ def frames(path, every):
     land = f["z"][:].astype(float) > 0.0
     city = np.broadcast_to(x >= 0.0, land.shape)
     print(f"# {path}: window {len(x)} x {len(y)} cells of {dx:.3g} m")
-    print("# t [s] | wet % (h > 1e-5) | wet % (h > 1 mm) | land wet % (h > 1 mm) | dt over the window | dt over the city (x >= 0)")
+    print("# t [s] | wet % (h > 1e-9) | wet % (h > 1 mm) | land wet % (h > 1 mm) | dt over the window | dt over the city (x >= 0)")
     for k in range(len(t)):
         if k % every and k != len(t) - 1:
             continue
