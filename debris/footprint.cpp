@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace flotsam::debris {
 
@@ -17,11 +18,14 @@ struct Poly {
     int n = 0;
 };
 
+// The vertex after k of a polygon of n vertices (k + 1) % n, without an integer division.
+int next_vertex(int k, int n) { return k + 1 < n ? k + 1 : 0; }
+
 // Keeps the part of `in` where s * (coord - c) ≤ 0, coord = x (axis 0) or y (axis 1).
 Poly clip(const Poly& in, int axis, double c, double s) {
     Poly out;
     for (int k = 0; k < in.n; ++k) {
-        const Vec2 a = in.p[k], b = in.p[(k + 1) % in.n];
+        const Vec2 a = in.p[k], b = in.p[next_vertex(k, in.n)];
         const double da = s * ((axis == 0 ? a.x : a.y) - c), db = s * ((axis == 0 ? b.x : b.y) - c);
         if (da <= 0.0) out.p[out.n++] = a;
         if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
@@ -36,7 +40,7 @@ Poly clip(const Poly& in, int axis, double c, double s) {
 void area_centroid(const Poly& q, double& area, Vec2& centroid) {
     double a2 = 0.0, cx = 0.0, cy = 0.0;
     for (int k = 0; k < q.n; ++k) {
-        const Vec2 p0 = q.p[k], p1 = q.p[(k + 1) % q.n];
+        const Vec2 p0 = q.p[k], p1 = q.p[next_vertex(k, q.n)];
         const double c = cross(p0, p1);
         a2 += c;
         cx += (p0.x + p1.x) * c;
@@ -46,6 +50,31 @@ void area_centroid(const Poly& q, double& area, Vec2& centroid) {
     centroid = std::fabs(a2) > 0.0 ? Vec2{cx / (3.0 * a2), cy / (3.0 * a2)} : (q.n ? q.p[0] : Vec2{});
 }
 
+// The x interval [x0, x1] of the line y = `y` that lies inside the box shrunk by `inset`
+// on every side (empty: x0 > x1).
+struct Span {
+    double x0, x1;
+};
+Span inner_span(const Box& box, double y, double inset) {
+    Span span{-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    const Vec2 axes[2] = {box.axis_long, box.axis_wide};
+    const double halves[2] = {box.half_length - inset, box.half_width - inset};
+    for (int k = 0; k < 2; ++k) {
+        // Inside the slab: |(x − cx) a.x + (y − cy) a.y| ≤ half.
+        const Vec2 a = axes[k];
+        const double along_y = (y - box.centre.y) * a.y;
+        if (a.x == 0.0) {
+            if (!(std::fabs(along_y) <= halves[k])) return Span{1.0, 0.0};
+            continue;
+        }
+        double lo = box.centre.x + (-halves[k] - along_y) / a.x, hi = box.centre.x + (halves[k] - along_y) / a.x;
+        if (lo > hi) std::swap(lo, hi);
+        span.x0 = std::max(span.x0, lo);
+        span.x1 = std::min(span.x1, hi);
+    }
+    return span;
+}
+
 }  // namespace
 
 void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out) {
@@ -53,6 +82,9 @@ void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPa
     Poly body;
     for (const Vec2& c : corners) body.p[body.n++] = c;
     const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
+    // A cell inside the footprint shrunk by this much passes the four corner tests below
+    // whatever the round-off (some 1e-15 m), so it needs none of them [m].
+    const double inset = 1e-6 * std::min(grid.dx, grid.dy);
     const int j0 = std::max(0, int(std::floor((box.centre.y - box.extent_y() - grid.y0) / grid.dy + 0.5)));
     const int j1 = std::min(grid.ny - 1, int(std::floor((box.centre.y + box.extent_y() - grid.y0) / grid.dy + 0.5)));
     const int i0 = std::max(0, int(std::floor((box.centre.x - box.extent_x() - grid.x0) / grid.dx + 0.5)));
@@ -69,14 +101,20 @@ void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPa
             row_x0 = std::min(row_x0, row.p[k].x);
             row_x1 = std::max(row_x1, row.p[k].x);
         }
+        // Where both of the row's edges lie inside the shrunk footprint, so do whole cells
+        // (the footprint is convex).
+        const Span lower = inner_span(box, yc - hy, inset), upper = inner_span(box, yc + hy, inset);
+        const double inner_x0 = std::max(lower.x0, upper.x0), inner_x1 = std::min(lower.x1, upper.x1);
         for (int i = i0; i <= i1; ++i) {
             const double xc = grid.x(i);
             if (xc + hx < row_x0 || xc - hx > row_x1) continue;
             const Vec2 cc{xc, yc};
             FootprintPatch patch;
             // Fast path: a cell whose four corners are inside the footprint is covered whole.
-            if (box.contains(cc + Vec2{hx, hy}) && box.contains(cc + Vec2{-hx, hy}) && box.contains(cc + Vec2{hx, -hy}) &&
-                box.contains(cc + Vec2{-hx, -hy})) {
+            const bool whole = (xc - hx >= inner_x0 && xc + hx <= inner_x1) ||
+                               (box.contains(cc + Vec2{hx, hy}) && box.contains(cc + Vec2{-hx, hy}) &&
+                                box.contains(cc + Vec2{hx, -hy}) && box.contains(cc + Vec2{-hx, -hy}));
+            if (whole) {
                 patch.area = grid.dx * grid.dy;
                 patch.centroid = cc;
             } else {
