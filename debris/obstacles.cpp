@@ -14,6 +14,27 @@ ObstacleMap::ObstacleMap(const Grid& grid, std::vector<float> bed, std::vector<s
             open_ground_[c] = -inf;
             wall_top_[c] = inf;
         }
+    open_ground_blocks_ = BlockMax(grid_, open_ground_);
+    wall_top_blocks_ = BlockMax(grid_, wall_top_);
+}
+
+ObstacleMap::BlockMax::BlockMax(const Grid& grid, const std::vector<float>& cells)
+    : nbx((grid.nx + block_cells - 1) / block_cells),
+      nby((grid.ny + block_cells - 1) / block_cells),
+      max(std::size_t(nbx) * std::size_t(nby), -std::numeric_limits<float>::infinity()) {
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            float& m = max[std::size_t(j / block_cells) * std::size_t(nbx) + std::size_t(i / block_cells)];
+            m = std::max(m, cells[grid.index(i, j)]);
+        }
+}
+
+float ObstacleMap::BlockMax::bound(int i0, int i1, int j0, int j1) const {
+    float m = -std::numeric_limits<float>::infinity();
+    for (int bj = j0 / block_cells; bj <= j1 / block_cells; ++bj)
+        for (int bi = i0 / block_cells; bi <= i1 / block_cells; ++bi)
+            m = std::max(m, max[std::size_t(bj) * std::size_t(nbx) + std::size_t(bi)]);
+    return m;
 }
 
 bool ObstacleMap::blocked(int i, int j, double bottom, double step_height) const {
@@ -87,7 +108,9 @@ double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
 bool ObstacleMap::ground_above(const Box& box, double level) const {
     const CellRange r = cells_touching(box, 1);
     const int i0 = std::max(r.i0, 0), i1 = std::min(r.i1, grid_.nx - 1);
-    for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j)
+    const int j0 = std::max(r.j0, 0), j1 = std::min(r.j1, grid_.ny - 1);
+    if (i0 > i1 || j0 > j1 || !(double(open_ground_blocks_.bound(i0, i1, j0, j1)) > level)) return false;
+    for (int j = j0; j <= j1; ++j)
         if (i0 <= i1 && double(row_max(open_ground_.data() + grid_.index(0, j), i0, i1)) > level) return true;
     return false;
 }
@@ -99,6 +122,9 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
     const auto corners = box.corners();
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const bool inside_x = r.i0 >= 0 && r.i1 < grid_.nx;
+    // Nothing within the grid that rises above the bottom's reach: no contact at all.
+    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_.bound(r.i0, r.i1, r.j0, r.j1)) > bottom + step_height))
+        return;
     for (int j = r.j0; j <= r.j1; ++j) {
         // A row inside the grid with nothing above the bottom's reach holds no contact.
         if (inside_x && j >= 0 && j < grid_.ny &&

@@ -62,6 +62,22 @@ private:
     // the top of what blocks there (+inf under a building, else the ground) [m].
     std::vector<float> open_ground_;
     std::vector<float> wall_top_;
+
+    // The largest value of each block of block_cells × block_cells cells of a per-cell
+    // field, so that a scan can rule out a whole range of cells at once: a body away from
+    // walls and rising ground needs no cell-by-cell look.
+    struct BlockMax {
+        static constexpr int block_cells = 4;
+        int nbx = 0, nby = 0;
+        std::vector<float> max;
+        BlockMax() = default;
+        BlockMax(const Grid& grid, const std::vector<float>& cells);
+        // Largest value over the cells [i0, i1] x [j0, j1] (inside the grid) and possibly a
+        // few more around them: never below the range's own largest value.
+        float bound(int i0, int i1, int j0, int j1) const;
+    };
+    BlockMax open_ground_blocks_;
+    BlockMax wall_top_blocks_;
 };
 
 }  // namespace flotsam::debris

@@ -1,6 +1,7 @@
 // Shortcuts in the body step that skip work which cannot change the answer: the whole
-// cells of a footprint found without their four corner tests. Each is checked here
-// against a plain, cell-by-cell reference written from the definitions.
+// cells of a footprint found without their four corner tests, and the contact and ground
+// scans that rule out a whole range of cells at once (ObstacleMap's block maxima). Each
+// is checked here against a plain, cell-by-cell reference written from the definitions.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <random>
 
 #include "debris/footprint.hpp"
+#include "debris/obstacles.hpp"
 
 using namespace flotsam;
 using namespace flotsam::debris;
@@ -18,6 +20,25 @@ namespace {
 
 std::array<Vec2, 4> cell_corners(Vec2 c, double hx, double hy) {
     return {Vec2{c.x + hx, c.y + hy}, Vec2{c.x - hx, c.y + hy}, Vec2{c.x - hx, c.y - hy}, Vec2{c.x + hx, c.y - hy}};
+}
+
+// How deep the box and the cell overlap: the smallest overlap of their projections on
+// the four axes that can separate them (x, y and the body's two axes); ≤ 0: apart.
+double overlap_depth(const Box& box, Vec2 cell, double hx, double hy) {
+    const auto a = box.corners();
+    const auto b = cell_corners(cell, hx, hy);
+    double depth = std::numeric_limits<double>::infinity();
+    for (const Vec2 axis : {Vec2{1, 0}, Vec2{0, 1}, box.axis_long, box.axis_wide}) {
+        double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
+        for (int k = 0; k < 4; ++k) {
+            a0 = std::min(a0, dot(a[k], axis));
+            a1 = std::max(a1, dot(a[k], axis));
+            b0 = std::min(b0, dot(b[k], axis));
+            b1 = std::max(b1, dot(b[k], axis));
+        }
+        depth = std::min(depth, std::min(a1, b1) - std::max(a0, b0));
+    }
+    return depth;
 }
 
 }  // namespace
@@ -61,4 +82,81 @@ TEST(StepShortcuts, WholeFootprintCellsAreTheCornerTestsAnswer) {
             }
         }
     }
+}
+
+// The contact scan with the block maxima against every blocked cell checked one by one:
+// a contact for each blocked cell the body reaches into (by more than 1 nm), none for a
+// cell it stays clear of (by 1 nm); the ground test against a plain scan of the cells
+// within a cell of the body's bounding box. The poses: a corner of the body 2 mm into a
+// building's corner cell, 0.5 mm short of it, a body across the grid's edge and one just
+// inside it, one whose cells reach a block that holds a wall but not the wall itself,
+// and many at random over the grid (most of them far from anything: the shortcut).
+TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
+    const Grid g{120, 120, -0.595, -0.595, 0.01, 0.01};
+    const double hx = 0.5 * g.dx, hy = 0.5 * g.dy;
+    std::vector<float> bed(g.size(), 0.0f);
+    std::vector<std::uint8_t> building(g.size(), 0);
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+            const double x = g.x(i), y = g.y(j);
+            if (x > 0.1 && x < 0.3 && y > 0.1 && y < 0.3) building[g.index(i, j)] = 1;       // a building, corner near (0.1, 0.1)
+            if (x > -0.4 && x < -0.35 && y > -0.2 && y < 0.4) bed[g.index(i, j)] = 0.03f;  // a quay wall 3 cm high
+            if (x > -0.2 && x < 0.0 && y < -0.3) bed[g.index(i, j)] = 0.002f;              // a low step, 2 mm
+        }
+    const ObstacleMap map(g, bed, building);
+    const double bottom = 0.0, step = 0.005;  // the quay blocks, the low step does not
+    const auto blocked = [&](int i, int j) {
+        if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) return true;
+        return building[g.index(i, j)] != 0 || double(bed[g.index(i, j)]) > bottom + step;
+    };
+    const auto check = [&](const Box& box, const std::string& what) {
+        int deep = 0, touching = 0;
+        for (int j = -20; j < g.ny + 20; ++j)  // outside the grid too: the flume walls
+            for (int i = -20; i < g.nx + 20; ++i) {
+                if (!blocked(i, j)) continue;
+                const double d = overlap_depth(box, Vec2{g.x0 + i * g.dx, g.y0 + j * g.dy}, hx, hy);
+                deep += d > 1e-9 ? 1 : 0;
+                touching += d > -1e-9 ? 1 : 0;
+            }
+        std::vector<ObstacleContact> contacts;
+        map.find_contacts(box, bottom, step, contacts);
+        EXPECT_GE(int(contacts.size()), deep) << what;
+        EXPECT_LE(int(contacts.size()), touching) << what;
+        // Ground above a level within a cell of the bounding box, buildings left out.
+        for (const double level : {0.001, 0.01, 0.05}) {
+            const int i0 = int(std::floor((box.centre.x - box.extent_x() - g.x0) / g.dx + 0.5)) - 1;
+            const int i1 = int(std::floor((box.centre.x + box.extent_x() - g.x0) / g.dx + 0.5)) + 1;
+            const int j0 = int(std::floor((box.centre.y - box.extent_y() - g.y0) / g.dy + 0.5)) - 1;
+            const int j1 = int(std::floor((box.centre.y + box.extent_y() - g.y0) / g.dy + 0.5)) + 1;
+            bool above = false;
+            for (int j = std::max(j0, 0); j <= std::min(j1, g.ny - 1); ++j)
+                for (int i = std::max(i0, 0); i <= std::min(i1, g.nx - 1); ++i)
+                    above = above || (!building[g.index(i, j)] && double(bed[g.index(i, j)]) > level);
+            EXPECT_EQ(map.ground_above(box, level), above) << what << " level " << level;
+        }
+        return int(contacts.size());
+    };
+    // The body's (+long, +wide) corner at a point, heading 30 degrees.
+    const double heading = M_PI / 6;
+    const auto corner_at = [&](Vec2 p) {
+        const Box at_origin = Box::make({0.0, 0.0}, heading, 0.25, 0.1);
+        return Box::make(p - at_origin.corners()[0], heading, 0.25, 0.1);
+    };
+    // Cell edges lie on whole centimetres: the building's south-west corner is (0.1, 0.1)
+    // and the grid's east edge x = 0.6 m.
+    EXPECT_EQ(check(corner_at({0.102, 0.102}), "corner 2 mm into the building's corner cell"), 1);
+    EXPECT_EQ(check(corner_at({0.0995, 0.0995}), "corner 0.5 mm short of the building"), 0);
+    EXPECT_GE(check(Box::make({0.49, -0.4}, 0.0, 0.25, 0.1), "across the grid's edge"), 1);
+    EXPECT_EQ(check(Box::make({0.474, -0.4}, 0.0, 0.25, 0.1), "just inside the grid's edge"), 0);
+    // Blocks of 4 cells from the grid's west edge: cells 68..71 share one, and the
+    // building begins at cell 70 (x = 0.105 m). A body ending in cell 69 reaches that
+    // block, not the building.
+    EXPECT_EQ(check(Box::make({-0.03, 0.2}, 0.0, 0.25, 0.1), "in the building's block, clear of it"), 0);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> x(-0.6, 0.6), turn(-M_PI, M_PI);
+    int with_contact = 0;
+    for (int k = 0; k < 2000; ++k)
+        with_contact += check(Box::make({x(rng), x(rng)}, turn(rng), 0.25, 0.1), "random pose " + std::to_string(k)) > 0;
+    EXPECT_GT(with_contact, 200);   // the walls and the edges are met often enough
+    EXPECT_LT(with_contact, 1800);  // and the open ground as often
 }
