@@ -1,6 +1,7 @@
 #include "debris/obstacles.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -81,6 +82,26 @@ Penetration penetration(const Box& box, Vec2 c, double hx, double hy) {
     return pen;
 }
 
+// The x range of the part of the body within the band y0 ≤ y ≤ y1: the corners in the
+// band and the edges' crossings of its two lines (empty, x0 > x1, where none).
+struct XRange {
+    double x0, x1;
+};
+XRange x_range_in_band(const std::array<Vec2, 4>& corners, double y0, double y1) {
+    XRange r{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    const auto include = [&r](double x) {
+        r.x0 = std::min(r.x0, x);
+        r.x1 = std::max(r.x1, x);
+    };
+    for (int k = 0; k < 4; ++k) {
+        const Vec2 a = corners[k], b = corners[(k + 1) & 3];
+        if (a.y >= y0 && a.y <= y1) include(a.x);
+        for (const double y : {y0, y1})
+            if ((a.y - y) * (b.y - y) < 0.0) include(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+    }
+    return r;
+}
+
 }  // namespace
 
 ObstacleMap::CellRange ObstacleMap::cells_touching(const Box& box, int pad) const {
@@ -125,12 +146,22 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
     // Nothing within the grid that rises above the bottom's reach: no contact at all.
     if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_.bound(r.i0, r.i1, r.j0, r.j1)) > bottom + step_height))
         return;
+    // A cell that the body misses by more than this cannot overlap it whatever the
+    // round-off (some 1e-15 m) of the separating-axis test [m].
+    const double clear = 1e-6 * std::min(grid_.dx, grid_.dy);
     for (int j = r.j0; j <= r.j1; ++j) {
+        // Only the row's cells that meet the body's part within the row's band (widened by
+        // `clear`) can overlap it: the cells beside it are not tested.
+        const double yc = grid_.y0 + j * grid_.dy;
+        const XRange part = x_range_in_band(corners, yc - hy - clear, yc + hy + clear);
+        if (!(part.x0 <= part.x1)) continue;
+        const int i0 = std::max(r.i0, int(std::floor((part.x0 - clear - grid_.x0) / grid_.dx + 0.5)));
+        const int i1 = std::min(r.i1, int(std::floor((part.x1 + clear - grid_.x0) / grid_.dx + 0.5)));
         // A row inside the grid with nothing above the bottom's reach holds no contact.
-        if (inside_x && j >= 0 && j < grid_.ny &&
-            !(double(row_max(wall_top_.data() + grid_.index(0, j), r.i0, r.i1)) > bottom + step_height))
+        if (i0 > i1 || (i0 >= 0 && i1 < grid_.nx && j >= 0 && j < grid_.ny &&
+                        !(double(row_max(wall_top_.data() + grid_.index(0, j), i0, i1)) > bottom + step_height)))
             continue;
-        for (int i = r.i0; i <= r.i1; ++i) {
+        for (int i = i0; i <= i1; ++i) {
             if (!blocked(i, j, bottom, step_height)) continue;
             const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
             const Penetration pen = penetration(box, c, hx, hy);
