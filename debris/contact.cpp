@@ -13,7 +13,7 @@ constexpr double sliding_epsilon = 1e-12;
 }  // namespace
 
 void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams& b, const Box& box, double centre_depth, double t,
-                     double rho, double g, FootprintCache& footprint_cache, std::vector<ContactPatch>& out) {
+                     double rho, double g, FootprintCache& footprint_cache, std::vector<ContactPatch>& out, bool depth_bound) {
     const BodyDef& def = b.def;
     const Vec2 xg = box.centre;
     out.clear();
@@ -22,9 +22,11 @@ void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams&
             out.push_back({Vec2{}, b.plan_area, friction_capacity(def.mu, 1.0, b.mass, rho, b.plan_area, centre_depth, g)});
         return;
     }
-    const CellWindow cells =
-        flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
-    if (!(flow.min_depth(cells) < b.draft)) return;  // no point under the body can be shallower than the draft
+    if (depth_bound) {
+        const CellWindow cells =
+            flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
+        if (!(flow.min_depth(cells) < b.draft)) return;  // no point under the body can be shallower than the draft
+    }
     const std::vector<FootprintPatch>& footprint = footprint_cache.patches(box, grid);
     const FlowReader::TimeStencil at_t = flow.at_time(t);
     // The depths at the patches' centroids, sampled a block of patches at a time.

@@ -22,9 +22,13 @@ struct ContactPatch {
 
 // The patches in contact at time t for a body at `box`: CC, one patch at the centre when
 // h_c < d; LC, one per grid cell under the footprint where h_ij < d (`footprint` keeps
-// the last box's cells). Clears `out` first.
+// the last box's cells). Clears `out` first. `depth_bound`: first ask the reader for a
+// lower bound of the depth under the body and return at once where even that is as deep
+// as the draft (the same answer, sooner for a floating body; for a body that was grounded
+// at its last step the bound seldom skips anything and costs a scan of the window).
 void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams& body, const Box& box, double centre_depth,
-                     double t, double rho, double g, FootprintCache& footprint, std::vector<ContactPatch>& out);
+                     double t, double rho, double g, FootprintCache& footprint, std::vector<ContactPatch>& out,
+                     bool depth_bound = true);
 
 // Translational and yaw velocity.
 struct Velocities {

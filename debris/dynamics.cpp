@@ -157,8 +157,9 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     }
     const StepStart st = step_start(ctx, b, s, centre);
     const Loads loads = integrate_loads(ctx, b, s, st, dt);
+    // A body grounded at its last step most likely is again: the depth bound is not tried.
     contact_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
-                    scratch.footprint, scratch.patches);
+                    scratch.footprint, scratch.patches, !(s.flags & flag_grounded));
     const Friction friction = apply_friction(scratch.patches, loads.trial, st.eff, dt);
     const AxisShift shift = axis_shift(b, s, scratch.patches, loads.load, friction.after.omega, friction.capacity, st.eff, dt);
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;

@@ -1,7 +1,9 @@
 // Shortcuts in the body step that skip work which cannot change the answer: the whole
-// cells of a footprint found without their four corner tests, and the contact and ground
-// scans that rule out a whole range of cells at once (ObstacleMap's block maxima). Each
-// is checked here against a plain, cell-by-cell reference written from the definitions.
+// cells of a footprint found without their four corner tests, the contact and ground
+// scans that rule out a whole range of cells at once (ObstacleMap's block maxima) or test
+// only the cells beside the body's part of a row, and the contact patches without the
+// depth bound. Each is checked here against a plain reference written from the
+// definitions, or against the path it replaces.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,8 +12,11 @@
 #include <limits>
 #include <random>
 
+#include "cases/debris_flows.hpp"
+#include "debris/contact.hpp"
 #include "debris/footprint.hpp"
 #include "debris/obstacles.hpp"
+#include "tests/test_support.hpp"
 
 using namespace flotsam;
 using namespace flotsam::debris;
@@ -102,6 +107,7 @@ TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
             if (x > 0.1 && x < 0.3 && y > 0.1 && y < 0.3) building[g.index(i, j)] = 1;       // a building, corner near (0.1, 0.1)
             if (x > -0.4 && x < -0.35 && y > -0.2 && y < 0.4) bed[g.index(i, j)] = 0.03f;  // a quay wall 3 cm high
             if (x > -0.2 && x < 0.0 && y < -0.3) bed[g.index(i, j)] = 0.002f;              // a low step, 2 mm
+            if (x > 0.35 && y > 0.2) bed[g.index(i, j)] = float(0.004 * std::sin(40.0 * x + 70.0 * y));  // rough ground
         }
     const ObstacleMap map(g, bed, building);
     const double bottom = 0.0, step = 0.005;  // the quay blocks, the low step does not
@@ -118,6 +124,13 @@ TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
                 deep += d > 1e-9 ? 1 : 0;
                 touching += d > -1e-9 ? 1 : 0;
             }
+        // The highest open ground under the body: cells it reaches into by more than 1 µm.
+        double highest = -std::numeric_limits<double>::infinity();
+        for (int j = 0; j < g.ny; ++j)
+            for (int i = 0; i < g.nx; ++i)
+                if (!building[g.index(i, j)] && overlap_depth(box, Vec2{g.x0 + i * g.dx, g.y0 + j * g.dy}, hx, hy) > 1e-6)
+                    highest = std::max(highest, double(bed[g.index(i, j)]));
+        EXPECT_EQ(map.highest_ground(box, 1e-6), highest) << what;
         std::vector<ObstacleContact> contacts;
         map.find_contacts(box, bottom, step, contacts);
         EXPECT_GE(int(contacts.size()), deep) << what;
@@ -159,4 +172,44 @@ TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
         with_contact += check(Box::make({x(rng), x(rng)}, turn(rng), 0.25, 0.1), "random pose " + std::to_string(k)) > 0;
     EXPECT_GT(with_contact, 200);   // the walls and the edges are met often enough
     EXPECT_LT(with_contact, 1800);  // and the open ground as often
+}
+
+// The contact patches without the depth bound (the step's choice for a body grounded at
+// its last step) are those with it, bit for bit: where the bound skips, every patch is
+// as deep as the draft anyway. Water 3 cm deep over a bed that rises 10 cm per metre
+// east: afloat in the west, grounded in the east, partly grounded between.
+TEST(StepShortcuts, ContactPatchesWithoutTheDepthBoundAreTheSame) {
+    const auto dir = test::scratch_dir("shortcuts_depth_bound");
+    const Grid g{160, 80, -0.795, -0.395, 0.01, 0.01};
+    const auto bed = [](double x, double) { return 0.1 * x; };
+    const auto path = test::write_flow(dir + "/slope.nc", g, {0.0, 1.0}, bed, [&](double x, double y, double t) {
+        const double h = std::max(0.03 + 0.01 * t - bed(x, y), 0.0);
+        return test::FlowState{float(h), 0.1f, 0.0f};
+    });
+    FlowReader flow(path);
+    flow.prepare(0.5);
+    BodyDef def = default_body_def();
+    def.contact = ContactModel::local;
+    const BodyParams p = make_body_params(def, 1000.0);
+    int skipped = 0, grounded = 0;
+    for (double x = -0.5; x <= 0.5; x += 0.0137)
+        for (const double heading : {0.0, 0.4, 1.3}) {
+            const Box box = Box::make({x, 0.01}, heading, def.length, def.width);
+            FootprintCache cache_with, cache_without;
+            std::vector<ContactPatch> with, without;
+            const double centre_depth = flow.depth(x, 0.01, 0.5);
+            contact_patches(flow, g, p, box, centre_depth, 0.5, 1000.0, 9.81, cache_with, with, true);
+            contact_patches(flow, g, p, box, centre_depth, 0.5, 1000.0, 9.81, cache_without, without, false);
+            ASSERT_EQ(with.size(), without.size()) << x << " " << heading;
+            for (std::size_t k = 0; k < with.size(); ++k) {
+                EXPECT_EQ(with[k].r.x, without[k].r.x);
+                EXPECT_EQ(with[k].r.y, without[k].r.y);
+                EXPECT_EQ(with[k].area, without[k].area);
+                EXPECT_EQ(with[k].capacity, without[k].capacity);
+            }
+            skipped += with.empty() && flow.min_depth(flow.cells_for(x - 0.14, x + 0.14, -0.13, 0.15)) >= p.draft;
+            grounded += !with.empty();
+        }
+    EXPECT_GT(skipped, 10);   // the bound does skip in the west
+    EXPECT_GT(grounded, 10);  // and there are contacts in the east
 }
