@@ -115,14 +115,24 @@ ObstacleMap::CellRange ObstacleMap::cells_touching(const Box& box, int pad) cons
 
 double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
     const CellRange r = cells_touching(box, 0);
+    const auto corners = box.corners();
+    const double hy = 0.5 * grid_.dy;
     double top = -std::numeric_limits<double>::infinity();
-    for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j)
-        for (int i = std::max(r.i0, 0); i <= std::min(r.i1, grid_.nx - 1); ++i) {
+    for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j) {
+        // Only the cells that meet the body's part within the row's band can be under it
+        // by more than min_overlap (> 0); those beside it are not tested.
+        const double yc = grid_.y0 + j * grid_.dy;
+        const XRange part = x_range_in_band(corners, yc - hy, yc + hy);
+        if (!(part.x0 <= part.x1)) continue;
+        const int i0 = std::max({r.i0, 0, int(std::floor((part.x0 - grid_.x0) / grid_.dx + 0.5))});
+        const int i1 = std::min({r.i1, grid_.nx - 1, int(std::floor((part.x1 - grid_.x0) / grid_.dx + 0.5))});
+        for (int i = i0; i <= i1; ++i) {
             const std::size_t c = grid_.index(i, j);
             if (double(open_ground_[c]) <= top) continue;  // a building (-inf) or no higher
             const Vec2 centre{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
             if (penetration(box, centre, 0.5 * grid_.dx, 0.5 * grid_.dy).depth() > min_overlap) top = double(bed_[c]);
         }
+    }
     return top;
 }
 
