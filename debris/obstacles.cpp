@@ -82,22 +82,40 @@ Penetration penetration(const Box& box, Vec2 c, double hx, double hy) {
     return pen;
 }
 
+// The body's outline for the row scans: each edge from corner k to corner k + 1, with
+// its run in x per unit of y (0 along x).
+struct Outline {
+    Vec2 from[4];
+    double to_y[4];
+    double x_per_y[4];
+    explicit Outline(const Box& box) {
+        const auto c = box.corners();
+        for (int k = 0; k < 4; ++k) {
+            const Vec2 a = c[k], b = c[(k + 1) & 3];
+            from[k] = a;
+            to_y[k] = b.y;
+            x_per_y[k] = b.y != a.y ? (b.x - a.x) / (b.y - a.y) : 0.0;
+        }
+    }
+};
+
 // The x range of the part of the body within the band y0 ≤ y ≤ y1: the corners in the
-// band and the edges' crossings of its two lines (empty, x0 > x1, where none).
+// band and the edges' crossings of its two lines (empty, x0 > x1, where none). Good to
+// round-off (some 1e-15 m): the scans widen it or ask for more overlap than that.
 struct XRange {
     double x0, x1;
 };
-XRange x_range_in_band(const std::array<Vec2, 4>& corners, double y0, double y1) {
+XRange x_range_in_band(const Outline& body, double y0, double y1) {
     XRange r{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     const auto include = [&r](double x) {
         r.x0 = std::min(r.x0, x);
         r.x1 = std::max(r.x1, x);
     };
     for (int k = 0; k < 4; ++k) {
-        const Vec2 a = corners[k], b = corners[(k + 1) & 3];
+        const Vec2 a = body.from[k];
         if (a.y >= y0 && a.y <= y1) include(a.x);
         for (const double y : {y0, y1})
-            if ((a.y - y) * (b.y - y) < 0.0) include(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+            if ((a.y - y) * (body.to_y[k] - y) < 0.0) include(a.x + (y - a.y) * body.x_per_y[k]);
     }
     return r;
 }
@@ -115,14 +133,14 @@ ObstacleMap::CellRange ObstacleMap::cells_touching(const Box& box, int pad) cons
 
 double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
     const CellRange r = cells_touching(box, 0);
-    const auto corners = box.corners();
+    const Outline outline(box);
     const double hy = 0.5 * grid_.dy;
     double top = -std::numeric_limits<double>::infinity();
     for (int j = std::max(r.j0, 0); j <= std::min(r.j1, grid_.ny - 1); ++j) {
         // Only the cells that meet the body's part within the row's band can be under it
         // by more than min_overlap (> 0); those beside it are not tested.
         const double yc = grid_.y0 + j * grid_.dy;
-        const XRange part = x_range_in_band(corners, yc - hy, yc + hy);
+        const XRange part = x_range_in_band(outline, yc - hy, yc + hy);
         if (!(part.x0 <= part.x1)) continue;
         const int i0 = std::max({r.i0, 0, int(std::floor((part.x0 - grid_.x0) / grid_.dx + 0.5))});
         const int i1 = std::min({r.i1, grid_.nx - 1, int(std::floor((part.x1 - grid_.x0) / grid_.dx + 0.5))});
@@ -159,11 +177,12 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
     // A cell that the body misses by more than this cannot overlap it whatever the
     // round-off (some 1e-15 m) of the separating-axis test [m].
     const double clear = 1e-6 * std::min(grid_.dx, grid_.dy);
+    const Outline outline(box);
     for (int j = r.j0; j <= r.j1; ++j) {
         // Only the row's cells that meet the body's part within the row's band (widened by
         // `clear`) can overlap it: the cells beside it are not tested.
         const double yc = grid_.y0 + j * grid_.dy;
-        const XRange part = x_range_in_band(corners, yc - hy - clear, yc + hy + clear);
+        const XRange part = x_range_in_band(outline, yc - hy - clear, yc + hy + clear);
         if (!(part.x0 <= part.x1)) continue;
         const int i0 = std::max(r.i0, int(std::floor((part.x0 - clear - grid_.x0) / grid_.dx + 0.5)));
         const int i1 = std::min(r.i1, int(std::floor((part.x1 + clear - grid_.x0) / grid_.dx + 0.5)));
