@@ -312,8 +312,8 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 }
 
 // Limited y-slopes of one row from the rows below (m), at (0) and above (p); zero
-// (first order) where the surface does not span the three (keeps_slope). Order 1: zero
-// everywhere.
+// (first order) next to a dry cell and where the ground cuts the surface (keeps_slope).
+// Order 1: zero everywhere.
 [[gnu::noinline]] void y_slopes_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const double* hp,
                                     const RowBuffers& w, int r) {
     double* __restrict se = w.slope(r, 0);

@@ -29,9 +29,10 @@
 // Wet and dry: one tolerance eps (PhysicsDef::dry_depth, 1e-9 m). It desingularises the
 // velocity, u = 2 h q / (h^2 + max(h^2, eps^2)) (q/h above eps, bounded by q/eps and
 // vanishing with h below it), and switches the reconstruction to first order next to a
-// cell below it, and where the ground cuts the surface (keeps_slope). It does not remove water or momentum: a thin layer keeps its discharge,
-// so the water at a front moves on. What a cell average still loses at a dry-bed front
-// (the thin water's speed) the front treatment restores (front_kernels.hpp, front.hpp).
+// cell below it (and where the ground cuts the surface: keeps_slope). It does not remove
+// water or momentum: a thin layer keeps its discharge, so the water at a front moves on.
+// What a cell average still loses at a dry-bed front (the thin water's speed) the front
+// treatment restores (front_kernels.hpp, front.hpp).
 //
 // Friction: solved implicitly per cell for fixed h, |q| + a |q|^2 = |q*| with
 // a = dt g n^2 / h^(7/3) (h held at eps below it), so it only slows the flow, never

@@ -185,15 +185,6 @@ TEST(Solver, DryDamBreakConvergesToRitter) {
     EXPECT_GT(order, 0.6);
 }
 
-// A puddle in a pit between two higher cells that hold only films, the beds of a pit in
-// the 2 cm city flow (docs/hydro.md, "A puddle in a pit"): 2 cm cells along the strip,
-// bed [3.0, 3.0, 5.45, 4.26, 4.73, 3.32, 3.32, 3.32] cm, a pool west at 4.0 cm, the pit
-// filled to 5.19 cm, 0.1 um films on its two walls, a pool east at 4.32 cm; Manning 0.013,
-// walls all round. The water above the east wall (4.73 cm) spills into the east pool
-// (which rises 4.6 / 3 = 1.5 mm, staying below the wall) and the pit keeps exactly
-// 4.73 - 4.26 = 4.7 mm, at rest: a weir's head H falls as dH/dt = -1.70 H^1.5 / dx, to
-// 1e-6 m in 20 s. When the walls' films gave the pit a slope of the ground's V, its
-// water ran at 1.39 m/s against a shut face for minutes instead. Along x and along y.
 // A strip of cells (bed and initial level per cell, spacing dx) three cells wide, along
 // x or along y, walls all round, Manning 0.013, run for `seconds`; the solver at the end.
 Solver strip_run(const std::vector<double>& bed, const std::vector<double>& level, double dx, bool along_y, double seconds) {
