@@ -158,10 +158,11 @@ double Solver::stable_dt() const {
     return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, fv_.cfl / max_wave_rate_) : def_.max_dt;
 }
 
-void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
+void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
+                       const std::vector<double>& step_h) {
     const SideForcing forcing = forcing_.at(s, t, [&] {
         double sum = 0.0;
-        for (std::size_t p : pump_cells_) sum += h_[p] + z_[p];
+        for (std::size_t p : pump_cells_) sum += step_h[p] + z_[p];
         return sum / double(pump_cells_.size());
     });
     const BoundaryKind kind = forcing.kind;
@@ -233,8 +234,9 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
     }
 }
 
-void Solver::fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
-    for (Side s : {Side::west, Side::east, Side::south, Side::north}) fill_side(s, h, hu, hv, t);
+void Solver::fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
+                         const std::vector<double>& step_h) {
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) fill_side(s, h, hu, hv, t, step_h);
 }
 
 namespace {
@@ -623,7 +625,7 @@ void Solver::stage(Stage which, double dt, double t) {
     std::vector<double>& hu_out = corrector ? hu2_ : hu1_;
     std::vector<double>& hv_out = corrector ? hv2_ : hv1_;
     const std::vector<ColumnRange>& out_bound = corrector ? bound2_ : bound1_;
-    fill_ghosts(h, hu, hv, t);
+    fill_ghosts(h, hu, hv, t, h_);
     const double pump_rate = forcing_.pump_rate(t);  // [m/s] over the source strip
     const bool pumping = pump_rate != 0.0;
     find_active_columns(which, h, hu, hv, pumping);
@@ -772,7 +774,17 @@ void Solver::stage(Stage which, double dt, double t) {
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
     (corrector ? bound2_ : bound1_) = active_;
     if (last) max_wave_rate_ = amax;
-    if (fronts) front_.fix_done(h_out, active_, alpha_, alpha_out, true);
+    if (fronts) {
+        // The sweep fixed the cells beside a ghost against whatever ghosts h_out held from
+        // its last use. Fix them again against the output's own boundary values: those the
+        // next stage fills in, at the output's time, with the same step-start depth (order
+        // 1: the output is the next step's start). Otherwise the wet fraction there depends
+        // on the buffer's history, and a run that writes checkpoints (its next step rebuilds
+        // alpha from h with fresh ghosts) or restarts gives other bytes.
+        fill_ghosts(h_out, hu_out, hv_out, corrector ? t : t + dt, fv_.order == 1 ? h_out : h_);
+        front_.fix_beside_ghosts(h_out, z_, active_, alpha_, alpha_out, true);
+        front_.fix_done(h_out, active_, alpha_, alpha_out, true);
+    }
 }
 
 void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {

@@ -131,8 +131,12 @@ public:
 
 private:
     enum class Stage { predictor, corrector };
-    void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
-    void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
+    // Ghost cells of (h, hu, hv) at time t; step_h is the depth at the step's start (the
+    // pump's strip level, taken once at its stop, is read from it).
+    void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
+                     const std::vector<double>& step_h);
+    void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
+                   const std::vector<double>& step_h);
     // One Heun stage at time t: predictor U1 = E(U), corrector U = (U + E(U1)) / 2, with
     // E(U) = friction(U + dt L(U)). Fused: one sweep over the rows (see solver.cpp).
     void stage(Stage which, double dt, double t);
