@@ -314,7 +314,7 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
 }
 
 // Limited y-slopes of one row from the rows below (m), at (0) and above (p); zero
-// (first order) where the surface does not span the three (surface_spans). Order 1: zero
+// (first order) where the surface does not span the three (keeps_slope). Order 1: zero
 // everywhere.
 [[gnu::noinline]] void y_slopes_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const double* hp,
                                     const RowBuffers& w, int r) {
@@ -333,9 +333,11 @@ bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 o
     const double *vm = w.prim(r - 1, 2), *v0 = w.prim(r, 2), *vp = w.prim(r + 1, 2);
 #pragma omp simd
     for (int c = c0; c < c1; ++c) {
-        const double wt = surface_spans(hm[c], em[c], h0[c], e0[c], hp[c], ep[c], s.dry) ? 1.0 : 0.0;
-        se[c] = wt * limited_slope(e0[c] - em[c], ep[c] - e0[c], s.theta);
-        sh[c] = wt * limited_slope(h0[c] - hm[c], hp[c] - h0[c], s.theta);
+        const double slope_e = limited_slope(e0[c] - em[c], ep[c] - e0[c], s.theta);
+        const double slope_h = limited_slope(h0[c] - hm[c], hp[c] - h0[c], s.theta);
+        const double wt = keeps_slope(hm[c], em[c], h0[c], e0[c], hp[c], ep[c], slope_e, slope_h, s.dry) ? 1.0 : 0.0;
+        se[c] = wt * slope_e;
+        sh[c] = wt * slope_h;
         su[c] = wt * limited_slope(u0[c] - um[c], up[c] - u0[c], s.theta);
         sv[c] = wt * limited_slope(v0[c] - vm[c], vp[c] - v0[c], s.theta);
     }
@@ -439,12 +441,15 @@ void x_faces_at_tips(const Sweep& s, const std::vector<Tip>& tips, const double*
     const int c0 = cols.begin + kGhost, c1 = cols.end + kGhost;  // cells; faces c0-1 .. c1-1
 // Slopes on the cells beside the faces; zero (first order) next to a dry cell, which
 // keeps h >= 0 and the shoreline at rest, and where the ground cuts the surface
-// (surface_spans). Order 1: the weight is zero everywhere.
+// (keeps_slope). Order 1: the weight is zero everywhere.
 #pragma omp simd
     for (int c = c0 - 1; c < c1 + 1; ++c) {
-        const double wt = surface_spans(h[c - 1], e[c - 1], h[c], e[c], h[c + 1], e[c + 1], s.dry) ? s.order_weight : 0.0;
-        se[c] = wt * limited_slope(e[c] - e[c - 1], e[c + 1] - e[c], s.theta);
-        sh[c] = wt * limited_slope(h[c] - h[c - 1], h[c + 1] - h[c], s.theta);
+        const double slope_e = limited_slope(e[c] - e[c - 1], e[c + 1] - e[c], s.theta);
+        const double slope_h = limited_slope(h[c] - h[c - 1], h[c + 1] - h[c], s.theta);
+        const bool keep = keeps_slope(h[c - 1], e[c - 1], h[c], e[c], h[c + 1], e[c + 1], slope_e, slope_h, s.dry);
+        const double wt = keep ? s.order_weight : 0.0;
+        se[c] = wt * slope_e;
+        sh[c] = wt * slope_h;
         su[c] = wt * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], s.theta);
         sv[c] = wt * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], s.theta);
     }

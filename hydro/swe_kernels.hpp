@@ -29,7 +29,7 @@
 // Wet and dry: one tolerance eps (PhysicsDef::dry_depth, 1e-9 m). It desingularises the
 // velocity, u = 2 h q / (h^2 + max(h^2, eps^2)) (q/h above eps, bounded by q/eps and
 // vanishing with h below it), and switches the reconstruction to first order next to a
-// cell below it, and where the ground cuts the surface (surface_spans). It does not remove water or momentum: a thin layer keeps its discharge,
+// cell below it, and where the ground cuts the surface (keeps_slope). It does not remove water or momentum: a thin layer keeps its discharge,
 // so the water at a front moves on. What a cell average still loses at a dry-bed front
 // (the thin water's speed) the front treatment restores (front_kernels.hpp, front.hpp).
 //
@@ -44,26 +44,32 @@
 
 namespace flotsam::hydro {
 
-// Whether a cell's surface may be given a slope from its two neighbours along a direction
-// (depth h, level eta = h + z; m before, 0 the cell, p after): all three wetter than the
-// dry tolerance, and either the ground between them is monotone or the water covers it
-// (at each of the cell's faces both sides' water stands above the higher bed: the
-// first-order hydrostatic reconstruction is wet on both sides).
+// Whether a cell keeps the limited slopes s_eta, s_h of its level and depth along a
+// direction (depth h, level eta = h + z; m before, 0 the cell, p after): all three wetter
+// than the dry tolerance, and either the water covers the ground between them (at each of
+// the cell's faces both sides' water stands above the higher bed: the first-order
+// hydrostatic reconstruction is wet on both sides) or the bed the slopes imply at each
+// face, z0 -+ (s_eta - s_h) / 2, stays between the beds of the two cells that share it.
 //
-// Where the ground cuts the surface at a pit or a ridge, the neighbours' levels are their
-// films on the ground either side, and a line through them is a tilt the ground does not
-// have: it tilts the cell's implied bed z = eta - h and pushes its water with a force no
-// flux balances, while the film's face, lifted by the same line, shuts the outflow (a
-// puddle in a pit then ran at 1.4 m/s for minutes; docs/hydro.md, "A puddle in a pit").
-// On a monotone slope the line is the ground's own slope, and a film running down it
-// needs it (first order there runs at a fifth of the normal-flow speed). Over a lake at
-// rest, and wherever the water covers the ground, nothing changes.
-inline bool surface_spans(double hm, double eta_m, double h0, double eta_0, double hp, double eta_p, double dry) {
+// Where the ground cuts the surface, a neighbour's level is its film on its ground, and
+// a slope through it can be a slope of the ground the cell does not have, or of the water
+// beside a film: a puddle in a pit between two films, or a film on a flat shelf beside a
+// puddle. The implied bed then leaves the ground's range: it tilts the cell (a force no
+// flux balances), and the film's face, lifted above the puddle's level, shuts the outflow
+// (a puddle ran at 1.4 m/s for minutes; docs/hydro.md, "A puddle in a pit"). On a slope
+// the implied bed follows the ground, and a film running down it keeps its slope (first
+// order there runs at a fifth of the normal-flow speed). Over a lake at rest, and wherever
+// the water covers the ground, nothing changes.
+inline bool keeps_slope(double hm, double eta_m, double h0, double eta_0, double hp, double eta_p, double s_eta, double s_h,
+                        double dry) {
     const double zm = eta_m - hm, z0 = eta_0 - h0, zp = eta_p - hp;
     const bool wet = (hm > dry) & (h0 > dry) & (hp > dry);
-    const bool monotone = (z0 - zm) * (zp - z0) >= 0.0;
     const bool covered = (std::min(eta_m, eta_0) - std::max(zm, z0) > dry) & (std::min(eta_p, eta_0) - std::max(zp, z0) > dry);
-    return wet & (monotone | covered);
+    const double rise = 0.5 * (s_eta - s_h);  // of the implied bed, from the centre to the + face
+    const double face_m = z0 - rise, face_p = z0 + rise;
+    const bool within = (face_m >= std::min(zm, z0) - dry) & (face_m <= std::max(zm, z0) + dry) &
+                        (face_p >= std::min(zp, z0) - dry) & (face_p <= std::max(zp, z0) + dry);
+    return wet & (covered | within);
 }
 
 // Generalised minmod limiter of the one-sided differences dl, dr: theta = 1 is minmod

@@ -44,21 +44,28 @@ TEST(Kernels, LimiterAndLakeAtRestFlux) {
     EXPECT_NEAR(f.normal_R, 0.5 * 9.81 * 0.01, 1e-15);
 }
 
-TEST(Kernels, SurfaceSlopesStopWhereTheGroundCutsAPitOrRidge) {
-    const double dry = 1e-9;
-    auto spans = [&](double zm, double hm, double z0, double h0, double zp, double hp) {
-        return surface_spans(hm, zm + hm, h0, z0 + h0, hp, zp + hp, dry);
+TEST(Kernels, SlopesStopWhereTheyWouldLiftOrSinkTheGround) {
+    const double dry = 1e-9, theta = 1.3;
+    auto keeps = [&](double zm, double hm, double z0, double h0, double zp, double hp) {
+        const double em = zm + hm, e0 = z0 + h0, ep = zp + hp;
+        return keeps_slope(hm, em, h0, e0, hp, ep, limited_slope(e0 - em, ep - e0, theta), limited_slope(h0 - hm, hp - h0, theta),
+                           dry);
     };
-    EXPECT_TRUE(spans(0.0, 0.1, 0.0, 0.1, 0.0, 0.1));           // flat, wet
-    EXPECT_FALSE(spans(0.0, 0.1, 0.0, 0.1, 0.0, 0.0));          // a dry neighbour
-    EXPECT_TRUE(spans(0.002, 1e-4, 0.001, 1e-4, 0.0, 1e-4));    // a film down a 1:10 slope (monotone, cut)
-    EXPECT_TRUE(spans(0.05, 0.01, 0.04, 0.02, 0.05, 0.01));     // a pit the water covers (levels 6 cm)
-    EXPECT_FALSE(spans(0.0545, 1e-7, 0.0426, 0.0093, 0.0473, 1e-7));  // the city's pit: films either side above its level
-    EXPECT_FALSE(spans(0.0426, 0.0093, 0.0473, 1e-7, 0.0332, 0.01));  // the film on its ridge
+    EXPECT_TRUE(keeps(0.0, 0.1, 0.0, 0.12, 0.0, 0.15));       // flat, wet, a wave
+    EXPECT_FALSE(keeps(0.0, 0.1, 0.0, 0.1, 0.0, 0.0));        // a dry neighbour
+    EXPECT_TRUE(keeps(0.002, 1e-4, 0.001, 1.2e-4, 0.0, 1.5e-4));  // a film down a 1:10 slope (cut, the bed followed)
+    EXPECT_TRUE(keeps(0.05, 0.01, 0.04, 0.02, 0.05, 0.01));   // a pit the water covers (levels 6 cm)
+    // The city's pit (2 cm): its north face's implied bed 40.9 mm, below both beds there.
+    EXPECT_FALSE(keeps(0.0545, 1e-7, 0.0426, 0.0093, 0.0473, 1e-7));
+    // The film on the pit's ridge: its south face's implied bed 49.5 mm, above both.
+    EXPECT_FALSE(keeps(0.0426, 0.0093, 0.0473, 1e-7, 0.0332, 0.01));
+    // The 1 cm city's film on a flat shelf beside a puddle, a drop behind it (monotone
+    // ground, so the first rule tried let it through): its face toward the puddle 36.4 mm
+    // over the 33.6 mm ground.
+    EXPECT_FALSE(keeps(0.01485, 5.7e-4, 0.0336, 2e-5, 0.0336, 0.0044));
     // A pit whose level stands 2e-9 m over its walls' ground is covered (the dry tolerance
-    // is 1e-9 m); 5e-10 m under it, it is cut.
-    EXPECT_TRUE(spans(0.05, 3e-9, 0.04, 0.01 + 2e-9, 0.05, 3e-9));
-    EXPECT_FALSE(spans(0.05, 3e-9, 0.04, 0.01 - 5e-10, 0.05, 3e-9));
+    // is 1e-9 m).
+    EXPECT_TRUE(keeps(0.05, 3e-9, 0.04, 0.01 + 2e-9, 0.05, 3e-9));
 }
 
 TEST(Kernels, FrictionNeverReverses) {
@@ -224,28 +231,68 @@ TEST(Solver, DryDamBreakConvergesToRitter) {
 // 4.73 - 4.26 = 4.7 mm, at rest: a weir's head H falls as dH/dt = -1.70 H^1.5 / dx, to
 // 1e-6 m in 20 s. When the walls' films gave the pit a slope of the ground's V, its
 // water ran at 1.39 m/s against a shut face for minutes instead. Along x and along y.
+// A strip of cells (bed and initial level per cell, spacing dx) three cells wide, along
+// x or along y, walls all round, Manning 0.013, run for `seconds`; the solver at the end.
+Solver strip_run(const std::vector<double>& bed, const std::vector<double>& level, double dx, bool along_y, double seconds) {
+    const int n = int(bed.size());
+    Scene s = along_y ? test::flat_scene(3, n, dx, 0.0, 0.0) : test::flat_scene(n, 3, dx, 0.0, 0.0);
+    s.eta0.assign(s.grid.size(), 0.0);
+    for (int k = 0; k < n; ++k)
+        for (int m = 0; m < 3; ++m) {
+            const std::size_t c = along_y ? s.grid.index(m, k) : s.grid.index(k, m);
+            s.z[c] = bed[std::size_t(k)];
+            s.eta0[c] = level[std::size_t(k)];
+        }
+    PhysicsDef d = closed_def();
+    d.default_manning_n = 0.013;
+    Solver solver(s, d);
+    while (solver.time() < seconds) solver.step(std::min(solver.stable_dt(), seconds - solver.time()));
+    return solver;
+}
+
+// A puddle in a pit between two higher cells that hold only films, the beds of a pit in
+// the 2 cm city flow (docs/hydro.md, "A puddle in a pit"): 2 cm cells along the strip,
+// bed [3.0, 3.0, 5.45, 4.26, 4.73, 3.32, 3.32, 3.32] cm, a pool west at 4.0 cm, the pit
+// filled to 5.19 cm, 0.1 um films on its two walls, a pool east at 4.32 cm. The water
+// above the east wall (4.73 cm) spills into the east pool (which rises 4.6 / 3 = 1.5 mm,
+// staying below the wall) and the pit keeps exactly 4.73 - 4.26 = 4.7 mm, at rest: a
+// weir's head H falls as dH/dt = -1.70 H^1.5 / dx, to 1e-6 m in 20 s. When the walls'
+// films gave the pit a slope of the ground's V, its water ran at 1.39 m/s against a
+// shut face for minutes instead. Along x and along y.
 TEST(Solver, PuddleInAPitDrainsToItsSillAndStops) {
     const std::vector<double> bed{0.030, 0.030, 0.0545, 0.0426, 0.0473, 0.0332, 0.0332, 0.0332};
     const std::vector<double> level{0.040, 0.040, 0.0545 + 1e-7, 0.0519, 0.0473 + 1e-7, 0.0432, 0.0432, 0.0432};
     for (const bool along_y : {false, true}) {
-        const int n = int(bed.size());
-        Scene s = along_y ? test::flat_scene(3, n, 0.02, 0.0, 0.0) : test::flat_scene(n, 3, 0.02, 0.0, 0.0);
-        s.eta0.assign(s.grid.size(), 0.0);
-        for (int k = 0; k < n; ++k)
-            for (int m = 0; m < 3; ++m) {
-                const std::size_t c = along_y ? s.grid.index(m, k) : s.grid.index(k, m);
-                s.z[c] = bed[std::size_t(k)];
-                s.eta0[c] = level[std::size_t(k)];
-            }
-        PhysicsDef d = closed_def();
-        d.default_manning_n = 0.013;
-        Solver solver(s, d);
-        while (solver.time() < 20.0) solver.step(std::min(solver.stable_dt(), 20.0 - solver.time()));
+        const Solver solver = strip_run(bed, level, 0.02, along_y, 20.0);
         const int i = along_y ? 1 : 3, j = along_y ? 3 : 1;
         const double speed = std::hypot(solver.x_velocity(i, j), solver.y_velocity(i, j));
         std::printf("along %s: pit %.5f m deep at %.2e m/s\n", along_y ? "y" : "x", solver.depth(i, j), speed);
         EXPECT_NEAR(solver.depth(i, j), 0.0473 - 0.0426, 5e-5) << (along_y ? "along y" : "along x");
         EXPECT_LT(speed, 0.01) << (along_y ? "along y" : "along x");
+    }
+}
+
+// A puddle on a flat shelf beside a film, the shelf ending in a drop: the 1 cm city
+// flow's cell at (7.48, -1.04) (1 cm cells; bed [14.85, 14.85, 33.6, 33.6, 44.55,
+// 44.55] mm: a pool below the drop 0.57 mm deep, a 20 um film and 4.4 mm of water on the
+// shelf, a 0.2 mm film on the higher ground east). The shelf's water runs off the drop:
+// over a free overfall the shelf's depth H falls as d(H^-1/2)/dt = 0.85 / L (weir
+// q = 1.70 H^1.5 over the shelf's length L = 2 cm), to 1.3e-6 m in 20 s, friction
+// slowing it (8.4e-6 m left). When the film's level slope came from the puddle beside it
+// (the ground flat between them, so "monotone" to the first rule, ce4d34a), the film's
+// face stood above the puddle's level and held it back (here 1.1e-4 m left at 0.02 m/s;
+// in the 1 cm city flow 4.4 mm at 1.3 m/s for the last 90 s of the run).
+TEST(Solver, PuddleOnAShelfRunsOffItsEdge) {
+    const std::vector<double> bed{0.01485, 0.01485, 0.0336, 0.0336, 0.04455, 0.04455};
+    const std::vector<double> level{0.01485 + 5.7e-4, 0.01485 + 5.7e-4, 0.0336 + 2e-5, 0.0336 + 0.0044, 0.04455 + 2e-4,
+                                    0.04455 + 2e-4};
+    for (const bool along_y : {false, true}) {
+        const Solver solver = strip_run(bed, level, 0.01, along_y, 20.0);
+        const int i = along_y ? 1 : 3, j = along_y ? 3 : 1;
+        const double speed = std::hypot(solver.x_velocity(i, j), solver.y_velocity(i, j));
+        std::printf("along %s: shelf %.3e m deep at %.2e m/s\n", along_y ? "y" : "x", solver.depth(i, j), speed);
+        EXPECT_LT(solver.depth(i, j), 3e-5) << (along_y ? "along y" : "along x");  // 8.4e-6 m; the first rule: 1.1e-4
+        EXPECT_LT(speed, 0.005) << (along_y ? "along y" : "along x");           // 3.5e-4 m/s; the first rule: 0.02
     }
 }
 
