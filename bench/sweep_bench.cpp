@@ -7,7 +7,10 @@
 // processor time.
 // Not a test: timings belong here. The floor: under 5 minutes on 2 cores at 2 cm.
 //
-//   build/sweep_bench [--threads N] [--no-read-ahead] [--ground FILE] [--out DIR] SCENE FLOW [FLOW ...]
+//   build/sweep_bench [--threads N] [--no-read-ahead] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW ...]
+//
+// --dt-max S: the debris step's upper bound [s]; default 0.02, as the paper's spec files
+// (sweep/examples/paper_sensitivity*.toml; 0.01 before, docs/sweep.md "The step").
 //
 // --ground FILE: the bodies stand on that finer scene's ground (`flotsam sweep --ground`;
 // the pipeline's default at 2 and 4 cm).
@@ -39,6 +42,7 @@ int main(int argc, char** argv) {
     bool read_ahead = true;
     std::string dir = (std::filesystem::temp_directory_path() / "flotsam-sweep-bench").string();
     std::string ground;
+    std::string dt_max = "0.02";  // [s], as TOML text: the spec reader checks it
     std::vector<std::string> args;
     for (int k = 1; k < argc; ++k) {
         const std::string a = argv[k];
@@ -50,12 +54,15 @@ int main(int argc, char** argv) {
             dir = argv[++k];
         else if (a == "--ground" && k + 1 < argc)
             ground = argv[++k];
+        else if (a == "--dt-max" && k + 1 < argc)
+            dt_max = argv[++k];
         else
             args.push_back(a);
     }
     if (args.size() < 2) {
         std::fprintf(stderr,
-                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--ground FILE] [--out DIR] SCENE FLOW [FLOW ...]\n");
+                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW "
+                     "...]\n");
         return 2;
     }
     const std::string scene = args[0];
@@ -64,7 +71,7 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 10; ++k) flows.push_back(given[std::size_t(k) % given.size()]);
     std::filesystem::create_directories(dir);
 
-    std::string spec_text = "[sweep]\nscene = \"" + scene + "\"\noutput-interval = 1.0\n";
+    std::string spec_text = "[sweep]\nscene = \"" + scene + "\"\noutput-interval = 1.0\ndt-max = " + dt_max + "\n";
     if (!ground.empty()) spec_text += "ground = \"" + ground + "\"\n";
     spec_text += "[flows]\npaths = [\n";
     for (const auto& f : flows) spec_text += "  \"" + f + "\",\n";
@@ -97,6 +104,7 @@ int main(int argc, char** argv) {
         std::printf("  members: %d = %zu flows x %zu bodies x %zu variants x %zu parameter sets; %zu output times (%.0f s)\n",
                     st.members, spec.flows.size(), spec.bodies.size(), spec.variants.size(), spec.params.size(), r.time.size(),
                     r.time.back());
+        std::printf("  debris step: dt-max %g s\n", spec.world.step.dt_max);
         std::printf("  threads: %d stepping (OpenMP max %d)%s\n", threads, omp_get_max_threads(),
                     read_ahead ? " + 1 reading ahead" : ", no read-ahead");
         std::printf("  wall time: %.1f s (run %.1f s, writing outputs %.1f s)\n", wall, run, write);

@@ -286,6 +286,8 @@ TEST(SweepSpec, PaperDesignSpecHasSevenSets) {
     EXPECT_DOUBLE_EQ(members[4].def.cm, 2.0 / 1.5);
     EXPECT_DOUBLE_EQ(members[4].def.cd1, 0.8);
     EXPECT_DOUBLE_EQ(members[5].def.mu, 0.6);
+    EXPECT_TRUE(spec.dt_max_given);  // the step the scene needs (docs/sweep.md, "The step")
+    EXPECT_DOUBLE_EQ(spec.world.step.dt_max, 0.02);
 }
 
 TEST(SweepSpec, ErrorsNameTheFileLineAndKey) {
