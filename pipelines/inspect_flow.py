@@ -1,16 +1,67 @@
 #!/usr/bin/python3
 """Summarise a flotsam flow file through xarray (Debian's python3-xarray).
 
-Usage: python3 -m pipelines.inspect_flow FLOW.nc [--check]
+Usage: python3 -m pipelines.inspect_flow FLOW.nc [--check] [--stranded-seconds S]
 
 Prints the decoded time axis, the variables found by CF standard_name, the gauges and
-the largest depth and speed. With --check, exits non-zero unless the time axis decodes
-to datetimes and h, u, v are found by their standard names (used by the tests).
+the largest depth and speed, and any stranded fast water (below). With --check, exits
+non-zero unless the time axis decodes to datetimes, h, u, v are found by their standard
+names and no water is stranded (used by the tests).
+
+Stranded fast water: a cell holding at least 1 mm that moves at 0.3 m/s or more with no
+outlet (no velocity component of 0.1 m/s or more toward a neighbour, in x or in y, holding
+a twentieth of its depth or more), in every frame for 30 s or more (--stranded-seconds).
+A front does that for a frame or two and moves on; water that does it frame after frame
+is running into faces the scheme keeps shut, with nowhere for its discharge to go: the
+signature of the defect of docs/hydro.md, "A puddle in a pit" (9 mm at 1.4 m/s, the same
+in every frame for minutes).
 """
 import sys
 
 import numpy as np
 import xarray as xr
+
+STRANDED_DEPTH = 1e-3  # [m]
+STRANDED_SPEED = 0.3  # [m/s]
+STRANDED_RATIO = 0.05  # a neighbour with less than this times the cell's depth is no outlet
+STRANDED_OUTLET = 0.1  # [m/s] the least velocity component toward an outlet
+STRANDED_SECONDS = 30.0  # [s], and at least three frames
+
+
+def stranded_water(ds, seconds=STRANDED_SECONDS):
+    """Cells with stranded fast water (module docstring), as (frames in the run, t_end [s],
+    x, y, h [m], u, v [m/s]) of each cell's longest run, longest first."""
+    h_all, u_all, v_all = ds["h"], ds["u"], ds["v"]
+    t = (ds["time"] - ds["time"][0]) / np.timedelta64(1, "s") if np.issubdtype(ds["time"].dtype, np.datetime64) else ds["time"]
+    run = np.zeros(h_all.shape[1:], dtype=np.int32)
+    best = np.zeros_like(run)
+    best_at = np.full(run.shape, -1, dtype=np.int32)
+    for k in range(ds.sizes["time"]):
+        h = np.nan_to_num(h_all[k].values.astype(np.float64))
+        u = np.nan_to_num(u_all[k].values.astype(np.float64))
+        v = np.nan_to_num(v_all[k].values.astype(np.float64))
+        # The neighbours the flow points at in x and in y (edges: the cell itself); a
+        # component of STRANDED_OUTLET or more toward one that holds water is an outlet.
+        hp = np.pad(h, 1, mode="edge")
+        x_down = np.where(u > 0, hp[1:-1, 2:], hp[1:-1, :-2])
+        y_down = np.where(v > 0, hp[2:, 1:-1], hp[:-2, 1:-1])
+        outlet = ((np.abs(u) >= STRANDED_OUTLET) & (x_down >= STRANDED_RATIO * h)) | \
+                 ((np.abs(v) >= STRANDED_OUTLET) & (y_down >= STRANDED_RATIO * h))
+        flagged = (h >= STRANDED_DEPTH) & (np.hypot(u, v) >= STRANDED_SPEED) & ~outlet
+        run = np.where(flagged, run + 1, 0)
+        longer = run > best
+        best = np.where(longer, run, best)
+        best_at = np.where(longer, k, best_at)
+    found = []
+    t = np.asarray(t, dtype=np.float64)
+    ends = np.maximum(best_at, 0)
+    span = t[ends] - t[np.maximum(ends - best + 1, 0)]  # [s] from the run's first frame to its last
+    for j, i in zip(*np.nonzero((best >= 3) & (span >= seconds))):
+        k = int(best_at[j, i])
+        found.append((int(best[j, i]), float(t[k]), float(ds.x[i]), float(ds.y[j]), float(h_all[k, j, i]),
+                      float(u_all[k, j, i]), float(v_all[k, j, i])))
+    return sorted(found, reverse=True)
+
 
 STANDARD_NAMES = {
     "depth": "sea_floor_depth_below_sea_surface",
@@ -24,6 +75,9 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     path, check = argv[1], "--check" in argv[2:]
+    seconds = STRANDED_SECONDS
+    if "--stranded-seconds" in argv[2:-1]:
+        seconds = float(argv[argv.index("--stranded-seconds") + 1])
     ds = xr.open_dataset(path)
     ok = True
     time = ds["time"]
@@ -45,11 +99,20 @@ def main(argv):
             eta = ds.gauge_eta.isel(gauge=k)
             print(f"gauge {name}: max level {float(eta.max()):.4f} m at "
                   f"{float((eta.gauge_time[int(eta.argmax())] - ds.gauge_time[0]) / np.timedelta64(1, 's')):.1f} s")
+    stranded = stranded_water(ds, seconds) if all(name in ds for name in ("h", "u", "v")) else []
+    ok &= not stranded
+    if stranded:
+        print(f"STRANDED FAST WATER in {len(stranded)} cell(s) (>= {STRANDED_DEPTH * 1e3:g} mm at >= {STRANDED_SPEED:g} m/s "
+              f"with no outlet, every frame for {seconds:g} s or more); the longest:")
+        for n, t_end, x, y, h, u, v in stranded[:5]:
+            print(f"  ({x:.3f}, {y:.3f}) m: {n} frames to t = {t_end:g} s, h {h * 1e3:.2f} mm, u {u:+.2f}, v {v:+.2f} m/s")
+    else:
+        print("stranded fast water: none")
     for key in ("title", "source", "realisation", "boundary_file", "boundary_checksum"):
         if key in ds.attrs:
             print(f"{key}: {ds.attrs[key]}")
     if check and not ok:
-        print("CHECK FAILED: time not decoded or standard names missing", file=sys.stderr)
+        print("CHECK FAILED: time not decoded, standard names missing, or stranded fast water", file=sys.stderr)
         return 1
     return 0
 

@@ -280,6 +280,23 @@ TEST(HydroRun, XarrayDecodesTimeAndFindsStandardNames) {
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     EXPECT_EQ(rc, 0) << text;
     EXPECT_NE(text.find("time decoded as datetime64"), std::string::npos) << text;
+    EXPECT_NE(text.find("stranded fast water: none"), std::string::npos) << text;
+
+    // The same flow with a puddle planted on the dry roof of the building at cells 35..39,
+    // 4..7: 5 mm running north at 1 m/s between dry neighbours in every frame, as the
+    // defect of docs/hydro.md ("A puddle in a pit") did. The check names it and fails.
+    const std::string plant = "cd " + dir + " && cp flow.nc planted.nc && /usr/bin/python3 -c \"import netCDF4 as nc; "
+                              "d = nc.Dataset('planted.nc', 'a'); i = 37; d['h'][:, 5, i] = 0.005; d['v'][:, 5, i] = 1.0; "
+                              "d['u'][:, 5, i] = 0.0; d.close()\"";
+    ASSERT_EQ(std::system(plant.c_str()), 0);
+    const std::string check = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.inspect_flow " + dir +
+                              "/planted.nc --check --stranded-seconds 5 > " + dir + "/planted.txt 2>&1";
+    EXPECT_NE(std::system(check.c_str()), 0);
+    std::ifstream p(dir + "/planted.txt");
+    const std::string planted((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
+    EXPECT_NE(planted.find("STRANDED FAST WATER in 1 cell(s)"), std::string::npos) << planted;
+    EXPECT_NE(planted.find("(0.750, 0.110) m: 13 frames to t = 6 s, h 5.00 mm, u +0.00, v +1.00 m/s"), std::string::npos)
+        << planted;
 }
 
 // Gauges interpolate bilinearly between the four cell centres around them: on a plane
