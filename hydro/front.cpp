@@ -179,18 +179,6 @@ void FrontTracker::fix(const std::vector<double>& h, const std::vector<double>& 
     fix_done(h, cols, alpha_in, alpha_out, grown);
 }
 
-namespace {
-
-// The FrontMark bits of cell i of a row (h, z, alpha at its column 0; `st` the stride).
-inline int front_marks(const double* hc, const double* zc, const double* alpha, std::ptrdiff_t st, int i, double dry) {
-    const double hw = hc[i - 1], he = hc[i + 1], hs = hc[i - st], hn = hc[i + st], here = hc[i];
-    const bool tip = may_be_tip(here, zc[i], alpha[i], hw, zc[i - 1], he, zc[i + 1], hs, zc[i - st], hn, zc[i + st], dry);
-    return int(tip) * kMayBeTip + int(thin_beside_thick(here, he, dry)) * kThinEastFace +
-           int(thin_beside_thick(hs, here, dry)) * kThinSouthFace;
-}
-
-}  // namespace
-
 void FrontTracker::fix_row(const std::vector<double>& h, const std::vector<double>& z, const std::vector<ColumnRange>& cols,
                            const std::vector<double>& alpha_in, std::vector<double>& alpha_out, bool grown, int j) {
     const double dry = dry_;
@@ -215,7 +203,12 @@ void FrontTracker::fix_row(const std::vector<double>& h, const std::vector<doubl
     for (int i = c.begin; i < c.end; ++i)
         aout[i] = consistent_wet_fraction(ain[i], hc[i], hc[i - 1], hc[i + 1], hc[i - st], hc[i + st], dry);
     // The marks, while the row is in cache (one loop with the above does not vectorise).
-    auto mark = [&](int i) { return front_marks(hc, zc, aout, st, i, dry); };
+    auto mark = [&](int i) {
+        const double hw = hc[i - 1], he = hc[i + 1], hs = hc[i - st], hn = hc[i + st], here = hc[i];
+        const bool tip = may_be_tip(here, zc[i], aout[i], hw, zc[i - 1], he, zc[i + 1], hs, zc[i - st], hn, zc[i + st], dry);
+        return int(tip) * kMayBeTip + int(thin_beside_thick(here, he, dry)) * kThinEastFace +
+               int(thin_beside_thick(hs, here, dry)) * kThinSouthFace;
+    };
     int any = 0;
 #pragma omp simd reduction(| : any)
     for (int i = c.begin; i < c.end; ++i) {
@@ -236,32 +229,6 @@ void FrontTracker::fix_row(const std::vector<double>& h, const std::vector<doubl
             any |= m;
         }
     row_marks_[std::size_t(j)] = static_cast<unsigned char>(any);
-}
-
-void FrontTracker::fix_beside_ghosts(const std::vector<double>& h, const std::vector<double>& z, const std::vector<ColumnRange>& cols,
-                                     const std::vector<double>& alpha_in, std::vector<double>& alpha_out, bool grown) {
-    for (int j : {0, ny_ - 1}) fix_row(h, z, cols, alpha_in, alpha_out, grown, j);
-    const double dry = dry_;
-    const std::ptrdiff_t st = std::ptrdiff_t(stride_);
-    for (int j = 1; j < ny_ - 1; ++j) {
-        const ColumnRange c = cols[std::size_t(j)];
-        const double* hc = h.data() + at(0, j);
-        const double* zc = z.data() + at(0, j);
-        const double* ain = alpha_in.data() + at(0, j);
-        double* aout = alpha_out.data() + at(0, j);
-        unsigned char* mk = marks_.data() + at(0, j);
-        for (int i : {0, nx_ - 1}) {
-            if (i < c.begin || i >= c.end) continue;
-            double a = ain[i];
-            if (grown)
-                for (auto [gi, ga] : growth_[std::size_t(j + 2)])
-                    if (gi == i) a = ga;
-            aout[i] = consistent_wet_fraction(a, hc[i], hc[i - 1], hc[i + 1], hc[i - st], hc[i + st], dry);
-            const int m = front_marks(hc, zc, aout, st, i, dry);
-            mk[i] = static_cast<unsigned char>(m);
-            row_marks_[std::size_t(j)] |= static_cast<unsigned char>(m);
-        }
-    }
 }
 
 void FrontTracker::fix_done(const std::vector<double>& h, const std::vector<ColumnRange>& cols, const std::vector<double>& alpha_in,

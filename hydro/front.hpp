@@ -62,11 +62,6 @@ public:
                  const std::vector<double>& alpha_in, std::vector<double>& alpha_out, bool grown, int j);
     void fix_done(const std::vector<double>& h, const std::vector<ColumnRange>& cols, const std::vector<double>& alpha_in,
                   std::vector<double>& alpha_out, bool grown);
-    // fix_row's work again on the cells beside a ghost (rows 0 and ny - 1, columns 0 and
-    // nx - 1), for a caller whose fix_row ran before the ghosts held h's boundary values:
-    // between fix_row and fix_done, once they do.
-    void fix_beside_ghosts(const std::vector<double>& h, const std::vector<double>& z, const std::vector<ColumnRange>& cols,
-                           const std::vector<double>& alpha_in, std::vector<double>& alpha_out, bool grown);
 
     // The tip cells of state (h, hu, hv, alpha) within the rows' column ranges (interior
     // rows), each with its back face's wedge state; per row, in column order. Uses the

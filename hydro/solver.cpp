@@ -158,23 +158,35 @@ double Solver::stable_dt() const {
     return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, fv_.cfl / max_wave_rate_) : def_.max_dt;
 }
 
-void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
-                       const std::vector<double>& step_h) {
+SideForcing Solver::side_forcing(Side s, double t, const std::vector<double>& step_h) {
     const SideForcing forcing = forcing_.at(s, t, [&] {
         double sum = 0.0;
         for (std::size_t p : pump_cells_) sum += step_h[p] + z_[p];
         return sum / double(pump_cells_.size());
     });
+    if (forcing.kind == BoundaryKind::nested) {
+        const int n_along = is_x_side(s) ? grid_.ny : grid_.nx;
+        if (nested_[s == Side::west ? 0 : 1].a.h.size() != std::size_t(kGhost * n_along))
+            fail("", "boundary nested", "ghost values were not set before stepping");
+    }
+    return forcing;
+}
+
+void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
+                       const std::vector<double>& step_h) {
+    fill_side_cells(s, side_forcing(s, t, step_h), h, hu, hv, t, 0, is_x_side(s) ? grid_.ny : grid_.nx);
+}
+
+void Solver::fill_side_cells(Side s, const SideForcing& forcing, std::vector<double>& h, std::vector<double>& hu,
+                             std::vector<double>& hv, double t, int k0, int k1) const {
     const BoundaryKind kind = forcing.kind;
     const bool xs = is_x_side(s);
     const int n_along = xs ? grid_.ny : grid_.nx;
     if (kind == BoundaryKind::nested) {
         const NestedGhosts& ng = nested_[s == Side::west ? 0 : 1];
-        if (ng.a.h.size() != std::size_t(kGhost * n_along))
-            fail("", "boundary nested", "ghost values were not set before stepping");
         const double w = ng.t1 > ng.t0 ? std::clamp((t - ng.t0) / (ng.t1 - ng.t0), 0.0, 1.0) : 0.0;
         for (int layer = 1; layer <= kGhost; ++layer)
-            for (int k = 0; k < n_along; ++k) {
+            for (int k = k0; k < k1; ++k) {
                 const std::size_t ghost = at(s == Side::west ? -layer : grid_.nx - 1 + layer, k);
                 const std::size_t q = std::size_t((layer - 1) * n_along + k);
                 h[ghost] = (1.0 - w) * ng.a.h[q] + w * ng.b.h[q];
@@ -186,7 +198,7 @@ void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, 
     // Inward normal: +x at the west, -x at the east, +y at the south, -y at the north.
     const double sign = (s == Side::west || s == Side::south) ? 1.0 : -1.0;
     const double g = def_.gravity;
-    for (int k = 0; k < n_along; ++k) {
+    for (int k = k0; k < k1; ++k) {
         auto cell = [&](int depth) {  // depth 0 = edge cell, 1 = next; -1, -2 = ghosts
             if (xs) return at(s == Side::west ? depth : grid_.nx - 1 - depth, k);
             return at(k, s == Side::south ? depth : grid_.ny - 1 - depth);
@@ -669,6 +681,17 @@ void Solver::stage(Stage which, double dt, double t) {
     // the sweep (front_.fix_row), into alpha_out.
     if (fronts && !corrector) front_.grow(alpha_, dt);
     std::vector<double>& alpha_out = corrector ? alpha2_ : alpha1_;
+    // The output's ghost cells, for its wet fraction's fix in the sweep: each row's x
+    // ghosts once the row is updated, the y ghost rows after the sweep, at the output's
+    // time with the step-start depth (order 1: the output is the next step's start), so
+    // that they are those the next stage fills in. Fixed against whatever the buffer held
+    // from its last use instead, the edge cells' wet fraction depended on that history,
+    // and a run that wrote checkpoints gave other bytes.
+    std::array<SideForcing, 4> out_forcing{};
+    const double t_out = corrector ? t : t + dt;
+    if (fronts)
+        for (Side side : {Side::west, Side::east, Side::south, Side::north})
+            out_forcing[std::size_t(side)] = side_forcing(side, t_out, fv_.order == 1 ? h_out : h_);
     long fixes = 0;
     double worst = 0.0, amax = 0.0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
@@ -765,12 +788,18 @@ void Solver::stage(Stage which, double dt, double t) {
                 clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
             west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
             if (!cols.empty()) compute_row(j, cols);
+            if (fronts)
+                for (Side side : {Side::west, Side::east})
+                    fill_side_cells(side, out_forcing[std::size_t(side)], h_out, hu_out, hv_out, t_out, j, j + 1);
             // The wet fraction of the row below, whose neighbours are final now (the first
             // and last rows of the strip wait for the threads beside).
             if (fronts && j - 1 > j0) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j - 1);
         }
         if (fronts) {
 #pragma omp barrier
+#pragma omp single
+            for (Side side : {Side::south, Side::north})
+                fill_side_cells(side, out_forcing[std::size_t(side)], h_out, hu_out, hv_out, t_out, 0, nx);
             if (j0 < j1) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j0);
             if (j0 < j1 - 1) front_.fix_row(h_out, z_, active_, alpha_, alpha_out, true, j1 - 1);
         }
@@ -779,17 +808,7 @@ void Solver::stage(Stage which, double dt, double t) {
     stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
     (corrector ? bound2_ : bound1_) = active_;
     if (last) max_wave_rate_ = amax;
-    if (fronts) {
-        // The sweep fixed the cells beside a ghost against whatever ghosts h_out held from
-        // its last use. Fix them again against the output's own boundary values: those the
-        // next stage fills in, at the output's time, with the same step-start depth (order
-        // 1: the output is the next step's start). Otherwise the wet fraction there depends
-        // on the buffer's history, and a run that writes checkpoints (its next step rebuilds
-        // alpha from h with fresh ghosts) or restarts gives other bytes.
-        fill_ghosts(h_out, hu_out, hv_out, corrector ? t : t + dt, fv_.order == 1 ? h_out : h_);
-        front_.fix_beside_ghosts(h_out, z_, active_, alpha_, alpha_out, true);
-        front_.fix_done(h_out, active_, alpha_, alpha_out, true);
-    }
+    if (fronts) front_.fix_done(h_out, active_, alpha_, alpha_out, true);
 }
 
 void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {

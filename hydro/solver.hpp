@@ -137,6 +137,11 @@ private:
                      const std::vector<double>& step_h);
     void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
                    const std::vector<double>& step_h);
+    // The side's forcing at t (its pump level, once past the stop, from step_h); then the
+    // ghosts of its cells k0 <= k < k1 along it (rows for west and east), thread-safe.
+    SideForcing side_forcing(Side side, double t, const std::vector<double>& step_h);
+    void fill_side_cells(Side side, const SideForcing& forcing, std::vector<double>& h, std::vector<double>& hu,
+                         std::vector<double>& hv, double t, int k0, int k1) const;
     // One Heun stage at time t: predictor U1 = E(U), corrector U = (U + E(U1)) / 2, with
     // E(U) = friction(U + dt L(U)). Fused: one sweep over the rows (see solver.cpp).
     void stage(Stage which, double dt, double t);
