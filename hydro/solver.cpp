@@ -683,15 +683,17 @@ void Solver::stage(Stage which, double dt, double t) {
     std::vector<double>& alpha_out = corrector ? alpha2_ : alpha1_;
     // The output's ghost cells, for its wet fraction's fix in the sweep: each row's x
     // ghosts once the row is updated, the y ghost rows after the sweep, at the output's
-    // time with the step-start depth (order 1: the output is the next step's start), so
-    // that they are those the next stage fills in. Fixed against whatever the buffer held
-    // from its last use instead, the edge cells' wet fraction depended on that history,
-    // and a run that wrote checkpoints gave other bytes.
+    // time, so that they are those the next stage fills in. Fixed against whatever the
+    // buffer held from its last use instead, the edge cells' wet fraction depended on that
+    // history, and a run that wrote checkpoints gave other bytes. The forcing is worked
+    // out here, before the output exists: a pump that stops within this step takes its
+    // level from the step's start (order 2: as the corrector's own fill would; order 1: a
+    // step earlier than the next step's fill, which would read this output).
     std::array<SideForcing, 4> out_forcing{};
     const double t_out = corrector ? t : t + dt;
     if (fronts)
         for (Side side : {Side::west, Side::east, Side::south, Side::north})
-            out_forcing[std::size_t(side)] = side_forcing(side, t_out, fv_.order == 1 ? h_out : h_);
+            out_forcing[std::size_t(side)] = side_forcing(side, t_out, h_);
     long fixes = 0;
     double worst = 0.0, amax = 0.0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
