@@ -28,10 +28,11 @@ STRANDED_OUTLET = 0.1  # [m/s] the least velocity component toward an outlet
 STRANDED_SECONDS = 30.0  # [s], and at least three frames
 
 
-def stranded_water(ds, seconds=STRANDED_SECONDS):
+def stranded_water(ds, depth="h", x_velocity="u", y_velocity="v", seconds=STRANDED_SECONDS):
     """Cells with stranded fast water (module docstring), as (frames in the run, t_end [s],
-    x, y, h [m], u, v [m/s]) of each cell's longest run, longest first."""
-    h_all, u_all, v_all = ds["h"], ds["u"], ds["v"]
+    x, y, h [m], u, v [m/s]) of each cell's longest run, longest first; the variables by
+    name (main finds them by standard_name)."""
+    h_all, u_all, v_all = ds[depth], ds[x_velocity], ds[y_velocity]
     t = (ds["time"] - ds["time"][0]) / np.timedelta64(1, "s") if np.issubdtype(ds["time"].dtype, np.datetime64) else ds["time"]
     run = np.zeros(h_all.shape[1:], dtype=np.int32)
     best = np.zeros_like(run)
@@ -76,8 +77,14 @@ def main(argv):
         return 2
     path, check = argv[1], "--check" in argv[2:]
     seconds = STRANDED_SECONDS
-    if "--stranded-seconds" in argv[2:-1]:
-        seconds = float(argv[argv.index("--stranded-seconds") + 1])
+    if "--stranded-seconds" in argv[2:]:
+        k = argv.index("--stranded-seconds") + 1
+        try:
+            seconds = float(argv[k])
+        except (IndexError, ValueError):
+            print(f"inspect_flow: --stranded-seconds needs a number of seconds, got {argv[k] if k < len(argv) else 'nothing'}",
+                  file=sys.stderr)
+            return 2
     ds = xr.open_dataset(path)
     ok = True
     time = ds["time"]
@@ -88,9 +95,12 @@ def main(argv):
           f"(time decoded as {'datetime64' if decoded else 'raw numbers: NOT decoded'})")
     print(f"grid: {ds.sizes['x']} x {ds.sizes['y']} cells, x {float(ds.x[0]):.3f} .. {float(ds.x[-1]):.3f} m, "
           f"y {float(ds.y[0]):.3f} .. {float(ds.y[-1]):.3f} m")
+    names = {}
     for label, sn in STANDARD_NAMES.items():
         found = [name for name, v in ds.data_vars.items() if v.attrs.get("standard_name") == sn]
         ok &= len(found) == 1
+        if len(found) == 1:
+            names[label] = found[0]
         print(f"{label:11s} standard_name={sn}: {found[0] if found else 'MISSING'}")
     if "max_depth" in ds:
         print(f"largest depth {float(ds.max_depth.max()):.4f} m, largest speed {float(ds.max_speed.max()):.3f} m/s")
@@ -99,7 +109,7 @@ def main(argv):
             eta = ds.gauge_eta.isel(gauge=k)
             print(f"gauge {name}: max level {float(eta.max()):.4f} m at "
                   f"{float((eta.gauge_time[int(eta.argmax())] - ds.gauge_time[0]) / np.timedelta64(1, 's')):.1f} s")
-    stranded = stranded_water(ds, seconds) if all(name in ds for name in ("h", "u", "v")) else []
+    stranded = stranded_water(ds, *(names[k] for k in STANDARD_NAMES), seconds=seconds) if len(names) == 3 else []
     ok &= not stranded
     if stranded:
         print(f"STRANDED FAST WATER in {len(stranded)} cell(s) (>= {STRANDED_DEPTH * 1e3:g} mm at >= {STRANDED_SPEED:g} m/s "
