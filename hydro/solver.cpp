@@ -158,10 +158,10 @@ double Solver::stable_dt() const {
     return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, fv_.cfl / max_wave_rate_) : def_.max_dt;
 }
 
-SideForcing Solver::side_forcing(Side s, double t, const std::vector<double>& step_h) {
+SideForcing Solver::side_forcing(Side s, double t) {
     const SideForcing forcing = forcing_.at(s, t, [&] {
         double sum = 0.0;
-        for (std::size_t p : pump_cells_) sum += step_h[p] + z_[p];
+        for (std::size_t p : pump_cells_) sum += h_[p] + z_[p];
         return sum / double(pump_cells_.size());
     });
     if (forcing.kind == BoundaryKind::nested) {
@@ -172,9 +172,8 @@ SideForcing Solver::side_forcing(Side s, double t, const std::vector<double>& st
     return forcing;
 }
 
-void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
-                       const std::vector<double>& step_h) {
-    fill_side_cells(s, side_forcing(s, t, step_h), h, hu, hv, t, 0, is_x_side(s) ? grid_.ny : grid_.nx);
+void Solver::fill_side(Side s, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
+    fill_side_cells(s, side_forcing(s, t), h, hu, hv, t, 0, is_x_side(s) ? grid_.ny : grid_.nx);
 }
 
 void Solver::fill_side_cells(Side s, const SideForcing& forcing, std::vector<double>& h, std::vector<double>& hu,
@@ -246,9 +245,8 @@ void Solver::fill_side_cells(Side s, const SideForcing& forcing, std::vector<dou
     }
 }
 
-void Solver::fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
-                         const std::vector<double>& step_h) {
-    for (Side s : {Side::west, Side::east, Side::south, Side::north}) fill_side(s, h, hu, hv, t, step_h);
+void Solver::fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t) {
+    for (Side s : {Side::west, Side::east, Side::south, Side::north}) fill_side(s, h, hu, hv, t);
 }
 
 namespace {
@@ -642,7 +640,7 @@ void Solver::stage(Stage which, double dt, double t) {
     std::vector<double>& hu_out = corrector ? hu2_ : hu1_;
     std::vector<double>& hv_out = corrector ? hv2_ : hv1_;
     const std::vector<ColumnRange>& out_bound = corrector ? bound2_ : bound1_;
-    fill_ghosts(h, hu, hv, t, h_);
+    fill_ghosts(h, hu, hv, t);
     const double pump_rate = forcing_.pump_rate(t);  // [m/s] over the source strip
     const bool pumping = pump_rate != 0.0;
     find_active_columns(which, h, hu, hv, pumping);
@@ -693,7 +691,7 @@ void Solver::stage(Stage which, double dt, double t) {
     const double t_out = corrector ? t : t + dt;
     if (fronts)
         for (Side side : {Side::west, Side::east, Side::south, Side::north})
-            out_forcing[std::size_t(side)] = side_forcing(side, t_out, h_);
+            out_forcing[std::size_t(side)] = side_forcing(side, t_out);
     long fixes = 0;
     double worst = 0.0, amax = 0.0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)

@@ -131,15 +131,13 @@ public:
 
 private:
     enum class Stage { predictor, corrector };
-    // Ghost cells of (h, hu, hv) at time t; step_h is the depth at the step's start (the
-    // pump's strip level, taken once at its stop, is read from it).
-    void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
-                     const std::vector<double>& step_h);
-    void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t,
-                   const std::vector<double>& step_h);
-    // The side's forcing at t (its pump level, once past the stop, from step_h); then the
-    // ghosts of its cells k0 <= k < k1 along it (rows for west and east), thread-safe.
-    SideForcing side_forcing(Side side, double t, const std::vector<double>& step_h);
+    // Ghost cells of (h, hu, hv) at time t.
+    void fill_ghosts(std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
+    void fill_side(Side side, std::vector<double>& h, std::vector<double>& hu, std::vector<double>& hv, double t);
+    // The side's forcing at t (a pump past its stop takes its level once, from the step's
+    // start h_); then the ghosts of its cells k0 <= k < k1 along it (rows for west and
+    // east), thread-safe.
+    SideForcing side_forcing(Side side, double t);
     void fill_side_cells(Side side, const SideForcing& forcing, std::vector<double>& h, std::vector<double>& hu,
                          std::vector<double>& hv, double t, int k0, int k1) const;
     // One Heun stage at time t: predictor U1 = E(U), corrector U = (U + E(U1)) / 2, with
