@@ -7,8 +7,10 @@
 // processor time.
 // Not a test: timings belong here. The floor: under 5 minutes on 2 cores at 2 cm.
 //
-//   build/sweep_bench [--threads N] [--no-read-ahead] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW ...]
+//   build/sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW ...]
 //
+// --netcdf-reads: read the flows' h, u, v through netCDF instead of decoding their chunks
+// (FlowReaderDef::decode_tiles; the same values), to compare the two.
 // --dt-max S: the debris step's upper bound [s]; default 0.02, as the paper's spec files
 // (sweep/examples/paper_sensitivity*.toml; 0.01 before, docs/sweep.md "The step").
 //
@@ -40,6 +42,7 @@ using namespace flotsam;
 int main(int argc, char** argv) {
     int threads = 2;
     bool read_ahead = true;
+    bool decode_tiles = true;
     std::string dir = (std::filesystem::temp_directory_path() / "flotsam-sweep-bench").string();
     std::string ground;
     std::string dt_max = "0.02";  // [s], as TOML text: the spec reader checks it
@@ -50,6 +53,8 @@ int main(int argc, char** argv) {
             threads = std::atoi(argv[++k]);
         else if (a == "--no-read-ahead")
             read_ahead = false;
+        else if (a == "--netcdf-reads")
+            decode_tiles = false;
         else if (a == "--out" && k + 1 < argc)
             dir = argv[++k];
         else if (a == "--ground" && k + 1 < argc)
@@ -61,7 +66,7 @@ int main(int argc, char** argv) {
     }
     if (args.size() < 2) {
         std::fprintf(stderr,
-                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW "
+                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW "
                      "...]\n");
         return 2;
     }
@@ -83,7 +88,8 @@ int main(int argc, char** argv) {
 
     try {
         const auto t0 = std::chrono::steady_clock::now();
-        const sweep::SweepSpec spec = sweep::read_sweep_spec(spec_path);
+        sweep::SweepSpec spec = sweep::read_sweep_spec(spec_path);
+        spec.world.flow.decode_tiles = decode_tiles;
         sweep::SweepRunDef def;
         def.threads = threads;
         def.read_ahead = read_ahead;
@@ -105,6 +111,8 @@ int main(int argc, char** argv) {
                     st.members, spec.flows.size(), spec.bodies.size(), spec.variants.size(), spec.params.size(), r.time.size(),
                     r.time.back());
         std::printf("  debris step: dt-max %g s\n", spec.world.step.dt_max);
+        std::printf("  flow tiles: %s\n", decode_tiles ? "decoded by flotsam (formats/tile_decoder) where the layout allows"
+                                                       : "read through netCDF (--netcdf-reads)");
         std::printf("  threads: %d stepping (OpenMP max %d)%s\n", threads, omp_get_max_threads(),
                     read_ahead ? " + 1 reading ahead" : ", no read-ahead");
         std::printf("  wall time: %.1f s (run %.1f s, writing outputs %.1f s)\n", wall, run, write);

@@ -21,10 +21,11 @@ using FieldFn = std::function<FlowState(double x, double y, double t)>;
 
 inline std::string write_flow(const std::string& path, const Grid& g, const std::vector<double>& times, const BedFn& bed,
                               const FieldFn& field, const std::map<std::string, std::string>& attributes = {},
-                              int chunk = FlowFileDef{}.chunk) {
+                              int chunk = FlowFileDef{}.chunk, int deflate_level = FlowFileDef{}.deflate_level) {
     FlowFileDef def;
     def.attributes = attributes;
     def.chunk = chunk;
+    def.deflate_level = deflate_level;
     def.window = g;
     def.frame_times = times;
     def.z.resize(g.size());

@@ -114,6 +114,9 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
         tile_y_ = int(chunk[1]);
         tile_x_ = int(chunk[2]);
     }
+    if (def_.decode_tiles)
+        decoder_ = TileDecoder::open(path, {file_.var_name(var_h_), file_.var_name(var_u_), file_.var_name(var_v_)});
+    if (decoder_ && (decoder_->tile_x() != tile_x_ || decoder_->tile_y() != tile_y_)) decoder_.reset();
 }
 
 double FlowReader::next_frame_time(double t) const {
@@ -157,7 +160,9 @@ void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, co
     const std::vector<std::size_t> start = {frame, std::size_t(r.j0), std::size_t(r.i0)}, count = {1, nj, ni};
     const std::size_t offset = std::size_t(r.j0 - w.j0) * wnx + std::size_t(r.i0 - w.i0);
     const std::pair<int, std::vector<float>*> fields[] = {{var_h_, &f.h}, {var_u_, &f.qx}, {var_v_, &f.qy}};
-    for (const auto& [var, field] : fields) {
+    for (int k = 0; k < 3; ++k) {
+        const auto& [var, field] = fields[k];
+        if (decoder_ && decode_cells(k, frame, w, r, field->data(), f.slab)) continue;
         if (r == w) {
             file_.get_slab(var, start, count, field->data());
             continue;
@@ -182,6 +187,22 @@ void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, co
             f.qx[k] *= h;  // u → hu
             f.qy[k] *= h;
         }
+}
+
+bool FlowReader::decode_cells(int field, std::size_t frame, const CellWindow& w, const CellWindow& r, float* out,
+                              std::vector<float>& tile) const {
+    const std::size_t wnx = std::size_t(w.i1 - w.i0);
+    tile.resize(std::size_t(tile_x_) * std::size_t(tile_y_));
+    const TileRange t = tiles_of(r);
+    for (int tj = t.tj0; tj < t.tj0 + t.ntj; ++tj)
+        for (int ti = t.ti0; ti < t.ti0 + t.nti; ++ti) {
+            if (!decoder_->read(std::size_t(field), frame, ti, tj, tile.data())) return false;
+            const CellWindow c = tile_cells(r, ti, tj);
+            for (int j = c.j0; j < c.j1; ++j)
+                std::copy_n(tile.data() + std::size_t(j - tj * tile_y_) * std::size_t(tile_x_) + std::size_t(c.i0 - ti * tile_x_),
+                            c.i1 - c.i0, out + std::size_t(j - w.j0) * wnx + std::size_t(c.i0 - w.i0));
+        }
+    return true;
 }
 
 double FlowReader::read_frame(Frame& f, std::size_t frame, const Area& a) const {

@@ -34,6 +34,7 @@
 #include "common/netcdf.hpp"
 #include "debris/kernels.hpp"
 #include "debris/time_kernels.hpp"
+#include "formats/tile_decoder.hpp"
 
 namespace flotsam::debris {
 
@@ -51,6 +52,10 @@ struct FlowReaderDef {
     // L B × 1 mm (docs/debris.md, "Flow at the body").
     double accel_depth = 1e-3;
     TimeInterpolation time_interpolation = TimeInterpolation::linear;
+    // Decode the stored chunks of h, u, v here (formats/tile_decoder.hpp: the values
+    // netCDF gives, in about half its processor time) where the file's layout allows;
+    // false: read them through netCDF.
+    bool decode_tiles = true;
 };
 FlowReaderDef default_flow_reader_def();
 
@@ -239,6 +244,10 @@ private:
     double read_frame(Frame& f, std::size_t frame, const Area& a) const;
     // Reads cells r of frame `frame` into f's arrays laid out on window w.
     void read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const;
+    // The same for one field (0: h, 1: u, 2: v) through decoder_; false where a tile of r
+    // was never written (then read r through netCDF).
+    bool decode_cells(int field, std::size_t frame, const CellWindow& w, const CellWindow& r, float* out,
+                      std::vector<float>& tile) const;
     // The cells of area a that are read: its window, or each row of its tiles as runs.
     std::vector<CellWindow> read_rects(const Area& a) const;
     // Moves the frame read ahead into f if it is frame `frame` on the current window.
@@ -276,6 +285,7 @@ private:
     Field ground_depth_;                // the roles' depths over the ground (with one)
     CellWindow ground_window_;          // ground_window(window_)
     std::unique_ptr<ReadAhead> ahead_;  // made by the first read_ahead()
+    std::unique_ptr<TileDecoder> decoder_;  // h, u, v's chunks; null: read through netCDF
 };
 
 }  // namespace flotsam::debris

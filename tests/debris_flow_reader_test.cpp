@@ -1,11 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <memory>
 
 #include "cases/debris_flows.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "debris/flow_reader.hpp"
 #include "formats/scene.hpp"
+#include "formats/tile_decoder.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -477,4 +481,137 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
             }
             EXPECT_GT(compared, 100) << "the regions' points must be wet, mostly";
         }
+}
+
+// formats/tile_decoder reads the chunks of h, u, v without netCDF's data path. Its tiles
+// hold netCDF's values to the bit (the east and north tiles cut by the grid's edge
+// included; with and without compression), and a reader that uses it samples the same
+// bits as one that reads through netCDF, on a whole window and on regions.
+TEST(FlowReader, DecodedTilesHoldTheValuesNetcdfReads) {
+    const auto dir = test::scratch_dir("fr_decode");
+    const Grid g{21, 13, 0.025, 0.025, 0.05, 0.05};  // 3 x 2 tiles of 8 x 8 cells, the last ones cut
+    const auto field = [](double x, double y, double t) {
+        const double h = 0.02 + 0.03 * std::sin(5 * x + t) * std::cos(7 * y - 0.7 * t);  // dry in places
+        return test::FlowState{float(std::max(0.0, h)), float(0.3 * std::cos(9 * x) - 0.1 * t), float(-0.2 * y * t)};
+    };
+    for (const int deflate : {1, 0}) {
+        SCOPED_TRACE(deflate);
+        const auto path = test::write_flow(
+            dir + "/f" + std::to_string(deflate) + ".nc", g, {0.0, 1.0, 2.0, 3.0}, [](double x, double) { return -0.01 * x; },
+            field, {}, 8, deflate);
+        const nc::File file = nc::File::open_read(path);  // the process holds the file through netCDF too
+        const std::unique_ptr<TileDecoder> decoder = TileDecoder::open(path, {"h", "u", "v"});
+        ASSERT_TRUE(decoder);
+        EXPECT_EQ(decoder->tile_x(), 8);
+        EXPECT_EQ(decoder->tile_y(), 8);
+        std::vector<float> tile(64), slab;
+        int differ = 0, cells = 0;
+        for (std::size_t frame = 0; frame < 4; ++frame)
+            for (std::size_t var = 0; var < 3; ++var)
+                for (int tj = 0; tj < 2; ++tj)
+                    for (int ti = 0; ti < 3; ++ti) {
+                        ASSERT_TRUE(decoder->read(var, frame, ti, tj, tile.data()));
+                        const int i0 = 8 * ti, j0 = 8 * tj, ni = std::min(8, g.nx - i0), nj = std::min(8, g.ny - j0);
+                        slab.assign(std::size_t(ni * nj), -1.0f);
+                        file.get_slab(file.var(std::string(1, "huv"[var])), {frame, std::size_t(j0), std::size_t(i0)},
+                                      {1, std::size_t(nj), std::size_t(ni)}, slab.data());
+                        for (int j = 0; j < nj; ++j)
+                            for (int i = 0; i < ni; ++i) {
+                                differ += std::memcmp(&tile[std::size_t(8 * j + i)], &slab[std::size_t(ni * j + i)], 4) != 0;
+                                ++cells;
+                            }
+                    }
+        EXPECT_EQ(differ, 0);
+        EXPECT_EQ(cells, 4 * 3 * 21 * 13);
+
+        FlowReaderDef through_netcdf;
+        through_netcdf.decode_tiles = false;
+        for (const bool regions : {false, true}) {
+            FlowReader a(path, FlowReaderDef{}), b(path, through_netcdf);
+            if (regions) {
+                a.set_regions({CellWindow{2, 5, 2, 5}, CellWindow{15, 19, 9, 12}});
+                b.set_regions({CellWindow{2, 5, 2, 5}, CellWindow{15, 19, 9, 12}});
+            }
+            int wet = 0;
+            for (double t = 0.0; t <= 3.0; t += 0.4) {
+                a.prepare(t);
+                b.prepare(t);
+                for (double x = 0.16; x < 1.0; x += 0.13)
+                    for (double y = 0.12; y < 0.6; y += 0.09) {
+                        if (regions && !a.covers(a.cells_for(x, x, y, y))) continue;
+                        const FlowPointAccel p = a.sample_accel(x, y, t), q = b.sample_accel(x, y, t);
+                        EXPECT_EQ(p.depth, q.depth) << x << ", " << y << ", " << t;
+                        EXPECT_EQ(p.u, q.u);
+                        EXPECT_EQ(p.v, q.v);
+                        EXPECT_EQ(p.du_dt, q.du_dt);
+                        wet += p.depth > 0.0;
+                    }
+            }
+            EXPECT_GT(wet, regions ? 20 : 150);
+        }
+    }
+}
+
+// The decoder takes only the layout it decodes; the reader then reads through netCDF.
+TEST(TileDecoder, OpensOnlyTheLayoutItDecodes) {
+    const auto dir = test::scratch_dir("tile_layouts");
+    const std::string path = dir + "/layouts.nc";
+    {
+        nc::File f = nc::File::create(path);
+        const int t = f.def_dim("time", 2), y = f.def_dim("y", 5), x = f.def_dim("x", 6);
+        const auto field = [&](const std::string& name, nc_type type, std::vector<std::size_t> chunks, int deflate) {
+            const int v = f.def_var(name, type, {t, y, x});
+            if (!chunks.empty()) f.def_chunking(v, chunks);
+            if (deflate >= 0) f.def_deflate(v, deflate, true);
+            return v;
+        };
+        const int good = field("good", NC_FLOAT, {1, 4, 4}, 1);
+        field("unwritten", NC_FLOAT, {1, 4, 4}, 1);
+        const int dbl = field("double", NC_DOUBLE, {1, 4, 4}, 1);
+        const int contiguous = field("contiguous", NC_FLOAT, {}, -1);
+        const int deep = field("two_frames_a_chunk", NC_FLOAT, {2, 4, 4}, 1);
+        const int summed = field("fletcher32", NC_FLOAT, {1, 4, 4}, 1);
+        f.check(nc_def_var_fletcher32(f.id(), summed, NC_FLETCHER32), "fletcher32");
+        f.enddef();
+        std::vector<float> values(60);
+        for (std::size_t k = 0; k < values.size(); ++k) values[k] = float(k) * 0.25f - 3.0f;
+        for (int v : {good, contiguous, deep, summed}) f.put(v, values);
+        f.put(dbl, std::vector<double>(60, 1.5));
+        f.close();
+    }
+    EXPECT_TRUE(TileDecoder::open(path, {"good"}));
+    EXPECT_TRUE(TileDecoder::open(path, {"good", "unwritten"}));
+    for (const char* other : {"double", "contiguous", "two_frames_a_chunk", "fletcher32", "no_such_variable"})
+        EXPECT_FALSE(TileDecoder::open(path, {"good", other})) << other;
+    EXPECT_FALSE(TileDecoder::open(dir + "/missing.nc", {"good"}));
+    const std::unique_ptr<TileDecoder> d = TileDecoder::open(path, {"good", "unwritten"});
+    std::vector<float> tile(16);
+    ASSERT_TRUE(d->read(0, 1, 1, 1, tile.data()));  // frame 1, cells x 4..5, y 4: values 30 + 6 y + x
+    EXPECT_EQ(tile[0], (30 + 6 * 4 + 4) * 0.25f - 3.0f);
+    EXPECT_EQ(tile[1], (30 + 6 * 4 + 5) * 0.25f - 3.0f);
+    EXPECT_FALSE(d->read(1, 0, 0, 0, tile.data()));  // never written: netCDF gives its fill
+    EXPECT_THROW(d->read(0, 2, 0, 0, tile.data()), Error);  // no frame 2
+}
+
+// A tile whose stored bytes were damaged (the file's structure intact) is an error that
+// names the file, the variable, the frame and the tile, raised where that frame is
+// needed; read through netCDF it fails too.
+TEST(FlowReader, ADamagedTileIsANamedError) {
+    const auto dir = test::scratch_dir("fr_damaged");
+    const std::string path = uneven_flow(dir + "/f.nc");
+    test::damage_chunk(path, "u", 3);
+    for (const bool decode : {true, false}) {
+        FlowReaderDef def;
+        def.decode_tiles = decode;
+        FlowReader r(path, def);
+        r.prepare(1.5);  // frames 1 and 2: intact
+        EXPECT_GT(r.sample(0.0, 2.3, 1.5).depth, 0.0);
+        const std::string msg = error_of([&] { r.prepare(3.2); });
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        if (decode) {
+            EXPECT_NE(msg.find("variable 'u', frame 3, tile (0, 0) of 20 x 12 cells: the stored chunk does not inflate"),
+                      std::string::npos)
+                << msg;
+        }
+    }
 }

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cases/debris_flows.hpp"
 #include "common/netcdf.hpp"
 #include "common/output_lock.hpp"
 #include "common/sha256.hpp"
@@ -497,4 +498,18 @@ TEST(ReliabilityCli, AFileThatCrashesLibhdf5IsANamedError) {
     EXPECT_EQ(test::run_cli("debris --flow " + corrupt + " --at 0.5,-1,0 --quiet --out " + dir + "/d.nc", &out), 1) << out;
     EXPECT_NE(out.find("flow_libhdf5_segfault.nc: corrupted: libhdf5 crashed reading the file's structure"), std::string::npos)
         << out;
+}
+
+// A flow whose data were damaged in one frame (its structure intact, so the structure
+// probe passes): the debris run stops where it needs that frame, with an error naming
+// the file, the variable and the frame, and leaves no output behind.
+TEST(ReliabilityCli, ADamagedFlowFrameIsANamedErrorAndLeavesNoOutput) {
+    const auto dir = test::scratch_dir("cli_damaged");
+    const std::string flow = test::uniform_flow(dir + "/f.nc", Grid{40, 20, 0.025, -0.975, 0.05, 0.05}, 6.0, 0.1, 0.2, 0.0);
+    test::damage_chunk(flow, "h", 4);
+    std::string out;
+    EXPECT_EQ(test::run_cli("debris --flow " + flow + " --at 1.0,-0.5,0 --quiet --out " + dir + "/d.nc", &out), 1) << out;
+    EXPECT_NE(out.find(flow + ": variable 'h', frame 4, tile (0, 0)"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(dir + "/d.nc"));
+    EXPECT_FALSE(fs::exists(dir + "/d.nc.part"));
 }

@@ -1,6 +1,7 @@
 #include "tests/test_support.hpp"
 
 #include <sys/wait.h>
+#include <hdf5.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -57,6 +58,27 @@ std::string write_file(const std::string& dir, const std::string& name, const st
     const std::string p = dir + "/" + name;
     std::ofstream(p) << text;
     return p;
+}
+
+void damage_chunk(const std::string& path, const std::string& var, std::size_t frame) {
+    haddr_t address = 0;
+    hsize_t bytes = 0;
+    {
+        const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        const hid_t dataset = file < 0 ? -1 : H5Dopen2(file, var.c_str(), H5P_DEFAULT);
+        const hsize_t offset[3] = {hsize_t(frame), 0, 0};
+        unsigned mask = 0;
+        const bool found = dataset >= 0 && H5Dget_chunk_info_by_coord(dataset, offset, &mask, &address, &bytes) >= 0;
+        if (dataset >= 0) H5Dclose(dataset);
+        if (file >= 0) H5Fclose(file);
+        if (!found || bytes < 40) throw Error(path + ": no stored chunk of '" + var + "' at frame " + std::to_string(frame));
+    }
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(address + bytes / 2 - 8));
+    const char junk[16] = {'\x5a', '\x5a', '\x5a', '\x5a', '\x5a', '\x5a', '\x5a', '\x5a',
+                           '\x5a', '\x5a', '\x5a', '\x5a', '\x5a', '\x5a', '\x5a', '\x5a'};
+    f.write(junk, sizeof junk);
+    if (!f) throw Error(path + ": could not damage the chunk");
 }
 
 }  // namespace flotsam::test
