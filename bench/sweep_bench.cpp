@@ -7,10 +7,11 @@
 // processor time.
 // Not a test: timings belong here. The floor: under 5 minutes on 2 cores at 2 cm.
 //
-//   build/sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW ...]
+//   build/sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--decode-threads N] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW ...]
 //
 // --netcdf-reads: read the flows' h, u, v through netCDF instead of decoding their chunks
 // (FlowReaderDef::decode_tiles; the same values), to compare the two.
+// --decode-threads N: threads that decode a frame's tiles (default: the stepping threads).
 // --dt-max S: the debris step's upper bound [s]; default 0.02, as the paper's spec files
 // (sweep/examples/paper_sensitivity*.toml; 0.01 before, docs/sweep.md "The step").
 //
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
     int threads = 2;
     bool read_ahead = true;
     bool decode_tiles = true;
+    int decode_threads = 0;
     std::string dir = (std::filesystem::temp_directory_path() / "flotsam-sweep-bench").string();
     std::string ground;
     std::string dt_max = "0.02";  // [s], as TOML text: the spec reader checks it
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
             read_ahead = false;
         else if (a == "--netcdf-reads")
             decode_tiles = false;
+        else if (a == "--decode-threads" && k + 1 < argc)
+            decode_threads = std::atoi(argv[++k]);
         else if (a == "--out" && k + 1 < argc)
             dir = argv[++k];
         else if (a == "--ground" && k + 1 < argc)
@@ -66,7 +70,7 @@ int main(int argc, char** argv) {
     }
     if (args.size() < 2) {
         std::fprintf(stderr,
-                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW "
+                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--decode-threads N] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW "
                      "...]\n");
         return 2;
     }
@@ -90,6 +94,7 @@ int main(int argc, char** argv) {
         const auto t0 = std::chrono::steady_clock::now();
         sweep::SweepSpec spec = sweep::read_sweep_spec(spec_path);
         spec.world.flow.decode_tiles = decode_tiles;
+        spec.world.flow.decode_threads = decode_threads;
         sweep::SweepRunDef def;
         def.threads = threads;
         def.read_ahead = read_ahead;
@@ -111,8 +116,11 @@ int main(int argc, char** argv) {
                     st.members, spec.flows.size(), spec.bodies.size(), spec.variants.size(), spec.params.size(), r.time.size(),
                     r.time.back());
         std::printf("  debris step: dt-max %g s\n", spec.world.step.dt_max);
-        std::printf("  flow tiles: %s\n", decode_tiles ? "decoded by flotsam (formats/tile_decoder) where the layout allows"
-                                                       : "read through netCDF (--netcdf-reads)");
+        if (decode_tiles)
+            std::printf("  flow tiles: decoded by flotsam (formats/tile_decoder) where the layout allows, on %d thread(s)\n",
+                        decode_threads > 0 ? decode_threads : threads);
+        else
+            std::printf("  flow tiles: read through netCDF (--netcdf-reads)\n");
         std::printf("  threads: %d stepping (OpenMP max %d)%s\n", threads, omp_get_max_threads(),
                     read_ahead ? " + 1 reading ahead" : ", no read-ahead");
         std::printf("  wall time: %.1f s (run %.1f s, writing outputs %.1f s)\n", wall, run, write);

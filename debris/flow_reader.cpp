@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <exception>
 #include <optional>
+
+#include <omp.h>
 
 #include "common/background_task.hpp"
 #include "common/error.hpp"
@@ -155,14 +158,13 @@ std::vector<CellWindow> FlowReader::read_rects(const Area& a) const {
     return runs;
 }
 
-void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const {
+void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r, bool decoded) const {
     const std::size_t ni = std::size_t(r.i1 - r.i0), nj = std::size_t(r.j1 - r.j0), wnx = std::size_t(w.i1 - w.i0);
     const std::vector<std::size_t> start = {frame, std::size_t(r.j0), std::size_t(r.i0)}, count = {1, nj, ni};
     const std::size_t offset = std::size_t(r.j0 - w.j0) * wnx + std::size_t(r.i0 - w.i0);
     const std::pair<int, std::vector<float>*> fields[] = {{var_h_, &f.h}, {var_u_, &f.qx}, {var_v_, &f.qy}};
-    for (int k = 0; k < 3; ++k) {
-        const auto& [var, field] = fields[k];
-        if (decoder_ && decode_cells(k, frame, w, r, field->data(), f.slab)) continue;
+    for (const auto& [var, field] : fields) {
+        if (decoded) break;
         if (r == w) {
             file_.get_slab(var, start, count, field->data());
             continue;
@@ -189,20 +191,65 @@ void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, co
         }
 }
 
-bool FlowReader::decode_cells(int field, std::size_t frame, const CellWindow& w, const CellWindow& r, float* out,
-                              std::vector<float>& tile) const {
-    const std::size_t wnx = std::size_t(w.i1 - w.i0);
-    tile.resize(std::size_t(tile_x_) * std::size_t(tile_y_));
-    const TileRange t = tiles_of(r);
-    for (int tj = t.tj0; tj < t.tj0 + t.ntj; ++tj)
-        for (int ti = t.ti0; ti < t.ti0 + t.nti; ++ti) {
-            if (!decoder_->read(std::size_t(field), frame, ti, tj, tile.data())) return false;
-            const CellWindow c = tile_cells(r, ti, tj);
-            for (int j = c.j0; j < c.j1; ++j)
-                std::copy_n(tile.data() + std::size_t(j - tj * tile_y_) * std::size_t(tile_x_) + std::size_t(c.i0 - ti * tile_x_),
-                            c.i1 - c.i0, out + std::size_t(j - w.j0) * wnx + std::size_t(c.i0 - w.i0));
+double FlowReader::decode_frame(Frame& f, std::size_t frame, const CellWindow& w, const std::vector<CellWindow>& rects) const {
+    struct Job {
+        int field, ti, tj;
+        CellWindow cells;  // the tile's cells within its rect
+        bool stored;
+    };
+    std::vector<Job> jobs;
+    for (const CellWindow& r : rects) {
+        const TileRange t = tiles_of(r);
+        for (int tj = t.tj0; tj < t.tj0 + t.ntj; ++tj)
+            for (int ti = t.ti0; ti < t.ti0 + t.nti; ++ti)
+                for (int k = 0; k < 3; ++k) jobs.push_back(Job{k, ti, tj, tile_cells(r, ti, tj), false});
+    }
+    // libhdf5 is not thread-safe: the stored bytes are read here, in turn, and decoded below.
+    if (f.stored.size() < jobs.size()) f.stored.resize(jobs.size());
+    for (std::size_t n = 0; n < jobs.size(); ++n)
+        jobs[n].stored = decoder_->fetch(std::size_t(jobs[n].field), frame, jobs[n].ti, jobs[n].tj, f.stored[n]);
+    float* const out[3] = {f.h.data(), f.qx.data(), f.qy.data()};
+    const std::size_t wnx = std::size_t(w.i1 - w.i0), tx = std::size_t(tile_x_);
+    const auto place = [&](const Job& job, const float* tile, std::size_t tile_nx, int i0, int j0) {
+        for (int j = job.cells.j0; j < job.cells.j1; ++j)
+            std::copy_n(tile + std::size_t(j - j0) * tile_nx + std::size_t(job.cells.i0 - i0), job.cells.i1 - job.cells.i0,
+                        out[job.field] + std::size_t(j - w.j0) * wnx + std::size_t(job.cells.i0 - w.i0));
+    };
+    // An Error thrown inside the parallel region is kept per job and the first rethrown
+    // after it (an exception must not leave an OpenMP region).
+    std::vector<std::exception_ptr> failed(jobs.size());
+    const long n_jobs = long(jobs.size());
+    double helpers_cpu = 0.0;  // the team's CPU time but the calling thread's [s]
+#pragma omp parallel num_threads(std::max(1, def_.decode_threads)) reduction(+ : helpers_cpu)
+    {
+        const double start_cpu = thread_cpu_seconds();
+        TileDecoder::Inflater inflater;
+        std::vector<float> tile(tx * std::size_t(tile_y_));
+#pragma omp for schedule(dynamic, 8)
+        for (long n = 0; n < n_jobs; ++n) {
+            const Job& job = jobs[std::size_t(n)];
+            if (!job.stored) continue;
+            try {
+                decoder_->decode(std::size_t(job.field), frame, job.ti, job.tj, f.stored[std::size_t(n)], inflater, tile.data());
+                place(job, tile.data(), tx, job.ti * tile_x_, job.tj * tile_y_);
+            } catch (...) {
+                failed[std::size_t(n)] = std::current_exception();
+            }
         }
-    return true;
+        if (omp_get_thread_num() != 0) helpers_cpu += thread_cpu_seconds() - start_cpu;
+    }
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+    const int vars[3] = {var_h_, var_u_, var_v_};
+    for (const Job& job : jobs) {  // chunks never written: netCDF gives their fill
+        if (job.stored) continue;
+        const std::size_t ni = std::size_t(job.cells.i1 - job.cells.i0), nj = std::size_t(job.cells.j1 - job.cells.j0);
+        f.slab.resize(ni * nj);
+        file_.get_slab(vars[job.field], {frame, std::size_t(job.cells.j0), std::size_t(job.cells.i0)}, {1, nj, ni},
+                       f.slab.data());
+        place(job, f.slab.data(), ni, job.cells.i0, job.cells.j0);
+    }
+    return helpers_cpu;
 }
 
 double FlowReader::read_frame(Frame& f, std::size_t frame, const Area& a) const {
@@ -214,10 +261,12 @@ double FlowReader::read_frame(Frame& f, std::size_t frame, const Area& a) const 
         field->resize(n);
         if (!a.tiles.empty()) std::fill(field->begin(), field->end(), 0.0f);  // cells not read: dry, never sampled
     }
-    for (const CellWindow& r : read_rects(a)) read_cells(f, frame, w, r);
+    const std::vector<CellWindow> rects = read_rects(a);
+    const double helpers_cpu = decoder_ ? decode_frame(f, frame, w, rects) : 0.0;
+    for (const CellWindow& r : rects) read_cells(f, frame, w, r, decoder_ != nullptr);
     if (has_ground()) depth_over_ground(f, a);
     f.index = frame;
-    return thread_cpu_seconds() - start_cpu;
+    return thread_cpu_seconds() - start_cpu + helpers_cpu;
 }
 
 void FlowReader::load(Frame& f, std::size_t frame) {

@@ -56,6 +56,10 @@ struct FlowReaderDef {
     // netCDF gives, in about half its processor time) where the file's layout allows;
     // false: read them through netCDF.
     bool decode_tiles = true;
+    // Threads that decode a frame's tiles, the reading thread among them. 0: one for a
+    // reader on its own; debris::World takes as many as step its bodies (they wait for
+    // that frame meanwhile).
+    int decode_threads = 0;
 };
 FlowReaderDef default_flow_reader_def();
 
@@ -193,6 +197,7 @@ private:
         std::size_t index = no_frame;
         std::vector<float> h, qx, qy;
         std::vector<float> slab;          // one tile run as read, before it is placed
+        std::vector<TileDecoder::StoredTile> stored;  // the tiles as stored (decode_frame)
         std::vector<float> ground_depth;  // with a ground: depth at its cell centres over ground_window(window) [m]
     };
     // What is loaded of a frame: a window and which of its tiles (all: the whole window).
@@ -243,11 +248,12 @@ private:
     // only f and the file (the read-ahead thread runs it).
     double read_frame(Frame& f, std::size_t frame, const Area& a) const;
     // Reads cells r of frame `frame` into f's arrays laid out on window w.
-    void read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r) const;
-    // The same for one field (0: h, 1: u, 2: v) through decoder_; false where a tile of r
-    // was never written (then read r through netCDF).
-    bool decode_cells(int field, std::size_t frame, const CellWindow& w, const CellWindow& r, float* out,
-                      std::vector<float>& tile) const;
+    // With `decoded`, the values are there (decode_frame) and are only checked.
+    void read_cells(Frame& f, std::size_t frame, const CellWindow& w, const CellWindow& r, bool decoded) const;
+    // Reads cells `rects` of frame `frame` through decoder_, its tiles decoded on
+    // def_.decode_threads threads (tiles never written: through netCDF). Returns the CPU
+    // time of the threads that helped the calling one [s].
+    double decode_frame(Frame& f, std::size_t frame, const CellWindow& w, const std::vector<CellWindow>& rects) const;
     // The cells of area a that are read: its window, or each row of its tiles as runs.
     std::vector<CellWindow> read_rects(const Area& a) const;
     // Moves the frame read ahead into f if it is frame `frame` on the current window.

@@ -99,8 +99,20 @@ Ground ground_from_scene(const Scene& scene, const FlowReader& flow) {
     return g;
 }
 
+namespace {
+
+// The replay as the world runs it: unless set, a frame's tiles are decoded by as many
+// threads as step the bodies (they wait for that frame meanwhile).
+FlowReaderDef replay_def(const WorldDef& def) {
+    FlowReaderDef flow = def.flow;
+    if (flow.decode_threads <= 0) flow.decode_threads = def.threads > 0 ? def.threads : omp_get_max_threads();
+    return flow;
+}
+
+}  // namespace
+
 World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
-    : def_(def), flow_(flow_path, def.flow) {
+    : def_(def), flow_(flow_path, replay_def(def)) {
     if (!ground && !building.empty() && building.size() != flow_.grid().size())
         fail(flow_path, "building mask", "does not match the flow grid");
     // Map coordinates (beyond 10 km from the origin): work relative to a round kilometre.

@@ -90,8 +90,6 @@ std::unique_ptr<TileDecoder> TileDecoder::open(const std::string& path, const st
             return nullptr;
         }
     }
-    d->inflater_ = libdeflate_alloc_decompressor();
-    if (!d->inflater_) return nullptr;
     return d;
 }
 
@@ -99,8 +97,13 @@ TileDecoder::~TileDecoder() {
     for (const Field& f : fields_)
         if (f.dataset >= 0) H5Dclose(f.dataset);
     if (file_ >= 0) H5Fclose(hid_t(file_));
-    if (inflater_) libdeflate_free_decompressor(inflater_);
 }
+
+TileDecoder::Inflater::Inflater() : d_(libdeflate_alloc_decompressor()) {
+    if (!d_) throw Error("libdeflate: out of memory for a decompressor");
+}
+
+TileDecoder::Inflater::~Inflater() { libdeflate_free_decompressor(d_); }
 
 void TileDecoder::fail(std::size_t var, std::size_t frame, int ti, int tj, const std::string& what) const {
     flotsam::fail(path_,
@@ -109,32 +112,36 @@ void TileDecoder::fail(std::size_t var, std::size_t frame, int ti, int tj, const
                   what);
 }
 
-bool TileDecoder::read(std::size_t var, std::size_t frame, int ti, int tj, float* out) {
+bool TileDecoder::fetch(std::size_t var, std::size_t frame, int ti, int tj, StoredTile& out) {
     const Field& f = fields_.at(var);
-    const std::size_t cells = std::size_t(tile_x_) * std::size_t(tile_y_), bytes = cells * sizeof(float);
     if (frame >= f.frames || ti < 0 || tj < 0 || hsize_t(ti) * hsize_t(tile_x_) >= f.nx || hsize_t(tj) * hsize_t(tile_y_) >= f.ny)
         fail(var, frame, ti, tj, "outside the variable's (time, y, x) extent");
     const hsize_t offset[3] = {hsize_t(frame), hsize_t(tj) * hsize_t(tile_y_), hsize_t(ti) * hsize_t(tile_x_)};
+    const QuietHdf5 quiet;
     hsize_t stored = 0;
-    std::uint32_t skipped = 0;  // bit k: filter k was not applied to this chunk
-    {
-        const QuietHdf5 quiet;
-        if (H5Dget_chunk_storage_size(f.dataset, offset, &stored) < 0 || stored == 0) return false;
-        stored_.resize(std::size_t(stored));
-        if (H5Dread_chunk(f.dataset, H5P_DEFAULT, offset, &skipped, stored_.data()) < 0)
-            fail(var, frame, ti, tj, "libhdf5 could not read the stored chunk");
-    }
-    // Undo the filters last to first, each from one scratch buffer into the other.
-    const unsigned char* in = stored_.data();
-    std::size_t in_bytes = stored_.size();
-    for (std::unique_ptr<unsigned char[]>* buffer : {&scratch_a_, &scratch_b_})
-        if (!*buffer) *buffer = std::make_unique<unsigned char[]>(bytes);
+    if (H5Dget_chunk_storage_size(f.dataset, offset, &stored) < 0 || stored == 0) return false;
+    out.bytes.resize(std::size_t(stored));
+    out.skipped = 0;
+    if (H5Dread_chunk(f.dataset, H5P_DEFAULT, offset, &out.skipped, out.bytes.data()) < 0)
+        fail(var, frame, ti, tj, "libhdf5 could not read the stored chunk");
+    return true;
+}
+
+void TileDecoder::decode(std::size_t var, std::size_t frame, int ti, int tj, const StoredTile& stored, Inflater& inflater,
+                         float* out) const {
+    const Field& f = fields_.at(var);
+    const std::size_t cells = std::size_t(tile_x_) * std::size_t(tile_y_), bytes = cells * sizeof(float);
+    inflater.a_.resize(bytes);
+    inflater.b_.resize(bytes);
+    // Undo the filters last to first, each from one scratch tile into the other.
+    const unsigned char* in = stored.bytes.data();
+    std::size_t in_bytes = stored.bytes.size();
     for (std::size_t k = f.filters.size(); k-- > 0;) {
-        if ((skipped >> k) & 1u) continue;
-        unsigned char* dest = in == scratch_a_.get() ? scratch_b_.get() : scratch_a_.get();
+        if ((stored.skipped >> k) & 1u) continue;
+        unsigned char* dest = in == inflater.a_.data() ? inflater.b_.data() : inflater.a_.data();
         if (f.filters[k] == H5Z_FILTER_DEFLATE) {
             std::size_t got = 0;
-            const libdeflate_result r = libdeflate_zlib_decompress(inflater_, in, in_bytes, dest, bytes, &got);
+            const libdeflate_result r = libdeflate_zlib_decompress(inflater.d_, in, in_bytes, dest, bytes, &got);
             if (r != LIBDEFLATE_SUCCESS || got != bytes)
                 fail(var, frame, ti, tj,
                      "the stored chunk does not inflate to " + std::to_string(bytes) +
@@ -150,8 +157,14 @@ bool TileDecoder::read(std::size_t var, std::size_t frame, int ti, int tj, float
         in = dest;
         in_bytes = bytes;
     }
-    if (in_bytes != bytes) fail(var, frame, ti, tj, "the stored chunk has " + std::to_string(in_bytes) + " bytes, not " + std::to_string(bytes));
+    if (in_bytes != bytes)
+        fail(var, frame, ti, tj, "the stored chunk has " + std::to_string(in_bytes) + " bytes, not " + std::to_string(bytes));
     std::memcpy(out, in, bytes);
+}
+
+bool TileDecoder::read(std::size_t var, std::size_t frame, int ti, int tj, float* out) {
+    if (!fetch(var, frame, ti, tj, stored_)) return false;
+    decode(var, frame, ti, tj, stored_, inflater_, out);
     return true;
 }
 

@@ -13,10 +13,12 @@
 // pipeline lists them). For anything else open() returns nullptr and the caller reads
 // through netCDF, which handles every layout.
 //
-// Not thread-safe (libhdf5 is not): one caller at a time, as for the netCDF handle the
-// same process holds on the file.
+// Reading the stored bytes goes through libhdf5, which is not thread-safe: one caller at a
+// time, as for the netCDF handle the same process holds on the file. Decoding them is
+// pure: several threads may decode the tiles of one frame at once.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,18 +39,42 @@ public:
     int tile_x() const { return tile_x_; }  // chunk edge along x [cells]
     int tile_y() const { return tile_y_; }  // chunk edge along y [cells]
 
-    // Decodes tile (ti, tj) (cells [ti tile_x, (ti + 1) tile_x) × [tj tile_y, …)) of frame
-    // `frame` of variable `var` (an index into open()'s names) into out: tile_y × tile_x
-    // floats, row-major, x fastest; a tile at the grid's east or north edge is stored
-    // whole, its cells past the edge hold the writer's fill. Returns false where the chunk
-    // was never written (read it through netCDF: it holds the fill value). Throws Error
-    // naming the file, variable, frame and tile where the stored bytes do not decode.
+    // A tile's stored bytes, as fetch() reads them.
+    struct StoredTile {
+        std::vector<unsigned char> bytes;
+        std::uint32_t skipped = 0;  // bit k: filter k of the pipeline was not applied
+    };
+    // What decode() works with: a libdeflate decompressor and two tiles of scratch. One
+    // per thread; decode() is thread-safe with separate Inflaters.
+    class Inflater {
+    public:
+        Inflater();
+        ~Inflater();
+        Inflater(const Inflater&) = delete;
+        Inflater& operator=(const Inflater&) = delete;
+
+    private:
+        friend class TileDecoder;
+        libdeflate_decompressor* d_ = nullptr;
+        std::vector<unsigned char> a_, b_;
+    };
+
+    // Reads the stored bytes of tile (ti, tj) (cells [ti tile_x, (ti + 1) tile_x) ×
+    // [tj tile_y, …)) of frame `frame` of variable `var` (an index into open()'s names)
+    // through libhdf5: not thread-safe. Returns false where the chunk was never written
+    // (read it through netCDF: it holds the fill value).
+    bool fetch(std::size_t var, std::size_t frame, int ti, int tj, StoredTile& out);
+    // Decodes a fetched tile into out: tile_y × tile_x floats, row-major, x fastest; a
+    // tile at the grid's east or north edge is stored whole, its cells past the edge hold
+    // the writer's fill. Throws Error naming the file, variable, frame and tile where the
+    // stored bytes do not decode.
+    void decode(std::size_t var, std::size_t frame, int ti, int tj, const StoredTile& in, Inflater& inflater,
+                float* out) const;
+    // fetch() and decode() in one, with the decoder's own Inflater: false as fetch().
     bool read(std::size_t var, std::size_t frame, int ti, int tj, float* out);
 
-public:
-    struct Field;  // one variable (tile_decoder.cpp)
-
 private:
+    struct Field;  // one variable (tile_decoder.cpp)
     TileDecoder() = default;
     [[noreturn]] void fail(std::size_t var, std::size_t frame, int ti, int tj, const std::string& what) const;
 
@@ -56,9 +82,8 @@ private:
     long long file_ = -1;  // hid_t
     std::vector<Field> fields_;
     int tile_x_ = 0, tile_y_ = 0;
-    libdeflate_decompressor* inflater_ = nullptr;
-    std::vector<unsigned char> stored_;                           // a chunk as stored
-    std::unique_ptr<unsigned char[]> scratch_a_, scratch_b_;  // the filters' outputs, a tile each
+    StoredTile stored_;  // read()'s
+    Inflater inflater_;  // read()'s
 };
 
 }  // namespace flotsam

@@ -486,7 +486,8 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
 // formats/tile_decoder reads the chunks of h, u, v without netCDF's data path. Its tiles
 // hold netCDF's values to the bit (the east and north tiles cut by the grid's edge
 // included; with and without compression), and a reader that uses it samples the same
-// bits as one that reads through netCDF, on a whole window and on regions.
+// bits as one that reads through netCDF, on a whole window and on regions (there with
+// three threads decoding).
 TEST(FlowReader, DecodedTilesHoldTheValuesNetcdfReads) {
     const auto dir = test::scratch_dir("fr_decode");
     const Grid g{21, 13, 0.025, 0.025, 0.05, 0.05};  // 3 x 2 tiles of 8 x 8 cells, the last ones cut
@@ -524,10 +525,11 @@ TEST(FlowReader, DecodedTilesHoldTheValuesNetcdfReads) {
         EXPECT_EQ(differ, 0);
         EXPECT_EQ(cells, 4 * 3 * 21 * 13);
 
-        FlowReaderDef through_netcdf;
+        FlowReaderDef through_netcdf, on_three_threads;
         through_netcdf.decode_tiles = false;
+        on_three_threads.decode_threads = 3;
         for (const bool regions : {false, true}) {
-            FlowReader a(path, FlowReaderDef{}), b(path, through_netcdf);
+            FlowReader a(path, regions ? on_three_threads : FlowReaderDef{}), b(path, through_netcdf);
             if (regions) {
                 a.set_regions({CellWindow{2, 5, 2, 5}, CellWindow{15, 19, 9, 12}});
                 b.set_regions({CellWindow{2, 5, 2, 5}, CellWindow{15, 19, 9, 12}});
@@ -595,14 +597,16 @@ TEST(TileDecoder, OpensOnlyTheLayoutItDecodes) {
 
 // A tile whose stored bytes were damaged (the file's structure intact) is an error that
 // names the file, the variable, the frame and the tile, raised where that frame is
-// needed; read through netCDF it fails too.
+// needed (decoded on one thread or two); read through netCDF it fails too.
 TEST(FlowReader, ADamagedTileIsANamedError) {
     const auto dir = test::scratch_dir("fr_damaged");
     const std::string path = uneven_flow(dir + "/f.nc");
     test::damage_chunk(path, "u", 3);
-    for (const bool decode : {true, false}) {
+    for (const int threads : {1, 2, 0}) {  // 0: read through netCDF
+        const bool decode = threads > 0;
         FlowReaderDef def;
         def.decode_tiles = decode;
+        def.decode_threads = threads;
         FlowReader r(path, def);
         r.prepare(1.5);  // frames 1 and 2: intact
         EXPECT_GT(r.sample(0.0, 2.3, 1.5).depth, 0.0);
