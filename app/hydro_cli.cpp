@@ -1,5 +1,6 @@
 // `flotsam hydro`: one shallow-water run of a scene, written as a CF flow file.
 #include <omp.h>
+#include <signal.h>
 
 #include <array>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/output_lock.hpp"
 #include "hydro/run.hpp"
@@ -80,6 +82,15 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     if (o.threads > 0) omp_set_num_threads(o.threads);
     o.run.command_line = command_line;
     o.run.config_text = result_settings(sub->config_to_str(true, false));
+    // SIGTERM (a batch system's notice before it kills the job, Slurm's at its time limit
+    // or on preemption), SIGINT (Ctrl-C) and SIGHUP (the terminal gone) stop the run at
+    // its next frame with a checkpoint there. A second one kills at once (SA_RESETHAND).
+    // Set before the output's lock is taken: a signal sent to the lock's holder is caught.
+    struct sigaction stop{};
+    stop.sa_handler = [](int sig) { request_stop(sig); };
+    stop.sa_flags = SA_RESETHAND;
+    sigemptyset(&stop.sa_mask);
+    for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaction(sig, &stop, nullptr);
     // One writer per output, and no output over an input (common/output_lock.hpp).
     const OutputGuard guard({{"--out", o.run.out_file}, {"--out (its checkpoint)", checkpoint_path(o.run.out_file)}},
                             {{"--scene", o.run.scene_file},
@@ -88,6 +99,11 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
                              {"--south-series", s.south.series_file},
                              {"--north-series", s.north.series_file}});
     const RunResult r = run_hydro(o.run, s);
+    if (r.stop_signal != 0)
+        fail(o.run.out_file, "",
+             std::string("interrupted (SIG") + sigabbrev_np(r.stop_signal) + ") at t = " + number_text(r.simulated) +
+                 " s; the run so far is kept in " + checkpoint_path(o.run.out_file) + " and " + o.run.out_file +
+                 ".part: continue it with the same command and --restart");
     if (!o.run.quiet)
         std::fprintf(stderr,
                      "%s: %s after %ld steps in %.1f s wall (%.1f s processor), %.3g cell-updates/s (%.0f%% dry land skipped), "

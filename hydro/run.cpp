@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -480,6 +481,9 @@ void save_checkpoint(S& solver, const PhysicsDef& def, RunOutput& o, double t, l
     write_checkpoint(o.checkpoint, solver, o.sum, o.state);
 }
 
+// Set by request_stop (a signal handler): the run stops at its next frame.
+volatile std::sig_atomic_t stop_signal = 0;
+
 // Steps to the last frame, storing frames, gauges, maxima and checkpoints on the way.
 // Returns the step count since the start of the run (restarts included), negated when
 // the run stopped early at run.stop_after.
@@ -522,8 +526,11 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
         // Checkpoints and stops fall on stored frames, and every frame ends with a sync:
         // the file then has the same bytes (HDF5's layout included) whether the run was
         // checkpointed, stopped and restarted, or never interrupted.
-        const bool stop = run.stop_after >= 0.0 && t1 >= run.stop_after;
-        if (reaches && (t1 >= next_checkpoint - 1e-12 || stop)) {
+        // Not at frame 1, though: a run continued from there has the same values but a file
+        // 1 kB smaller (libhdf5 leaves 1 kB unused in the uninterrupted run, h5stat's
+        // "unaccounted space"), so the first checkpoint or stop waits for frame 2.
+        const bool stop = (run.stop_after >= 0.0 && t1 >= run.stop_after) || stop_signal != 0;
+        if (reaches && o.state.next_frame > 2 && (t1 >= next_checkpoint - 1e-12 || stop)) {
             save_checkpoint(solver, def, o, t1, steps);
             if (run.checkpoint_interval > 0.0)
                 next_checkpoint = (std::floor(t1 / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval;
@@ -556,6 +563,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     res.cpu_seconds = cpu_seconds() - cpu0;
     res.completed = signed_steps >= 0;
+    res.stop_signal = res.completed ? 0 : int(stop_signal);
     res.steps = std::abs(signed_steps) - steps_before;
     res.simulated = solver.time();
     res.cell_updates_per_second = solver.cell_updates() / std::max(res.wall_seconds, 1e-9);
@@ -584,6 +592,8 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
 }  // namespace
 
 static_assert(RunnableSolver<Solver> && RunnableSolver<NestedSolver> && RunnableSolver<LeapfrogSolver>);
+
+void request_stop(int signal) { stop_signal = signal; }
 
 RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");

@@ -72,7 +72,8 @@ struct RunDef {
 };
 
 struct RunResult {
-    bool completed = false;  // false when stopped by stop_after
+    bool completed = false;  // false when stopped by stop_after or request_stop
+    int stop_signal = 0;     // the signal request_stop was given, where it stopped the run
     long steps = 0;
     double simulated = 0.0;                       // [s]
     double wall_seconds = 0.0;                    // stepping only, excluding setup (with the per-step
@@ -89,6 +90,13 @@ struct RunResult {
 
 // A run of `run.scheme` on the physics and boundaries of `physics`.
 RunResult run_hydro(const RunDef& run, const PhysicsDef& physics);
+
+// Asks a run under way to stop at its next stored frame and write a checkpoint there, as
+// stop_after does, so that --restart continues it to the bytes of an uninterrupted run.
+// Async-signal-safe: the hydro command calls it from its SIGTERM, SIGINT and SIGHUP
+// handler (a batch system's notice before it kills a job). `signal` is reported back in
+// RunResult::stop_signal.
+void request_stop(int signal);
 
 // Path of the checkpoint that belongs to an output file.
 std::string checkpoint_path(const std::string& out_file);

@@ -71,20 +71,26 @@ Outputs flow_and_sweep(const SmallCase& c) {
 }  // namespace
 
 // Stop, restart (on another thread count), and the same bytes as a run never stopped.
+// Stopped at the first frame after the start too (asked at 0.5 s, every 0.5 s): the
+// stop waits for frame 2, since a file continued from frame 1 came out 1 kB smaller.
 TEST(ReliabilityCli, RestartGivesTheBytesOfAnUninterruptedRun) {
     const SmallCase c = small_case("cli_restart");
     std::string out;
-    const std::string ref = c.dir + "/ref.nc", f = c.dir + "/f.nc";
+    const std::string ref = c.dir + "/ref.nc";
     ASSERT_EQ(test::run_cli(hydro_args(c, ref) + " --threads 1", &out), 0) << out;
-    ASSERT_EQ(test::run_cli(hydro_args(c, f) + " --threads 1 --checkpoint-interval 1 --stop-after 2.5", &out), 0) << out;
-    EXPECT_FALSE(fs::exists(f));
-    ASSERT_TRUE(fs::exists(f + ".part"));
-    ASSERT_TRUE(fs::exists(f + ".checkpoint.nc"));
-    ASSERT_EQ(test::run_cli(hydro_args(c, f) + " --threads 2 --checkpoint-interval 1 --restart", &out), 0) << out;
-    ASSERT_TRUE(fs::exists(f));
-    EXPECT_FALSE(fs::exists(f + ".part"));
-    EXPECT_FALSE(fs::exists(f + ".checkpoint.nc"));
-    EXPECT_EQ(sha256_file(f), sha256_file(ref));
+    for (const std::string stop : {"--checkpoint-interval 1 --stop-after 2.5", "--checkpoint-interval 0.5 --stop-after 0.5"}) {
+        SCOPED_TRACE(stop);
+        const std::string f = c.dir + "/f" + std::to_string(stop.size()) + ".nc";
+        ASSERT_EQ(test::run_cli(hydro_args(c, f) + " --threads 1 " + stop, &out), 0) << out;
+        EXPECT_FALSE(fs::exists(f));
+        ASSERT_TRUE(fs::exists(f + ".part"));
+        ASSERT_TRUE(fs::exists(f + ".checkpoint.nc"));
+        ASSERT_EQ(test::run_cli(hydro_args(c, f) + " --threads 2 --checkpoint-interval 1 --restart", &out), 0) << out;
+        ASSERT_TRUE(fs::exists(f));
+        EXPECT_FALSE(fs::exists(f + ".part"));
+        EXPECT_FALSE(fs::exists(f + ".checkpoint.nc"));
+        EXPECT_EQ(sha256_file(f), sha256_file(ref));
+    }
 }
 
 // Three grids from the command line (lists), stopped and restarted: the checkpoint
@@ -178,6 +184,39 @@ TEST(ReliabilityCli, SecondWriterStopsAtOnceAndTheFirstFinishesIntact) {
         EXPECT_EQ(sha256_file(f), ref);
         EXPECT_FALSE(fs::exists(f + ".part"));
         EXPECT_FALSE(fs::exists(f + ".lock"));
+    }
+}
+
+// SIGTERM (what a batch system sends before it kills a job) or SIGINT (Ctrl-C): the run
+// stops at its next frame with a checkpoint there (none was asked for), exits 1 saying how
+// to continue, and the same command with --restart ends with the uninterrupted run's bytes.
+TEST(ReliabilityCli, ASignalStopsTheRunAtAFrameAndRestartGivesTheSameBytes) {
+    const SmallCase c = small_case("cli_signal");
+    std::string out;
+    // 10 000 steps of 1 ms (a few seconds): the run is surely under way when signalled.
+    const auto args = [&](const std::string& f) {
+        return "hydro --scene " + c.scene + " --west level --west-series " + c.series +
+               " --duration 10 --output-interval 0.5 --max-dt 0.001 --quiet --out " + f;
+    };
+    const std::string ref = c.dir + "/ref.nc";
+    ASSERT_EQ(test::run_cli(args(ref) + " --threads 1", &out), 0) << out;
+    for (const int sig : {SIGTERM, SIGINT}) {
+        const std::string name = sig == SIGTERM ? "SIGTERM" : "SIGINT";
+        SCOPED_TRACE(name);
+        const std::string f = c.dir + "/f" + std::to_string(sig) + ".nc";
+        FILE* run = test::start_cli(args(f) + " --threads 1");
+        const pid_t holder = lock_holder(f, 20.0);
+        ASSERT_GT(holder, 0);
+        ASSERT_EQ(::kill(holder, sig), 0);
+        EXPECT_EQ(test::finish_cli(run, &out), 1) << out;
+        EXPECT_NE(out.find(f + ": interrupted (" + name + ") at t = "), std::string::npos) << out;
+        EXPECT_NE(out.find("continue it with the same command and --restart"), std::string::npos) << out;
+        EXPECT_FALSE(fs::exists(f));
+        ASSERT_TRUE(fs::exists(f + ".part"));
+        ASSERT_TRUE(fs::exists(f + ".checkpoint.nc"));
+        ASSERT_EQ(test::run_cli(args(f) + " --threads 2 --restart", &out), 0) << out;
+        EXPECT_EQ(sha256_file(f), sha256_file(ref));
+        EXPECT_FALSE(fs::exists(f + ".checkpoint.nc"));
     }
 }
 
