@@ -11,7 +11,8 @@ command that ran the flows: a flow's cost is the processor time of its run summa
 ("hydro-rNN: complete after … (P s processor)"), counted only for a flow run in one go
 (a flow continued with --restart reports only its last part). Prints a Markdown table
 per grid: processor s a flow (median, and how many flows it is from), and per measure
-the median over the records with its range.
+the median over the records with its range (a draft time counts only the records where
+the point floods in both flows; "–" where it floods in none).
 """
 import argparse
 import csv
@@ -105,8 +106,13 @@ def main(argv):
                 cells.append("reference")
                 continue
             v = np.array([per_record[r][key] for r in found]) * scale
-            cells.append(f"{np.median(v):+.2f} ({v.min():+.2f} … {v.max():+.2f})" if "err" in key
-                         else f"{np.median(v):.2f} ({v.min():.2f} … {v.max():.2f})")
+            finite = v[np.isfinite(v)]  # a draft time is NaN where the point never floods in a run
+            if finite.size == 0:
+                cells.append("–")
+                continue
+            sign = "+" if "err" in key else ""
+            text = f"{np.median(finite):{sign}.2f} ({finite.min():{sign}.2f} … {finite.max():{sign}.2f})"
+            cells.append(text + (f", {v.size - finite.size} of {v.size} never" if finite.size < v.size else ""))
         records_text = ", ".join(f"r{r:02d}" for r in found)
         print(f"| {label} | {c} | {records_text} | " + " | ".join(cells) + " |")
 
@@ -134,6 +140,9 @@ def draw(summary, png):
             if not cost or not per_record:
                 continue
             v = np.abs(np.array([per_record[r][key] for r in found])) * scale
+            v = v[np.isfinite(v)]
+            if v.size == 0:
+                continue
             x = np.median(list(cost.values()))
             ax.errorbar([x], [np.median(v)], yerr=[[np.median(v) - v.min()], [v.max() - np.median(v)]], fmt="o", capsize=3)
             ax.annotate(label, (x, np.median(v)), textcoords="offset points", xytext=(6, 4))

@@ -381,3 +381,42 @@ TEST(HydroCli, LeapfrogOnASceneThatRecommendsNesting) {
         << out;
     EXPECT_NE(out.find("nest-ratio = 4"), std::string::npos) << out;
 }
+
+// pipelines.resolution_cost (issue 17.4's hydro chart): two records, the second grid a
+// copy of the reference with WG2 raised by 1 mm in record r01 only; every other measure
+// is zero (LD does not flood in 8 s: no draft time). The costs come from the make log's
+// run summaries, a restarted flow left out.
+TEST(HydroRun, ResolutionCostTableComparesRecordsAndTakesCostsFromTheLog) {
+    const auto dir = test::scratch_dir("resolution_cost");
+    std::string out;
+    ASSERT_EQ(test::run_cli("scene generate --resolution 0.32 --out " + dir + "/scene.nc", &out), 0) << out;
+    ASSERT_EQ(test::run_cli("boundary generate --count 2 --duration 8 --out-dir " + dir + "/bc", &out), 0) << out;
+    std::filesystem::create_directories(dir + "/ref");
+    for (const char* r : {"00", "01"})
+        ASSERT_EQ(test::run_cli("hydro --scene " + dir + "/scene.nc --west level --west-series " + dir + "/bc/wg1_r" + r +
+                                    ".csv --duration 8 --output-interval 1 --quiet --out " + dir + "/ref/flow_r" + r + ".nc",
+                                &out),
+                  0)
+            << out;
+    const std::string setup = "cd " + dir + " && cp -r ref test && /usr/bin/python3 -c \"import netCDF4 as nc; "
+                              "d = nc.Dataset('test/flow_r01.nc', 'a'); names = [str(n) for n in d['gauge_name'][:]]; "
+                              "k = names.index('WG2'); d['gauge_eta'][:, k] = d['gauge_eta'][:, k] + 0.001; d.close()\"";
+    ASSERT_EQ(std::system(setup.c_str()), 0);
+    test::write_file(dir, "ref.log",
+                     "  --label hydro-r00 --out ref/flow_r00.nc\n"
+                     "hydro-r00: complete after 100 steps in 20.0 s wall (12.0 s processor), 1e+06 cell-updates/s\n"
+                     "  --label hydro-r01 --out ref/flow_r01.nc --restart\n"
+                     "hydro-r01: complete after 50 steps in 9.0 s wall (5.0 s processor), 1e+06 cell-updates/s\n");
+    const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.resolution_cost " + dir +
+                            "/scene.nc 'fine=" + dir + "/ref:" + dir + "/ref.log' 'coarse=" + dir + "/test' > " + dir +
+                            "/table.md 2>&1";
+    const int rc = std::system(cmd.c_str());
+    std::ifstream f(dir + "/table.md");
+    const std::string table((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(rc, 0) << table;
+    EXPECT_NE(table.find("| fine | 12 (1 flows) | r00, r01 | reference |"), std::string::npos) << table;
+    EXPECT_NE(table.find("| coarse | – | r00, r01 | 0.50 (0.00 … 1.00) | +0.50 (+0.00 … +1.00) | 0.00 (0.00 … 0.00) | "
+                         "+0.00 (+0.00 … +0.00) | 0.00 (0.00 … 0.00) | – |"),
+              std::string::npos)
+        << table;
+}
