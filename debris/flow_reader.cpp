@@ -164,7 +164,7 @@ void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, co
     const std::size_t offset = std::size_t(r.j0 - w.j0) * wnx + std::size_t(r.i0 - w.i0);
     const std::pair<int, std::vector<float>*> fields[] = {{var_h_, &f.h}, {var_u_, &f.qx}, {var_v_, &f.qy}};
     for (const auto& [var, field] : fields) {
-        if (decoded) break;
+        if (decoded) continue;  // decode_frame placed them
         if (r == w) {
             file_.get_slab(var, start, count, field->data());
             continue;
