@@ -223,14 +223,18 @@ double FlowReader::decode_frame(Frame& f, std::size_t frame, const CellWindow& w
 #pragma omp parallel num_threads(std::max(1, def_.decode_threads)) reduction(+ : helpers_cpu)
     {
         const double start_cpu = thread_cpu_seconds();
-        TileDecoder::Inflater inflater;
-        std::vector<float> tile(tx * std::size_t(tile_y_));
+        std::optional<TileDecoder::Inflater> inflater;
+        std::vector<float> tile;
 #pragma omp for schedule(dynamic, 8)
         for (long n = 0; n < n_jobs; ++n) {
             const Job& job = jobs[std::size_t(n)];
             if (!job.stored) continue;
             try {
-                decoder_->decode(std::size_t(job.field), frame, job.ti, job.tj, f.stored[std::size_t(n)], inflater, tile.data());
+                if (!inflater) {
+                    inflater.emplace();
+                    tile.resize(tx * std::size_t(tile_y_));
+                }
+                decoder_->decode(std::size_t(job.field), frame, job.ti, job.tj, f.stored[std::size_t(n)], *inflater, tile.data());
                 place(job, tile.data(), tx, job.ti * tile_x_, job.tj * tile_y_);
             } catch (...) {
                 failed[std::size_t(n)] = std::current_exception();
