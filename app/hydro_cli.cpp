@@ -99,22 +99,30 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
                              {"--south-series", s.south.series_file},
                              {"--north-series", s.north.series_file}});
     const RunResult r = run_hydro(o.run, s);
-    if (r.stop_signal != 0)
-        fail(o.run.out_file, "",
-             std::string("interrupted (SIG") + sigabbrev_np(r.stop_signal) + ") at t = " + number_text(r.simulated) +
-                 " s; the run so far is kept in " + checkpoint_path(o.run.out_file) + " and " + o.run.out_file +
-                 ".part: continue it with the same command and --restart");
-    if (!o.run.quiet)
+    const std::string stop_name = r.stop_signal != 0 ? std::string("SIG") + sigabbrev_np(r.stop_signal) : "";
+    // Every run that stepped says what it cost, an interrupted one too: the parts of a flow
+    // continued with --restart, their spans chained from t = 0, add up to its whole cost
+    // (pipelines/resolution_cost.py sums them from a make log).
+    if (!o.run.quiet) {
+        const std::string status = r.completed            ? "complete"
+                                   : r.stop_signal != 0 ? "interrupted (" + stop_name + ")"
+                                                        : "stopped (checkpoint written; continue with --restart)";
         std::fprintf(stderr,
-                     "%s: %s after %ld steps in %.1f s wall (%.1f s processor), %.3g cell-updates/s (%.0f%% dry land skipped), "
-                     "volume %.6g -> %.6g m^3%s%s%s\n",
-                     o.run.label.c_str(), r.completed ? "complete" : "stopped (checkpoint written; continue with --restart)",
-                     r.steps, r.wall_seconds, r.cpu_seconds, r.cell_updates_per_second, 100.0 * r.dry_skipped_fraction,
-                     r.volume_start, r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "",
+                     "%s: %s after %ld steps (t = %s to %s s) in %.1f s wall (%.1f s processor), %.3g cell-updates/s "
+                     "(%.0f%% dry land skipped), volume %.6g -> %.6g m^3%s%s%s\n",
+                     o.run.label.c_str(), status.c_str(), r.steps, number_text(r.started).c_str(), number_text(r.simulated).c_str(),
+                     r.wall_seconds, r.cpu_seconds, r.cell_updates_per_second, 100.0 * r.dry_skipped_fraction, r.volume_start,
+                     r.volume_end, r.negative_depth_fixes ? ", negative depths clamped" : "",
                      r.outflow_limits ? (", outflow limited in " + std::to_string(r.outflow_limits) + " cell-steps").c_str() : "",
                      r.positivity_redos
                          ? (", " + std::to_string(r.positivity_redos) + " steps redone at cfl 0.45 for positive depths").c_str()
                          : "");
+    }
+    if (r.stop_signal != 0)
+        fail(o.run.out_file, "",
+             "interrupted (" + stop_name + ") at t = " + number_text(r.simulated) + " s; the run so far is kept in " +
+                 checkpoint_path(o.run.out_file) + " and " + o.run.out_file +
+                 ".part: continue it with the same command and --restart");
 }
 
 }  // namespace

@@ -554,6 +554,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     else
         start(solver, scene, run, def, o);
     const long steps_before = o.state.steps;  // 0 unless restarted
+    const double started = solver.time();
     const auto wall0 = std::chrono::steady_clock::now();
     const double cpu0 = cpu_seconds();
     Progress progress(run.label, run.duration, 10.0, run.quiet);
@@ -565,6 +566,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     res.completed = signed_steps >= 0;
     res.stop_signal = res.completed ? 0 : int(stop_signal);
     res.steps = std::abs(signed_steps) - steps_before;
+    res.started = started;
     res.simulated = solver.time();
     res.cell_updates_per_second = solver.cell_updates() / std::max(res.wall_seconds, 1e-9);
     res.volume_start = o.state.volume_start;

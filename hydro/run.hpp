@@ -74,8 +74,9 @@ struct RunDef {
 struct RunResult {
     bool completed = false;  // false when stopped by stop_after or request_stop
     int stop_signal = 0;     // the signal request_stop was given, where it stopped the run
-    long steps = 0;
-    double simulated = 0.0;                       // [s]
+    long steps = 0;                               // taken by this run (since its checkpoint, with --restart)
+    double started = 0.0;                         // simulated time it began at: 0, or its checkpoint's [s]
+    double simulated = 0.0;                       // simulated time it ended at [s]
     double wall_seconds = 0.0;                    // stepping only, excluding setup (with the per-step
                                                   // maxima, gauges, frames and checkpoints)
     double cpu_seconds = 0.0;                     // processor time of the same, all threads [s]

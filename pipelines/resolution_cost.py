@@ -7,9 +7,11 @@ and the draft time at the FD and LD starts) against what a flow of each grid cos
 
 The first grid is the reference. DIR holds its flows (flow_rNN.nc); only records whose
 reference flow is complete are compared. LOG, where given, is the output of the make
-command that ran the flows: a flow's cost is the processor time of its run summary
-("hydro-rNN: complete after … (P s processor)"), counted only for a flow run in one go
-(a flow continued with --restart reports only its last part). Prints a Markdown table
+command that ran the flows: a flow's cost is the processor time of its run summaries
+("hydro-rNN: complete after N steps (t = T0 to T1 s) in … (P s processor)"), summed over
+the parts of a flow continued with --restart where their spans chain from t = 0 to the
+end. A flow with a part that left no summary (killed outright) is left out, as is a
+continued flow in a log from before the summaries gave spans. Prints a Markdown table
 per grid: processor s a flow (median, and how many flows it is from), and per measure
 the median over the records with its range (a draft time counts only the records where
 the point floods in both flows; "–" where it floods in none).
@@ -52,19 +54,46 @@ def records(directory):
     return out
 
 
+SUMMARY = re.compile(r"hydro-r(\d+): (.*?) after \d+ steps(?: \(t = (\S+) to (\S+) s\))? in [\d.]+ s wall "
+                     r"\(([\d.]+) s processor\)")
+
+
 def costs(log):
-    """{record: processor s} for flows run in one go, from a make log."""
+    """{record: processor s of the whole flow} from a make log (see the module's notes)."""
     if not log:
         return {}
-    restarted, cost = set(), {}
+    cost = {}
+    chain = {}  # record: (simulated time its parts so far reached, as printed; their processor s), or None
+    unreported = set()  # records whose last part started and has printed no summary yet
+    restarted = set()  # records continued with --restart anywhere in the log (the older summaries)
     for line in open(log, errors="replace"):
-        m = re.search(r"--label hydro-r(\d+) .*--restart", line)
+        m = re.search(r"--label hydro-r(\d+)\b", line)
         if m:
-            restarted.add(int(m.group(1)))
-        m = re.match(r"hydro-r(\d+): complete after \d+ steps in [\d.]+ s wall \(([\d.]+) s processor\)", line)
-        if m:
-            cost[int(m.group(1))] = float(m.group(2))
-    return {r: c for r, c in cost.items() if r not in restarted}
+            r = int(m.group(1))
+            if r in unreported:
+                chain[r] = None  # the part before this one was killed before it could report
+            unreported.add(r)
+            if "--restart" in line:
+                restarted.add(r)
+            continue
+        m = SUMMARY.match(line)
+        if not m:
+            continue
+        r, status, start, end, cpu = int(m.group(1)), m.group(2), m.group(3), m.group(4), float(m.group(5))
+        unreported.discard(r)
+        if start is None:  # a summary without its span: counted only for a flow never continued
+            if status == "complete" and r not in restarted:
+                cost[r] = cpu
+            continue
+        if float(start) == 0.0:
+            chain[r] = (end, cpu)
+        elif chain.get(r) is not None and chain[r][0] == start:
+            chain[r] = (end, chain[r][1] + cpu)
+        else:
+            chain[r] = None
+        if status == "complete" and chain[r] is not None:
+            cost[r] = chain[r][1]
+    return cost
 
 
 def main(argv):

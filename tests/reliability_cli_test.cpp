@@ -196,10 +196,10 @@ TEST(ReliabilityCli, ASignalStopsTheRunAtAFrameAndRestartGivesTheSameBytes) {
     // 10 000 steps of 1 ms (a few seconds): the run is surely under way when signalled.
     const auto args = [&](const std::string& f) {
         return "hydro --scene " + c.scene + " --west level --west-series " + c.series +
-               " --duration 10 --output-interval 0.5 --max-dt 0.001 --quiet --out " + f;
+               " --duration 10 --output-interval 0.5 --max-dt 0.001 --label sig --out " + f;
     };
     const std::string ref = c.dir + "/ref.nc";
-    ASSERT_EQ(test::run_cli(args(ref) + " --threads 1", &out), 0) << out;
+    ASSERT_EQ(test::run_cli(args(ref) + " --threads 1 --quiet", &out), 0) << out;
     for (const int sig : {SIGTERM, SIGINT}) {
         const std::string name = sig == SIGTERM ? "SIGTERM" : "SIGINT";
         SCOPED_TRACE(name);
@@ -209,12 +209,21 @@ TEST(ReliabilityCli, ASignalStopsTheRunAtAFrameAndRestartGivesTheSameBytes) {
         ASSERT_GT(holder, 0);
         ASSERT_EQ(::kill(holder, sig), 0);
         EXPECT_EQ(test::finish_cli(run, &out), 1) << out;
-        EXPECT_NE(out.find(f + ": interrupted (" + name + ") at t = "), std::string::npos) << out;
+        const std::string stop = f + ": interrupted (" + name + ") at t = ";
+        const std::size_t at = out.find(stop);
+        ASSERT_NE(at, std::string::npos) << out;
+        const std::string t = out.substr(at + stop.size(), out.find(" s;", at) - at - stop.size());
         EXPECT_NE(out.find("continue it with the same command and --restart"), std::string::npos) << out;
+        // The part's summary gives its span and cost, so that the parts of a continued
+        // flow add up to its whole cost (pipelines/resolution_cost.py).
+        EXPECT_NE(out.find("sig: interrupted (" + name + ") after "), std::string::npos) << out;
+        EXPECT_NE(out.find(" steps (t = 0 to " + t + " s) in "), std::string::npos) << out;
         EXPECT_FALSE(fs::exists(f));
         ASSERT_TRUE(fs::exists(f + ".part"));
         ASSERT_TRUE(fs::exists(f + ".checkpoint.nc"));
         ASSERT_EQ(test::run_cli(args(f) + " --threads 2 --restart", &out), 0) << out;
+        EXPECT_NE(out.find("sig: complete after "), std::string::npos) << out;
+        EXPECT_NE(out.find(" steps (t = " + t + " to 10 s) in "), std::string::npos) << out;
         EXPECT_EQ(sha256_file(f), sha256_file(ref));
         EXPECT_FALSE(fs::exists(f + ".checkpoint.nc"));
     }
