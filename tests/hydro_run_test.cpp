@@ -385,7 +385,8 @@ TEST(HydroCli, LeapfrogOnASceneThatRecommendsNesting) {
 // pipelines.resolution_cost (issue 17.4's hydro chart): two records, the second grid a
 // copy of the reference with WG2 raised by 1 mm in record r01 only; every other measure
 // is zero (LD does not flood in 8 s: no draft time). The costs come from the make log's
-// run summaries, a restarted flow left out.
+// run summaries: a continued flow's parts summed, a flow with a part that left no summary
+// left out.
 TEST(HydroRun, ResolutionCostTableComparesRecordsAndTakesCostsFromTheLog) {
     const auto dir = test::scratch_dir("resolution_cost");
     std::string out;

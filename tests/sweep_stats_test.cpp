@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 
 #include "common/netcdf.hpp"
@@ -338,4 +341,52 @@ TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
     write_sweep_file(dir + "/part.nc", part);
     EXPECT_NE(test::run_cli("stats --sweep " + dir + "/part.nc --scene " + dir + "/scene.nc --out " + dir + "/x.nc", &out), 0);
     EXPECT_NE(out.find("merge the parts first"), std::string::npos) << out;
+}
+
+// pipelines.resolution_stats's intervals over the records (issue 17.4), on hand-made stats
+// folders of ten records, two members each (FD CC+SC). The reference has one member of
+// every record in Channel A and all crossing x = 1.8 m at y = -2.20 m, 5 cm/s. Resampling
+// the records, paired:
+// - a copy differs by 0 in every resample: [+0, +0];
+// - a sweep with no member in Channel A, crossing 0.10 m further south at 7 cm/s, differs
+//   by exactly -10 members, -0.10 m and +2.0 cm/s in every resample;
+// - a sweep that lost one member of record 0 differs by minus the times record 0 is drawn,
+//   binomial(10, 0.1): P(0) = 0.349, P(>= 3) = 0.070, P(>= 4) = 0.013, so its 5 % quantile
+//   is -3 and its 95 % quantile 0. One record's difference is not called a difference.
+TEST(ResolutionStats, IntervalsOverResampledRecords) {
+    const auto dir = test::scratch_dir("resolution_stats");
+    const auto folder = [&](const std::string& name, int in_channel, double y, double speed, bool lose_record_0) {
+        std::string m = "member,body,variant,param_label,flow,region_at_arrival,fd_x1.8_time_s,fd_x1.8_y_m,fd_x1.8_speed_m_s\n";
+        int count = 0;
+        for (int f = 0; f < 10; ++f)
+            for (int k = 0; k < 2; ++k) {
+                const bool inside = k == 0 && in_channel && !(lose_record_0 && f == 0);
+                count += inside;
+                m += std::to_string(2 * f + k) + ",FD,CC+SC," + (k ? "set1" : "control") + "," + std::to_string(f) + "," +
+                     (inside ? "channel_a" : "") + ",40," + std::to_string(y) + "," + std::to_string(speed) + "\n";
+            }
+        const std::string d = dir + "/" + name;
+        std::filesystem::create_directories(d);
+        test::write_file(d, "members.csv", m);
+        test::write_file(d, "regions.csv",
+                         "body,variant,param_label,region,count,members\nFD,CC+SC,all,channel_a," + std::to_string(count) + ",20\n");
+        test::write_file(d, "sections.csv",
+                         "body,variant,param_label,section,count,y_median_m,speed_median_m_s\nFD,CC+SC,all,fd_x1.8,20," +
+                             std::to_string(y) + "," + std::to_string(speed) + "\n");
+        return name + "=" + d;
+    };
+    const std::string runs = folder("ref", 1, -2.2, 0.05, false) + " " + folder("same", 1, -2.2, 0.05, false) + " " +
+                             folder("shifted", 0, -2.3, 0.07, false) + " " + folder("one", 1, -2.2, 0.05, true);
+    const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.resolution_stats --regions channel_a " +
+                            runs + " > " + dir + "/table.md 2>&1";
+    const int rc = std::system(cmd.c_str());
+    std::ifstream f(dir + "/table.md");
+    const std::string table((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(rc, 0) << table;
+    EXPECT_NE(table.find("| FD CC+SC | channel_a | 10/20 | 10/20 [+0, +0] | 0/20 [-10, -10] | 9/20 [-3, +0] |"), std::string::npos)
+        << table;
+    EXPECT_NE(table.find("| FD CC+SC | fd_x1.8 | 20, -2.20 m, 5.0 cm/s | 20, -2.20 m [+0.00, +0.00], 5.0 cm/s [+0.0, +0.0] | "
+                         "20, -2.30 m [-0.10, -0.10], 7.0 cm/s [+2.0, +2.0] | 20, -2.20 m [+0.00, +0.00], 5.0 cm/s [+0.0, +0.0] |"),
+              std::string::npos)
+        << table;
 }
