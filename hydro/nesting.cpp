@@ -42,10 +42,19 @@ Layout slab_layout(const Scene& s, const NestDef& n) {
     for (int r : l.ratio)
         if (r < 1) fail(s.path, "--nest-ratio", "ratios must be 1 or more");
     const int finest = int(std::min_element(l.ratio.begin(), l.ratio.end()) - l.ratio.begin());
+    const int finest_ratio = l.ratio[std::size_t(finest)];
     for (std::size_t k = 0; k + 1 < l.ratio.size(); ++k) {
         const int a = l.ratio[k], b = l.ratio[k + 1], hi = std::max(a, b), lo = std::min(a, b);
-        if (a == b || hi % lo != 0)
-            fail(s.path, "--nest-ratio", "neighbouring grids need different ratios, the larger a multiple of the smaller");
+        if (a == b) {
+            // Two slabs of the finest spacing side by side: a time interface, each with a
+            // step of its own.
+            if (a != finest_ratio)
+                fail(s.path, "--nest-ratio",
+                     "neighbouring grids of the same ratio (a time interface) must be of the finest ratio, " +
+                         std::to_string(finest_ratio));
+            continue;
+        }
+        if (hi % lo != 0) fail(s.path, "--nest-ratio", "neighbouring grids need ratios the larger of which is a multiple of the smaller");
         if ((int(k) < finest) != (a > b))
             fail(s.path, "--nest-ratio", "ratios must fall from the west to the finest grid and rise after it");
     }
@@ -150,6 +159,7 @@ NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const Fini
     for (std::size_t k = 0; k + 1 < n; ++k) {
         Interface f;
         f.west = int(k);
+        f.same_grid = slabs_[k].rx == slabs_[k + 1].rx;
         f.coarse_west = slabs_[k].rx > slabs_[k + 1].rx;
         const Slab &c = slabs_[std::size_t(f.coarse())], &fn = slabs_[std::size_t(f.fine())];
         f.rx = c.rx / fn.rx;
@@ -165,6 +175,7 @@ NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const Fini
     std::iota(order_.begin(), order_.end(), 0);
     std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) { return slabs_[std::size_t(a)].rx > slabs_[std::size_t(b)].rx; });
     volume_start_ = volume();
+    time_interfaces_ = std::any_of(interfaces_.begin(), interfaces_.end(), [](const Interface& f) { return f.same_grid; });
     coarsest_ = slabs_[std::size_t(order_.front())].rx;
     finest_ = slabs_[std::size_t(order_.back())].rx;
 }
@@ -182,7 +193,11 @@ std::string NestedSolver::description() const {
                                          : " from x = " + std::to_string(x0) + " to " + std::to_string(x1)) +
                  " m";
     }
-    return slabs_.front().solver.description() + "; nested: " + slabs + ", sub-cycled, refluxed";
+    std::string split;  // time interfaces: where the finest grid's parts meet
+    for (const Interface& f : interfaces_)
+        if (f.same_grid) split += (split.empty() ? "" : ", ") + std::to_string(grid_.x_min_edge() + slabs_[std::size_t(f.west + 1)].i0 * grid_.dx);
+    if (!split.empty()) split = "; the finest grid in parts with steps of their own, split at x = " + split + " m";
+    return slabs_.front().solver.description() + "; nested: " + slabs + ", sub-cycled, refluxed" + split;
 }
 
 void NestedSolver::set_time(double t) {
@@ -218,7 +233,24 @@ std::vector<std::vector<double>*> NestedSolver::state_arrays() {
     return a;
 }
 
+GhostState NestedSolver::copied_ghosts(const Interface& f, bool from_west) const {
+    const Solver& from = slabs_[std::size_t(from_west ? f.west : f.west + 1)].solver;
+    const int ny = from.grid().ny, nx = from.grid().nx;
+    GhostState g;
+    for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ny), 0.0);
+    for (int L = 1; L <= kLayers; ++L)
+        for (int j = 0; j < ny; ++j) {
+            const int i = from_west ? nx - L : L - 1;  // layer 1 is the cell next to the interface
+            const std::size_t q = std::size_t((L - 1) * ny + j);
+            g.h[q] = from.depth(i, j);
+            g.hu[q] = from.x_discharge(i, j);
+            g.hv[q] = from.y_discharge(i, j);
+        }
+    return g;
+}
+
 GhostState NestedSolver::coarse_ghosts_from_fine(const Interface& f) const {
+    if (f.same_grid) return copied_ghosts(f, !f.coarse_west);
     const Solver& fine = slabs_[std::size_t(f.fine())].solver;
     const int rx = f.rx, ry = f.ry, ncy = slabs_[std::size_t(f.coarse())].solver.grid().ny, nxf = fine.grid().nx;
     GhostState g;
@@ -259,6 +291,7 @@ GhostState NestedSolver::coarse_ghosts_from_fine(const Interface& f) const {
 }
 
 GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
+    if (f.same_grid) return copied_ghosts(f, f.coarse_west);
     const Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
     const Solver& fine = slabs_[std::size_t(f.fine())].solver;
     const Grid &cg = coarse.grid(), &fg = fine.grid();
@@ -363,6 +396,7 @@ double NestedSolver::stable_dt() const {
 
 void NestedSolver::step(double dt) {
     const double t0 = time_, t1 = time_ + dt;
+    if (time_interfaces_) order_for_step(dt);
     for (Interface& f : interfaces_) {
         const GhostState from_fine = coarse_ghosts_from_fine(f);
         slabs_[std::size_t(f.coarse())].solver.set_nested_ghosts(f.coarse_side(), t0, from_fine, t0, from_fine);
@@ -404,6 +438,26 @@ void NestedSolver::step(double dt) {
                          "shores): refluxing drew more water than a coarse cell held, ") +
                  what + "; move it into water that stays wet (docs/accuracy.md, \"Nested grids\")");
     }
+}
+
+void NestedSolver::order_for_step(double dt) {
+    // Slabs of the same spacing step in the order of their sub-steps this step, fewest
+    // first (west first among equals), and the first of a time interface's two is its
+    // coarse side: its ghosts hold the other's cells at the step's start, the other's
+    // follow it in time and its faces' transfer is refluxed.
+    std::vector<double> substeps(slabs_.size(), 1.0);
+    for (std::size_t k = 0; k < slabs_.size(); ++k)
+        if (slabs_[k].rx != coarsest_) substeps[k] = std::ceil(dt / slabs_[k].solver.stable_dt() - 1e-9);
+    std::iota(order_.begin(), order_.end(), 0);
+    std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) {
+        const Slab &sa = slabs_[std::size_t(a)], &sb = slabs_[std::size_t(b)];
+        if (sa.rx != sb.rx) return sa.rx > sb.rx;
+        return substeps[std::size_t(a)] < substeps[std::size_t(b)];
+    });
+    std::vector<int> position(slabs_.size());
+    for (std::size_t p = 0; p < order_.size(); ++p) position[std::size_t(order_[p])] = int(p);
+    for (Interface& f : interfaces_)
+        if (f.same_grid) f.coarse_west = position[std::size_t(f.west)] < position[std::size_t(f.west + 1)];
 }
 
 ColumnRange NestedSolver::wet_columns(int j) const {

@@ -116,6 +116,10 @@ private:
     // ground (layer by layer, as GhostState).
     struct Interface {
         int west = 0;
+        // A time interface: both slabs have the same cells (the finest), and the one that
+        // takes fewer sub-steps in a step is its "coarse" side, chosen every step
+        // (NestedSolver::step); its ghosts are the other's cells, copied.
+        bool same_grid = false;
         bool coarse_west = true;
         int rx = 1, ry = 1;  // coarse cells per fine cell
         std::vector<double> fine_bed, coarse_bed;  // ghost ground of each side
@@ -126,6 +130,10 @@ private:
         Side fine_side() const { return coarse_west ? Side::west : Side::east; }
     };
     GhostState fine_ghosts_from_coarse(const Interface& f) const;
+    // A time interface's ghosts: the cells of the slab west (from_west) or east of it.
+    GhostState copied_ghosts(const Interface& f, bool from_west) const;
+    // The stepping order and the time interfaces' coarse sides for a step of dt.
+    void order_for_step(double dt);
     GhostState coarse_ghosts_from_fine(const Interface& f) const;
     void reflux(const Interface& f);
     const Slab& slab_of(int i) const;  // the slab holding scene column i
@@ -135,7 +143,8 @@ private:
     std::vector<double> z_;  // scene bed [m]
     std::vector<Slab> slabs_;
     std::vector<Interface> interfaces_;
-    std::vector<int> order_;  // slabs by ratio, coarsest first (west first among equals)
+    std::vector<int> order_;  // slabs by ratio, coarsest first (west first among equals; by sub-steps with time interfaces)
+    bool time_interfaces_ = false;  // some neighbours have the same cells (order_for_step)
     int coarsest_ = 1, finest_ = 1;
     double time_ = 0.0;
     double cell_updates_ = 0.0;
