@@ -339,6 +339,14 @@ GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
 void NestedSolver::reflux(const Interface& f) {
     Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
     const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+    if (f.same_grid) {  // face by face, the same faces on both sides
+        const std::vector<double>& tc = coarse.side_transfer(f.coarse_side());
+        const std::vector<double>& tf = fine.side_transfer(f.fine_side());
+        std::vector<double> dh(tc.size());
+        for (std::size_t j = 0; j < dh.size(); ++j) dh[j] = (f.coarse_west ? tc[j] - tf[j] : tf[j] - tc[j]) / coarse.grid().dx;
+        reflux_made_ += coarse.add_side_depth(f.coarse_side(), dh, reflux_clamps_);
+        return;
+    }
     const int ry = f.ry, ncy = coarse.grid().ny, I = f.coarse_west ? coarse.grid().nx - 1 : 0;
     // Transfers are positive toward +x: out of a coarse cell west of the interface, into
     // one east of it.

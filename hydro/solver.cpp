@@ -811,6 +811,35 @@ void Solver::stage(Stage which, double dt, double t) {
     if (fronts) front_.fix_done(h_out, active_, alpha_, alpha_out, true);
 }
 
+double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& clamps) {
+    if (!is_x_side(side) || dh.size() != std::size_t(grid_.ny)) fail("", "nesting", "a side depth change of the wrong side or size");
+    const int i = side == Side::west ? 0 : grid_.nx - 1;
+    const std::ptrdiff_t inward = side == Side::west ? 1 : -1;
+    const double g = def_.gravity, dry = def_.dry_depth, idx = 1.0 / grid_.dx, idy = 1.0 / grid_.dy;
+    const bool fronts = fv_.fronts == FrontTreatment::tracked;
+    bool inside_water = true;  // every cell changed and its neighbour inward wet all over, and wet after
+    double made = 0.0;
+    for (int j = 0; j < grid_.ny; ++j) {
+        const std::size_t c = at(i, j);
+        h_[c] += dh[std::size_t(j)];
+        if (h_[c] < 0.0) {
+            made -= h_[c] * grid_.dx * grid_.dy;
+            h_[c] = 0.0;
+            ++clamps;
+        }
+        if (h_[c] != 0.0) bound_[std::size_t(j)] = hull(bound_[std::size_t(j)], {i, i + 1});
+        // A rate known from the last step stays a bound if it covers the changed cells.
+        if (max_wave_rate_ >= 0.0) max_wave_rate_ = std::max(max_wave_rate_, wave_rate(h_[c], hu_[c], hv_[c], g, dry, idx, idy));
+        if (dh[std::size_t(j)] != 0.0)
+            inside_water = inside_water && h_[c] > dry && alpha_[c] == 1.0 && alpha_[std::size_t(std::ptrdiff_t(c) + inward)] == 1.0;
+    }
+    // Cells that stay inside the water keep a wet fraction of 1 (front.hpp). Beside a
+    // front the fractions depend on the depths: the next step makes them consistent
+    // over the whole slab, as after any change from outside.
+    if (fronts && !inside_water) changed_outside(h_);
+    return made;
+}
+
 void Solver::set_nested_ghosts(Side side, double t0, const GhostState& a, double t1, const GhostState& b) {
     if (!is_x_side(side) || boundary(side).kind != BoundaryKind::nested)
         fail("", "boundary nested", "ghosts given for a side that is not nested");

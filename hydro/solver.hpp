@@ -124,6 +124,12 @@ public:
     // with the weights of the time stepper (for refluxing between nested grids).
     const std::vector<double>& side_transfer(Side side) const { return side == Side::west ? west_transfer_ : east_transfer_; }
     void reset_side_transfer();
+    // Adds dh[j] [m] to the depth of row j's cell at a west or east side (refluxing a time
+    // interface, nesting.hpp), setting a depth below 0 to 0; returns the water that made
+    // [m^3]. Unlike a change through depth_data(), it updates what the solver knows of its
+    // state (wet columns, wet fractions, CFL rate) for that column only, so a large slab
+    // refluxed every step is not scanned whole at its next step.
+    double add_side_depth(Side side, const std::vector<double>& dh, long& clamps);
 
     // Level at the pump side when pumping stopped (restart state of the pump boundary).
     double pump_level_at_stop() const { return forcing_.pump_level_at_stop(); }
