@@ -819,8 +819,10 @@ double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& cl
     const bool fronts = fv_.fronts == FrontTreatment::tracked;
     bool inside_water = true;  // every cell changed and its neighbour inward wet all over, and wet after
     double made = 0.0;
+    bool rate_lost = false;  // a changed cell set the known rate and now has a lower one
     for (int j = 0; j < grid_.ny; ++j) {
         const std::size_t c = at(i, j);
+        const double rate_before = wave_rate(h_[c], hu_[c], hv_[c], g, dry, idx, idy);
         h_[c] += dh[std::size_t(j)];
         if (h_[c] < 0.0) {
             made -= h_[c] * grid_.dx * grid_.dy;
@@ -828,8 +830,12 @@ double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& cl
             ++clamps;
         }
         if (h_[c] != 0.0) bound_[std::size_t(j)] = hull(bound_[std::size_t(j)], {i, i + 1});
-        // A rate known from the last step stays a bound if it covers the changed cells.
-        if (max_wave_rate_ >= 0.0) max_wave_rate_ = std::max(max_wave_rate_, wave_rate(h_[c], hu_[c], hv_[c], g, dry, idx, idy));
+        // The rate known from the last step stays the state's largest if it covers the
+        // changed cells and none of them set it (so that a restart, which computes it
+        // afresh, takes the same steps).
+        const double rate = wave_rate(h_[c], hu_[c], hv_[c], g, dry, idx, idy);
+        rate_lost = rate_lost || (rate_before == max_wave_rate_ && rate < rate_before);
+        if (max_wave_rate_ >= 0.0) max_wave_rate_ = std::max(max_wave_rate_, rate);
         if (dh[std::size_t(j)] != 0.0)
             inside_water = inside_water && h_[c] > dry && alpha_[c] == 1.0 && alpha_[std::size_t(std::ptrdiff_t(c) + inward)] == 1.0;
     }
@@ -837,6 +843,7 @@ double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& cl
     // front the fractions depend on the depths: the next step makes them consistent
     // over the whole slab, as after any change from outside.
     if (fronts && !inside_water) changed_outside(h_);
+    if (rate_lost) max_wave_rate_ = -1.0;
     return made;
 }
 

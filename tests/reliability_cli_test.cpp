@@ -106,6 +106,16 @@ TEST(ReliabilityCli, ThreeSlabsRestartGivesTheBytesOfAnUninterruptedRun) {
     const std::string source = nc::File::open_read(ref).att_text(NC_GLOBAL, "source").value_or("");
     EXPECT_NE(source.find("0.640000 x 0.160000 m west of x = -4.045000 m, 0.320000 x 0.160000 m from x = -4.045000 to -1.485000 m"), std::string::npos)
         << source;
+    // With a time interface (two slabs of the finest cells, each with its own step), whose
+    // refluxing keeps the CFL rate it knows: a restart, which computes the rate afresh,
+    // takes the same steps.
+    const std::string split = " --nest-ratio 4,1,1 --nest-x -1.2,0.4", g = c.dir + "/g.nc", ref2 = c.dir + "/ref2.nc";
+    ASSERT_EQ(test::run_cli(hydro_args(c, ref2) + split + " --threads 1", &out), 0) << out;
+    ASSERT_EQ(test::run_cli(hydro_args(c, g) + split + " --threads 1 --checkpoint-interval 1 --stop-after 2.5", &out), 0) << out;
+    ASSERT_EQ(test::run_cli(hydro_args(c, g) + split + " --threads 2 --checkpoint-interval 1 --restart", &out), 0) << out;
+    EXPECT_EQ(sha256_file(g), sha256_file(ref2));
+    const std::string split_source = nc::File::open_read(ref2).att_text(NC_GLOBAL, "source").value_or("");
+    EXPECT_NE(split_source.find("split at x = 0.275"), std::string::npos) << split_source;
 }
 
 // A restart with other settings is refused, names what differs, and leaves the
