@@ -104,7 +104,7 @@ slurm_up "$T/cluster" 2 1 || {
 ok "Slurm is up: $(sinfo -h -N -o '%N %T' | tr '\n' ' ')"
 
 RUNS=$T/runs
-MK=(make --no-print-directory -f Makefile.pipeline -o build BUILD="$BUILD" RUNS="$RUNS" RES=0.16 COUNT=3 DURATION=300
+MK=(make --no-print-directory -f Makefile.pipeline -o build -o tool BUILD="$BUILD" RUNS="$RUNS" RES=0.16 COUNT=3 DURATION=300
     NEST_RATIO=1 THREADS=1 SWEEP_SPEC=tests/slurm/sweep.toml)
 FLOWS_DIR=$RUNS/flows-0.16
 OUTPUTS=(flows-0.16/flow_r00.nc flows-0.16/flow_r01.nc flows-0.16/flow_r02.nc sweep-0.16.nc sweep-0.16.csv)
