@@ -214,7 +214,8 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Grids of this many times the scene's spacing, west to east between the --nest-x interfaces, sub-cycled: "
                     "'4' is a coarse grid west of the interface and the scene's own east of it, '4,1,2' adds one twice as "
-                    "coarse east of a second interface (1: one uniform grid; docs/accuracy.md)")
+                    "coarse east of a second interface, '4,1,1' splits the scene's grid in two parts with steps of their own "
+                    "(1: one uniform grid; docs/accuracy.md, docs/hydro.md lever 6)")
         ->capture_default_str()
         ->delimiter(',')
         ->check(in_range(Range::count(1, 16)));
