@@ -10,11 +10,12 @@
 
 #include "common/error.hpp"
 #include "hydro/swe_kernels.hpp"
+#include "hydro/swe_rows.hpp"
 
 namespace flotsam::hydro {
 
 namespace {
-constexpr int kGhost = 2;
+using namespace rows;
 
 // Flush subnormal numbers to zero on this thread. Friction shrinks discharges in thin
 // films geometrically, into the subnormal range, where every operation costs ~100
@@ -272,300 +273,10 @@ namespace {
 // and those with a nonzero state, are (find_active_columns). This is exact, not a
 // second dry tolerance: a film of 1e-9 m is computed like any water.
 
-// The row functions below are called once per row and kept out of line (noinline):
-// inlined into the stage's OpenMP region, GCC 12 stops vectorising some of them.
-
-// Constants of one stage.
-struct Sweep {
-    double g, dry, theta, order_weight, idx, idy;
-    int nx;
-};
-
-// Row buffers of one thread, each row `stride` doubles laid out like a grid row.
-class RowBuffers {
-public:
-    static constexpr int kPrimRows = 5, kSlopeRows = 3, kFaceRows = 2;
-    static constexpr std::size_t kRows = 3 * kPrimRows + 4 * kSlopeRows + 4 * kFaceRows + 8 + 3;
-    RowBuffers(double* data, std::size_t stride) : data_(data), stride_(stride) {}
-    // Rings indexed by padded row r: primitives (0 eta, 1 u, 2 v); limited y-slopes
-    // (0 eta, 1 h, 2 u, 3 v); fluxes through the y-face below row r (0 mass, 1 normal
-    // momentum for the cell below, 2 for the cell above, 3 tangential momentum).
-    double* prim(int r, int k) const { return row(k * kPrimRows + r % kPrimRows); }
-    double* slope(int r, int k) const { return row(3 * kPrimRows + k * kSlopeRows + r % kSlopeRows); }
-    double* face(int r, int k) const { return row(3 * kPrimRows + 4 * kSlopeRows + k * kFaceRows + r % kFaceRows); }
-    // Scratch of the x-sweep: 0..3 x-slopes of eta, h, u, v; 4..7 x-face fluxes.
-    double* x_work(int k) const { return row(3 * kPrimRows + 4 * kSlopeRows + 4 * kFaceRows + k); }
-    // Rates of change of h, hu, hv of the row being updated.
-    double* rate(int k) const { return row(3 * kPrimRows + 4 * kSlopeRows + 4 * kFaceRows + 8 + k); }
-
-private:
-    double* row(int k) const { return data_ + std::size_t(k) * stride_; }
-    double* data_;
-    std::size_t stride_;
-};
-
 ColumnRange widen(ColumnRange a, int n) { return a.empty() ? a : ColumnRange{a.begin - n, a.end + n}; }
 ColumnRange clip(ColumnRange a, int lo, int hi) { return {std::max(a.begin, lo), std::min(a.end, hi)}; }
 
 bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 only
-
-// Row pointers below point at padded column 0 of their row; ranges are interior columns.
-
-// eta = h + z, and velocities (zero where dry).
-[[gnu::noinline]] void primitives_row(const Sweep& s, ColumnRange cols, const double* h, const double* hu, const double* hv,
-                                      const double* z, double* __restrict eta, double* __restrict u, double* __restrict v) {
-#pragma omp simd
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
-        eta[c] = h[c] + z[c];
-        const double inv = inverse_depth(h[c], s.dry);
-        u[c] = hu[c] * inv;
-        v[c] = hv[c] * inv;
-    }
-}
-
-// Limited y-slopes of one row from the rows below (m), at (0) and above (p); zero
-// (first order) where the surface does not span the three (keeps_slope). Order 1: zero
-// everywhere.
-[[gnu::noinline]] void y_slopes_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const double* hp,
-                                    const RowBuffers& w, int r) {
-    double* __restrict se = w.slope(r, 0);
-    double* __restrict sh = w.slope(r, 1);
-    double* __restrict su = w.slope(r, 2);
-    double* __restrict sv = w.slope(r, 3);
-    const int c0 = cols.begin + kGhost, c1 = cols.end + kGhost;
-    if (s.order_weight == 0.0) {
-        if (c0 < c1)
-            for (double* a : {se, sh, su, sv}) std::fill(a + c0, a + c1, 0.0);
-        return;
-    }
-    const double *em = w.prim(r - 1, 0), *e0 = w.prim(r, 0), *ep = w.prim(r + 1, 0);
-    const double *um = w.prim(r - 1, 1), *u0 = w.prim(r, 1), *up = w.prim(r + 1, 1);
-    const double *vm = w.prim(r - 1, 2), *v0 = w.prim(r, 2), *vp = w.prim(r + 1, 2);
-#pragma omp simd
-    for (int c = c0; c < c1; ++c) {
-        const double slope_e = limited_slope(e0[c] - em[c], ep[c] - e0[c], s.theta);
-        const double slope_h = limited_slope(h0[c] - hm[c], hp[c] - h0[c], s.theta);
-        const double wt = keeps_slope(hm[c], em[c], h0[c], e0[c], hp[c], ep[c], slope_e, slope_h, s.dry) ? 1.0 : 0.0;
-        se[c] = wt * slope_e;
-        sh[c] = wt * slope_h;
-        su[c] = wt * limited_slope(u0[c] - um[c], up[c] - u0[c], s.theta);
-        sv[c] = wt * limited_slope(v0[c] - vm[c], vp[c] - v0[c], s.theta);
-    }
-}
-
-// Fluxes through the y-faces between padded rows r-1 (depth hm) and r (depth h0).
-[[gnu::noinline]] void y_faces_row(const Sweep& s, ColumnRange cols, const double* hm, const double* h0, const RowBuffers& w,
-                                   int r) {
-    const double *em = w.prim(r - 1, 0), *e0 = w.prim(r, 0);
-    const double *um = w.prim(r - 1, 1), *u0 = w.prim(r, 1);
-    const double *vm = w.prim(r - 1, 2), *v0 = w.prim(r, 2);
-    const double *sem = w.slope(r - 1, 0), *se0 = w.slope(r, 0), *shm = w.slope(r - 1, 1), *sh0 = w.slope(r, 1);
-    const double *sum = w.slope(r - 1, 2), *su0 = w.slope(r, 2), *svm = w.slope(r - 1, 3), *sv0 = w.slope(r, 3);
-    double* __restrict mass = w.face(r, 0);
-    double* __restrict lo = w.face(r, 1);
-    double* __restrict hi = w.face(r, 2);
-    double* __restrict tan = w.face(r, 3);
-#pragma omp simd
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
-        FaceFlux f;
-        face_flux(em[c] + 0.5 * sem[c], hm[c] + 0.5 * shm[c], vm[c] + 0.5 * svm[c], um[c] + 0.5 * sum[c], e0[c] - 0.5 * se0[c],
-                  h0[c] - 0.5 * sh0[c], v0[c] - 0.5 * sv0[c], u0[c] - 0.5 * su0[c], s.g, s.dry, f);
-        mass[c] = f.mass;
-        lo[c] = f.normal_L;
-        hi[c] = f.normal_R;
-        tan[c] = f.tangential;
-    }
-}
-
-// ---- Fronts (front.hpp): the sweep's changes at tip cells ----
-// A tip cell and its neighbours along the front's direction are first order (slopes
-// zero); its back face takes the wedge's state, its face toward the dry side is shut.
-bool is_x(TipDir d) { return d == TipDir::east || d == TipDir::west; }
-
-// Zero the x-slopes of a row's x-tips and their x-neighbours, in padded columns [c0, c1);
-// an edge cell's ghost too, so that a wall's mirror image stays a mirror image (else the
-// wall face's two states differ and water crosses it).
-void x_slopes_at_tips(const std::vector<Tip>& tips, int nx, int c0, int c1, double* se, double* sh, double* su, double* sv) {
-    for (const Tip& t : tips) {
-        if (!is_x(t.dir)) continue;
-        int lo = t.i + kGhost - 1, hi = t.i + kGhost + 1;
-        if (lo == kGhost) --lo;
-        if (hi == nx - 1 + kGhost) ++hi;
-        for (int c = std::max(lo, c0); c <= std::min(hi, c1 - 1); ++c) se[c] = sh[c] = su[c] = sv[c] = 0.0;
-    }
-}
-
-// Flux through a tip's back face from the wedge state (n: +1 when the front moves toward
-// +x or +y, the tip on the face's high side), tangential velocities ut_lo, ut_hi.
-FaceFlux back_face_flux(const Sweep& s, const TipFace& f, double n, double ut_lo, double ut_hi) {
-    FaceFlux out;
-    if (n > 0.0)
-        face_flux(f.eta_up, f.h_up, f.u, ut_lo, f.eta_tip, f.h_tip, f.u, ut_hi, s.g, s.dry, out);
-    else
-        face_flux(f.eta_tip, f.h_tip, -f.u, ut_lo, f.eta_up, f.h_up, -f.u, ut_hi, s.g, s.dry, out);
-    return out;
-}
-
-void store(const FaceFlux& f, int c, double* fm, double* fl, double* fr, double* ft) {
-    fm[c] = f.mass;
-    fl[c] = f.normal_L;
-    fr[c] = f.normal_R;
-    ft[c] = f.tangential;
-}
-
-// The x faces of a row's x-tips (face c between padded columns c and c+1; cell values,
-// since the slopes there are zero).
-void x_faces_at_tips(const Sweep& s, const std::vector<Tip>& tips, const double* e, const double* h, const double* v, double* fm,
-                     double* fl, double* fr, double* ft) {
-    for (const Tip& t : tips) {
-        if (!is_x(t.dir)) continue;
-        const int c = t.i + kGhost;
-        const bool east = t.dir == TipDir::east;
-        const int back = east ? c - 1 : c, shut = east ? c : c - 1;
-        store(back_face_flux(s, t.face, east ? 1.0 : -1.0, v[back], v[back + 1]), back, fm, fl, fr, ft);
-        FaceFlux f;
-        shut_face_flux(e[shut], h[shut], e[shut + 1], h[shut + 1], s.g, f);
-        store(f, shut, fm, fl, fr, ft);
-    }
-}
-
-// Rates of change of the cells `cols` of padded row r: the x-direction (slopes, face
-// fluxes, bed slope; branch-free so it vectorises), then the y-faces below and above
-// and the y bed slope. Returns the mass fluxes through the west and east boundary faces.
-[[gnu::noinline]] std::pair<double, double> rates_row(const Sweep& s, ColumnRange cols, const double* h, const RowBuffers& w, int r,
-                                                      const std::vector<Tip>* tips) {
-    const double* __restrict e = w.prim(r, 0);
-    const double* __restrict u = w.prim(r, 1);
-    const double* __restrict v = w.prim(r, 2);
-    double* __restrict se = w.x_work(0);
-    double* __restrict sh = w.x_work(1);
-    double* __restrict su = w.x_work(2);
-    double* __restrict sv = w.x_work(3);
-    double* __restrict fm = w.x_work(4);
-    double* __restrict fl = w.x_work(5);
-    double* __restrict fr = w.x_work(6);
-    double* __restrict ft = w.x_work(7);
-    double* __restrict dh = w.rate(0);
-    double* __restrict dhu = w.rate(1);
-    double* __restrict dhv = w.rate(2);
-    const int c0 = cols.begin + kGhost, c1 = cols.end + kGhost;  // cells; faces c0-1 .. c1-1
-// Slopes on the cells beside the faces; zero (first order) next to a dry cell, which
-// keeps h >= 0 and the shoreline at rest, and where the ground cuts the surface
-// (keeps_slope). Order 1: the weight is zero everywhere.
-#pragma omp simd
-    for (int c = c0 - 1; c < c1 + 1; ++c) {
-        const double slope_e = limited_slope(e[c] - e[c - 1], e[c + 1] - e[c], s.theta);
-        const double slope_h = limited_slope(h[c] - h[c - 1], h[c + 1] - h[c], s.theta);
-        const bool keep = keeps_slope(h[c - 1], e[c - 1], h[c], e[c], h[c + 1], e[c + 1], slope_e, slope_h, s.dry);
-        const double wt = keep ? s.order_weight : 0.0;
-        se[c] = wt * slope_e;
-        sh[c] = wt * slope_h;
-        su[c] = wt * limited_slope(u[c] - u[c - 1], u[c + 1] - u[c], s.theta);
-        sv[c] = wt * limited_slope(v[c] - v[c - 1], v[c + 1] - v[c], s.theta);
-    }
-    if (tips) x_slopes_at_tips(*tips, s.nx, c0 - 1, c1 + 1, se, sh, su, sv);
-// Face c+1/2 between padded columns c and c+1.
-#pragma omp simd
-    for (int c = c0 - 1; c < c1; ++c) {
-        FaceFlux f;
-        face_flux(e[c] + 0.5 * se[c], h[c] + 0.5 * sh[c], u[c] + 0.5 * su[c], v[c] + 0.5 * sv[c], e[c + 1] - 0.5 * se[c + 1],
-                  h[c + 1] - 0.5 * sh[c + 1], u[c + 1] - 0.5 * su[c + 1], v[c + 1] - 0.5 * sv[c + 1], s.g, s.dry, f);
-        fm[c] = f.mass;
-        fl[c] = f.normal_L;
-        fr[c] = f.normal_R;
-        ft[c] = f.tangential;
-    }
-    if (tips) x_faces_at_tips(s, *tips, e, h, v, fm, fl, fr, ft);
-#pragma omp simd
-    for (int c = c0; c < c1; ++c) {
-        const double hw = h[c] - 0.5 * sh[c], he = h[c] + 0.5 * sh[c];
-        const double zw = e[c] - 0.5 * se[c] - hw, ze = e[c] + 0.5 * se[c] - he;
-        dh[c] = -(fm[c] - fm[c - 1]) * s.idx;
-        dhu[c] = -(fl[c] - fr[c - 1]) * s.idx - s.g * 0.5 * (hw + he) * (ze - zw) * s.idx;
-        dhv[c] = -(ft[c] - ft[c - 1]) * s.idx;
-    }
-    const double *sye = w.slope(r, 0), *syh = w.slope(r, 1);
-    const double *gm = w.face(r, 0), *gm_n = w.face(r + 1, 0), *glo_n = w.face(r + 1, 1), *ghi = w.face(r, 2);
-    const double *gt = w.face(r, 3), *gt_n = w.face(r + 1, 3);
-#pragma omp simd
-    for (int c = c0; c < c1; ++c) {
-        const double hs = h[c] - 0.5 * syh[c], hn = h[c] + 0.5 * syh[c];
-        const double zs = e[c] - 0.5 * sye[c] - hs, zn = e[c] + 0.5 * sye[c] - hn;
-        dh[c] -= (gm_n[c] - gm[c]) * s.idy;
-        dhv[c] -= (glo_n[c] - ghi[c]) * s.idy + s.g * 0.5 * (hs + hn) * (zn - zs) * s.idy;
-        dhu[c] -= (gt_n[c] - gt[c]) * s.idy;
-    }
-    return {cols.begin == 0 ? fm[1] : 0.0, cols.end == s.nx ? fm[s.nx + 1] : 0.0};
-}
-
-// out = a * base + (1 - a) * friction(in + dt * rate) on the cells `cols` of a row;
-// without a base (predictor), out = friction(in + dt * rate). `base` may be `out`: each
-// cell reads its base value before writing it. Counts round-off negative depths.
-template <bool kWithBase, Friction kFriction>
-[[gnu::noinline]] void update_row(const Sweep& s, ColumnRange cols, double dt, double a, const double* h, const double* hu,
-                                  const double* hv, const RowBuffers& w, const double* g_n2, const double* h0, const double* hu0,
-                                  const double* hv0, double* h_out, double* hu_out, double* hv_out, long& fixes_total,
-                                  double& worst_total) {
-    const double *dh = w.rate(0), *dhu = w.rate(1), *dhv = w.rate(2);
-    const double dry_depth = s.dry;
-    long fixes = 0;
-    double worst = 0.0;
-#pragma omp simd reduction(+ : fixes) reduction(min : worst)
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
-        double hn = h[c] + dt * dh[c];
-        double qx = hu[c] + dt * dhu[c];
-        double qy = hv[c] + dt * dhv[c];
-        // Negative only by round-off under the CFL bound; counted, then removed.
-        const bool negative = hn < 0.0;
-        worst = std::min(worst, hn);
-        fixes += negative ? 1 : 0;
-        hn = negative ? 0.0 : hn;
-        if constexpr (kFriction == Friction::explicit_) {  // study only: forward Euler on the old state
-            const double e = explicit_friction_rate(h[c], hu[c], hv[c], g_n2[c], dt, dry_depth);
-            qx -= e * hu[c];
-            qy -= e * hv[c];
-        } else {
-            const double r = friction_factor(hn, qx, qy, g_n2[c], dt, dry_depth);
-            qx *= r;
-            qy *= r;
-        }
-        if constexpr (kWithBase) {
-            hn = a * h0[c] + (1.0 - a) * hn;
-            qx = a * hu0[c] + (1.0 - a) * qx;
-            qy = a * hv0[c] + (1.0 - a) * qy;
-        }
-        // Thin layers keep their momentum (their velocity is desingularised where it is
-        // used, inverse_depth); a cell that holds no water holds none (+0, so that
-        // exactly dry land stays skippable: -0 + 0 = +0). Arithmetic, not a select, so
-        // that GCC vectorises the loop (a select after the friction's division does not).
-        const double holds_water = hn > 0.0 ? 1.0 : 0.0;
-        qx = qx * holds_water + 0.0;
-        qy = qy * holds_water + 0.0;
-        h_out[c] = hn;
-        hu_out[c] = qx;
-        hv_out[c] = qy;
-    }
-    fixes_total += fixes;
-    worst_total = std::min(worst_total, worst);
-}
-
-// update_row with the friction treatment chosen at run time.
-template <bool kWithBase, typename... Args>
-void update_row_with(Friction friction, Args&&... args) {
-    if (friction == Friction::explicit_)
-        update_row<kWithBase, Friction::explicit_>(std::forward<Args>(args)...);
-    else
-        update_row<kWithBase, Friction::implicit>(std::forward<Args>(args)...);
-}
-
-// Largest CFL rate of the cells `cols` of a row.
-[[gnu::noinline]] double max_wave_rate_row(const Sweep& s, ColumnRange cols, const double* h, const double* hu, const double* hv) {
-    double a = 0.0;
-#pragma omp simd reduction(max : a)
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c)
-        a = std::max(a, wave_rate(h[c], hu[c], hv[c], s.g, s.dry, s.idx, s.idy));
-    return a;
-}
 
 // Sets the cells of `was` outside `now` to zero.
 void clear_outside(double* row, ColumnRange was, ColumnRange now) {
@@ -646,7 +357,8 @@ void Solver::stage(Stage which, double dt, double t) {
     find_active_columns(which, h, hu, hv, pumping);
     const bool last = corrector || fv_.order == 1;  // the step's result: remember its CFL rate
     const int nx = grid_.nx, ny = grid_.ny;
-    const Sweep s{def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
+    const Sweep<double> s{
+        def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
     auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
     // Fronts: the tips of the stage's input (front.hpp).
     std::vector<double>& alpha = corrector ? alpha1_ : alpha_;
@@ -699,8 +411,8 @@ void Solver::stage(Stage which, double dt, double t) {
         flush_subnormals();
         const int nt = omp_get_num_threads(), tid = omp_get_thread_num();
         std::vector<double>& mem = work_[std::size_t(tid)];
-        if (mem.size() != RowBuffers::kRows * stride_) mem.assign(RowBuffers::kRows * stride_, 0.0);
-        const RowBuffers w(mem.data(), stride_);
+        if (mem.size() != RowBuffers<double>::kRows * stride_) mem.assign(RowBuffers<double>::kRows * stride_, 0.0);
+        const RowBuffers<double> w(mem.data(), stride_);
         // Each quantity of a row over the columns its users need (interior row j):
         // primitives for the slopes of rows j-1 .. j+1 and the x-sweep of row j;
         // y-slopes for the faces below and above row j and its bed slope; y-faces for
@@ -757,12 +469,13 @@ void Solver::stage(Stage which, double dt, double t) {
             for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
                 dh[pump_cells_[k] % stride_] += pump_rate;
             if (corrector)
-                update_row_with<true>(fv_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
-                                      row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
-                                      row_out(hv_out, j), fixes, worst);
+                update_row_with<double, true>(fv_.friction, s, cols, dt, 0.5, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                                              row(h_, j), row(hu_, j), row(hv_, j), row_out(h_out, j), row_out(hu_out, j),
+                                              row_out(hv_out, j), fixes, worst);
             else
-                update_row_with<false>(fv_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j), nullptr,
-                                       nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j), fixes, worst);
+                update_row_with<double, false>(fv_.friction, s, cols, dt, 0.0, row(h, j), row(hu, j), row(hv, j), w, row(g_n2_, j),
+                                               nullptr, nullptr, nullptr, row_out(h_out, j), row_out(hu_out, j), row_out(hv_out, j),
+                                               fixes, worst);
             if (last) amax = std::max(amax, max_wave_rate_row(s, cols, row(h_out, j), row(hu_out, j), row(hv_out, j)));
         };
         // This thread's strip of interior rows.
@@ -812,7 +525,8 @@ void Solver::stage(Stage which, double dt, double t) {
 }
 
 double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& clamps) {
-    if (!is_x_side(side) || dh.size() != std::size_t(grid_.ny)) fail("", "nesting", "a side depth change of the wrong side or size");
+    if (!is_x_side(side) || dh.size() != std::size_t(grid_.ny))
+        fail("", "nesting", "a side depth change of the wrong side or size");
     const int i = side == Side::west ? 0 : grid_.nx - 1;
     const std::ptrdiff_t inward = side == Side::west ? 1 : -1;
     const double g = def_.gravity, dry = def_.dry_depth, idx = 1.0 / grid_.dx, idy = 1.0 / grid_.dy;
@@ -837,7 +551,8 @@ double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& cl
         rate_lost = rate_lost || (rate_before == max_wave_rate_ && rate < rate_before);
         if (max_wave_rate_ >= 0.0) max_wave_rate_ = std::max(max_wave_rate_, rate);
         if (dh[std::size_t(j)] != 0.0)
-            inside_water = inside_water && h_[c] > dry && alpha_[c] == 1.0 && alpha_[std::size_t(std::ptrdiff_t(c) + inward)] == 1.0;
+            inside_water =
+                inside_water && h_[c] > dry && alpha_[c] == 1.0 && alpha_[std::size_t(std::ptrdiff_t(c) + inward)] == 1.0;
     }
     // Cells that stay inside the water keep a wet fraction of 1 (front.hpp). Beside a
     // front the fractions depend on the depths: the next step makes them consistent

@@ -60,13 +60,13 @@ namespace flotsam::hydro {
 // the implied bed follows the ground, and a film running down it keeps its slope (first
 // order there runs at a fifth of the normal-flow speed). Over a lake at rest, and wherever
 // the water covers the ground, nothing changes.
-inline bool keeps_slope(double hm, double eta_m, double h0, double eta_0, double hp, double eta_p, double s_eta, double s_h,
-                        double dry) {
-    const double zm = eta_m - hm, z0 = eta_0 - h0, zp = eta_p - hp;
+template <class Real>
+inline bool keeps_slope(Real hm, Real eta_m, Real h0, Real eta_0, Real hp, Real eta_p, Real s_eta, Real s_h, Real dry) {
+    const Real zm = eta_m - hm, z0 = eta_0 - h0, zp = eta_p - hp;
     const bool wet = (hm > dry) & (h0 > dry) & (hp > dry);
     const bool covered = (std::min(eta_m, eta_0) - std::max(zm, z0) > dry) & (std::min(eta_p, eta_0) - std::max(zp, z0) > dry);
-    const double rise = 0.5 * (s_eta - s_h);  // of the implied bed, from the centre to the + face
-    const double face_m = z0 - rise, face_p = z0 + rise;
+    const Real rise = Real(0.5) * (s_eta - s_h);  // of the implied bed, from the centre to the + face
+    const Real face_m = z0 - rise, face_p = z0 + rise;
     const bool within = (face_m >= std::min(zm, z0) - dry) & (face_m <= std::max(zm, z0) + dry) &
                         (face_p >= std::min(zp, z0) - dry) & (face_p <= std::max(zp, z0) + dry);
     return wet & (covered | within);
@@ -74,27 +74,35 @@ inline bool keeps_slope(double hm, double eta_m, double h0, double eta_0, double
 
 // Generalised minmod limiter of the one-sided differences dl, dr: theta = 1 is minmod
 // (most diffusive), theta = 2 is monotonised central (sharpest).
-inline double limited_slope(double dl, double dr, double theta) {
-    const double c = 0.5 * (dl + dr);
-    const double lo = std::min(std::min(theta * dl, c), theta * dr);
-    const double hi = std::max(std::max(theta * dl, c), theta * dr);
+template <class Real>
+inline Real limited_slope(Real dl, Real dr, Real theta) {
+    const Real c = Real(0.5) * (dl + dr);
+    const Real lo = std::min(std::min(theta * dl, c), theta * dr);
+    const Real hi = std::max(std::max(theta * dl, c), theta * dr);
     // All three share a sign: take the one closest to zero; otherwise zero.
-    return lo > 0.0 ? lo : (hi < 0.0 ? hi : 0.0);
+    return lo > Real(0) ? lo : (hi < Real(0) ? hi : Real(0));
 }
 
 // 1/h, desingularised below the dry tolerance eps: 2 h / (h^2 + max(h^2, eps^2)), which
 // is 1/h for h >= eps and 2 h / (h^2 + eps^2) -> 0 as h -> 0, never above 1/eps.
-inline double inverse_depth(double h, double eps) { return 2.0 * h / (h * h + std::max(h * h, eps * eps)); }
+template <class Real>
+inline Real inverse_depth(Real h, Real eps) {
+    return Real(2) * h / (h * h + std::max(h * h, eps * eps));
+}
 
 // Velocity from discharge: q/h, desingularised below the dry tolerance (inverse_depth),
 // so a film of round-off depth has a bounded speed and dry ground none.
-inline double velocity(double h, double q, double dry_depth) { return q * inverse_depth(h, dry_depth); }
+template <class Real>
+inline Real velocity(Real h, Real q, Real dry_depth) {
+    return q * inverse_depth(h, dry_depth);
+}
 
 // The CFL rate of a cell, (|u| + c) / dx + (|v| + c) / dy with c = sqrt(g h) [1/s]: a
 // stable step is at most cfl over its largest value.
-inline double wave_rate(double h, double hu, double hv, double g, double dry_depth, double idx, double idy) {
-    const double c = std::sqrt(g * h);
-    const double inv = inverse_depth(h, dry_depth);
+template <class Real>
+inline Real wave_rate(Real h, Real hu, Real hv, Real g, Real dry_depth, Real idx, Real idy) {
+    const Real c = std::sqrt(g * h);
+    const Real inv = inverse_depth(h, dry_depth);
     return (std::abs(hu) * inv + c) * idx + (std::abs(hv) * inv + c) * idy;
 }
 
@@ -103,29 +111,32 @@ inline double wave_rate(double h, double hu, double hv, double g, double dry_dep
 // tangential velocity ut. Outputs: mass flux, normal-momentum flux as seen from the
 // left cell and from the right cell (they differ by the hydrostatic corrections), and
 // tangential-momentum flux. Returns the largest wave speed at the face.
-struct FaceFlux {
-    double mass;        // [m^2/s]
-    double normal_L;    // [m^3/s^2], for the cell on the left
-    double normal_R;    // [m^3/s^2], for the cell on the right
-    double tangential;  // [m^3/s^2]
+template <class Real>
+struct FaceFluxOf {
+    Real mass;        // [m^2/s]
+    Real normal_L;    // [m^3/s^2], for the cell on the left
+    Real normal_R;    // [m^3/s^2], for the cell on the right
+    Real tangential;  // [m^3/s^2]
 };
+using FaceFlux = FaceFluxOf<double>;
 
-inline double face_flux(double etaL, double hL, double unL, double utL, double etaR, double hR, double unR, double utR, double g,
-                        double dry_depth, FaceFlux& f) {
-    const double zL = etaL - hL, zR = etaR - hR;
-    const double zs = std::max(zL, zR);
-    const double hsL = std::max(0.0, etaL - zs);
-    const double hsR = std::max(0.0, etaR - zs);
-    const double cL = std::sqrt(g * hsL), cR = std::sqrt(g * hsR);
-    const double sL = std::min(std::min(unL - cL, unR - cR), 0.0);
-    const double sR = std::max(std::max(unL + cL, unR + cR), 0.0);
-    const double qL = hsL * unL, qR = hsR * unR;
-    const double pL = 0.5 * g * hsL * hsL, pR = 0.5 * g * hsR * hsR;
-    const double span = sR - sL;
+template <class Real>
+inline Real face_flux(Real etaL, Real hL, Real unL, Real utL, Real etaR, Real hR, Real unR, Real utR, Real g, Real dry_depth,
+                      FaceFluxOf<Real>& f) {
+    const Real zL = etaL - hL, zR = etaR - hR;
+    const Real zs = std::max(zL, zR);
+    const Real hsL = std::max(Real(0), etaL - zs);
+    const Real hsR = std::max(Real(0), etaR - zs);
+    const Real cL = std::sqrt(g * hsL), cR = std::sqrt(g * hsR);
+    const Real sL = std::min(std::min(unL - cL, unR - cR), Real(0));
+    const Real sR = std::max(std::max(unL + cL, unR + cR), Real(0));
+    const Real qL = hsL * unL, qR = hsR * unR;
+    const Real pL = Real(0.5) * g * hsL * hsL, pR = Real(0.5) * g * hsR * hsR;
+    const Real span = sR - sL;
     // Both sides dry: no wave, no flux.
-    const double inv = span > 1e-12 ? 1.0 / span : 0.0;
-    const double hll_mass = (sR * qL - sL * qR + sL * sR * (hsR - hsL)) * inv;
-    const double hll_normal = (sR * (qL * unL + pL) - sL * (qR * unR + pR) + sL * sR * (qR - qL)) * inv;
+    const Real inv = span > Real(1e-12) ? Real(1) / span : Real(0);
+    const Real hll_mass = (sR * qL - sL * qR + sL * sR * (hsR - hsL)) * inv;
+    const Real hll_normal = (sR * (qL * unL + pL) - sL * (qR * unR + pR) + sL * sR * (qR - qL)) * inv;
     // Into dry ground the flux is the dry-bed Riemann solution's at the face: one
     // rarefaction from the wet side, whose sonic state has u = c = (u_wet + 2 c_wet) / 3
     // (right side dry; mirrored for the left), h = c^2 / g, so mass h c and momentum
@@ -135,36 +146,37 @@ inline double face_flux(double etaL, double hL, double unL, double utL, double e
     // One fan, from whichever side is wet (s = +1: the right side is dry); 1/g, not a
     // division per face: these loops are bound by their divisions and roots.
     const bool dryL = hsL <= dry_depth, dryR = hsR <= dry_depth;
-    const double s = dryR ? 1.0 : -1.0;
-    const double un_wet = dryR ? unL : unR, c_wet = dryR ? cL : cR, q_wet = dryR ? qL : qR, p_wet = dryR ? pL : pR;
-    const double cs = std::max(0.0, (s * un_wet + 2.0 * c_wet) * (1.0 / 3.0)), hs = cs * cs * (1.0 / g);
+    const Real s = dryR ? Real(1) : Real(-1);
+    const Real un_wet = dryR ? unL : unR, c_wet = dryR ? cL : cR, q_wet = dryR ? qL : qR, p_wet = dryR ? pL : pR;
+    const Real cs = std::max(Real(0), (s * un_wet + Real(2) * c_wet) * Real(1.0 / 3.0)), hs = cs * cs * (Real(1) / g);
     const bool away = s * un_wet >= c_wet;  // supercritical toward the dry side: the wet side's own flux
-    const double dry_mass = away ? q_wet : s * hs * cs;
-    const double dry_normal = away ? q_wet * un_wet + p_wet : 1.5 * hs * cs * cs;
+    const Real dry_mass = away ? q_wet : s * hs * cs;
+    const Real dry_normal = away ? q_wet * un_wet + p_wet : Real(1.5) * hs * cs * cs;
     const bool one_dry = dryL != dryR;
-    const double mass = one_dry ? dry_mass : hll_mass;
-    const double normal = one_dry ? dry_normal : hll_normal;
+    const Real mass = one_dry ? dry_mass : hll_mass;
+    const Real normal = one_dry ? dry_normal : hll_normal;
     f.mass = mass;
-    f.normal_L = normal + 0.5 * g * (hL * hL - hsL * hsL);
-    f.normal_R = normal + 0.5 * g * (hR * hR - hsR * hsR);
-    f.tangential = mass * (mass > 0.0 ? utL : utR);
+    f.normal_L = normal + Real(0.5) * g * (hL * hL - hsL * hsL);
+    f.normal_R = normal + Real(0.5) * g * (hR * hR - hsR * hsR);
+    f.tangential = mass * (mass > Real(0) ? utL : utR);
     return std::max(-sL, sR);
 }
 
 // h^(-1/3) for h > 0 without division or libm (libm's cbrt does not vectorise): a float
 // bit trick gives a few per cent, three Newton steps y <- y (4 - h y^3) / 3 make it
 // ~1e-11 relative.
-inline double inverse_cube_root(double h) {
+template <class Real>
+inline Real inverse_cube_root(Real h) {
     const float f = float(h);
     std::uint32_t bits;
     std::memcpy(&bits, &f, sizeof bits);
     bits = 0x54a2fa8cu - bits / 3u;
     float r;
     std::memcpy(&r, &bits, sizeof r);
-    double y = r;
-    y = y * (4.0 - h * y * y * y) * (1.0 / 3.0);
-    y = y * (4.0 - h * y * y * y) * (1.0 / 3.0);
-    y = y * (4.0 - h * y * y * y) * (1.0 / 3.0);
+    Real y = r;
+    y = y * (Real(4) - h * y * y * y) * Real(1.0 / 3.0);
+    y = y * (Real(4) - h * y * y * y) * Real(1.0 / 3.0);
+    y = y * (Real(4) - h * y * y * y) * Real(1.0 / 3.0);
     return y;
 }
 
@@ -172,13 +184,14 @@ inline double inverse_cube_root(double h) {
 // returns the factor r in (0, 1] with q_new = r q*. g_n2 = g * n^2. Below the dry
 // tolerance the depth in the friction term is held at dry_depth: thin layers keep
 // their (desingularised) momentum instead of losing all of it, and a stays finite.
-inline double friction_factor(double h, double q1, double q2, double g_n2, double dt, double dry_depth) {
-    const double hs = std::max(h, dry_depth);
-    const double qmag = std::sqrt(q1 * q1 + q2 * q2);
-    const double y = inverse_cube_root(hs), y3 = y * y * y;
-    const double a = dt * g_n2 * (y3 * y3 * y);  // dt g n^2 / h^(7/3)
+template <class Real>
+inline Real friction_factor(Real h, Real q1, Real q2, Real g_n2, Real dt, Real dry_depth) {
+    const Real hs = std::max(h, dry_depth);
+    const Real qmag = std::sqrt(q1 * q1 + q2 * q2);
+    const Real y = inverse_cube_root(hs), y3 = y * y * y;
+    const Real a = dt * g_n2 * (y3 * y3 * y);  // dt g n^2 / h^(7/3)
     // |q| = (-1 + sqrt(1 + 4 a |q*|)) / (2a), written without cancellation.
-    return 2.0 / (1.0 + std::sqrt(1.0 + 4.0 * a * qmag));
+    return Real(2) / (Real(1) + std::sqrt(Real(1) + Real(4) * a * qmag));
 }
 
 // Explicit Manning friction, kept only for the stability study: q_new = q* - e q_old with
