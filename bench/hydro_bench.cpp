@@ -27,8 +27,7 @@
 #include <fstream>
 #include <string>
 
-#include "data/dem_import.hpp"
-#include "data/scene_generator.hpp"
+#include "cases/bench_scene.hpp"
 #include "hydro/run.hpp"
 
 using namespace flotsam;
@@ -95,20 +94,7 @@ int main(int argc, char** argv) {
             scratch = argv[k + 1];
     }
     std::filesystem::create_directories(scratch);
-    Scene scene;
-    std::string what;
-    if (std::filesystem::exists(dem)) {
-        ImportDef d;
-        d.dem_path = dem;
-        d.resolution = resolution;
-        scene = import_scene(d);
-        what = "real layout (" + dem + ")";
-    } else {
-        SceneGenDef d;
-        d.resolution = resolution;
-        scene = generate_scene(d).scene;
-        what = "generated scene (real DEM not found at " + dem + ")";
-    }
+    auto [scene, what] = test::bench_scene(dem, resolution);
     const std::string scene_path = scratch + "/scene.nc", wet_path = scratch + "/scene-all-wet.nc";
     write_scene(scene_path, scene, "hydro_bench");
     // All wet: still water 1 cm above the highest ground.

@@ -30,8 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "data/dem_import.hpp"
-#include "data/scene_generator.hpp"
+#include "cases/bench_scene.hpp"
 #include "hydro/swe_rows.hpp"
 
 using namespace flotsam;
@@ -147,35 +146,27 @@ int main(int argc, char** argv) {
     std::string dem = std::string(FLOTSAM_SHARED_DEFAULT) + "/data/city-topography-from-figure.nc";
     double resolution = 0.01;
     int steps = 20, rounds = 3;
-    for (int k = 1; k + 1 < argc; k += 2) {
-        const std::string a = argv[k];
-        if (a == "--dem")
-            dem = argv[k + 1];
-        else if (a == "--resolution")
-            resolution = std::atof(argv[k + 1]);
-        else if (a == "--steps")
-            steps = std::max(1, std::atoi(argv[k + 1]));
-        else if (a == "--rounds")
-            rounds = std::max(1, std::atoi(argv[k + 1]));
-        else {
-            std::fprintf(stderr, "precision_bench: unknown option %s\n", a.c_str());
+    for (int k = 1; k < argc; k += 2) {
+        const std::string option = argv[k];
+        if (k + 1 == argc) {
+            std::fprintf(stderr, "precision_bench: %s needs a value\n", option.c_str());
+            return 2;
+        }
+        const char* value = argv[k + 1];
+        if (option == "--dem") {
+            dem = value;
+        } else if (option == "--resolution") {
+            resolution = std::atof(value);
+        } else if (option == "--steps") {
+            steps = std::max(1, std::atoi(value));
+        } else if (option == "--rounds") {
+            rounds = std::max(1, std::atoi(value));
+        } else {
+            std::fprintf(stderr, "precision_bench: unknown option %s\n", option.c_str());
             return 2;
         }
     }
-    Scene scene;
-    std::string what;
-    if (std::filesystem::exists(dem)) {
-        ImportDef d;
-        d.dem_path = dem;
-        d.resolution = resolution;
-        scene = import_scene(d);
-        what = "real layout";
-    } else {
-        SceneGenDef d;
-        d.resolution = resolution;
-        scene = generate_scene(d).scene;
-        what = "generated scene (no DEM at " + dem + ")";
-    }
+    auto [scene, what] = test::bench_scene(dem, resolution);
     const hydro::PhysicsDef physics = hydro::default_physics_def();
     const hydro::FiniteVolumeDef fv;
     std::printf("precision_bench: %s at %.3g m, %d x %d cells, all wet, %d forward-Euler stages a round, best of %d, 1 thread\n",
