@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Keep every k-th frame of a flow file (a coarser stored frame interval of the same flow).
+"""Keep every k-th frame of a flow file (a coarser stored frame interval of the same flow),
+and optionally round its fields to fewer significant bits (a known, tiny perturbation).
 
-    subsample_flow.py IN.nc K OUT.nc
+    subsample_flow.py IN.nc K OUT.nc [--keep-bits N]
 
 Frames 0, K, 2K, ... of every variable whose first dimension is `time` are kept; all
 other variables (bed, summary maps, gauge records), every attribute, and each variable's
@@ -9,6 +10,14 @@ chunking, shuffle and deflate settings are copied as they are, so the output is 
 file flotsam hydro would have written at K times the output interval (same flow, same
 storage), and its size is comparable. The history attribute records the subsampling.
 Written to OUT.part and renamed.
+
+--keep-bits N stores the (time, y, x) fields (h, u, v) with netCDF-C's BitRound
+quantisation: each value keeps N significant bits of its mantissa (1 <= N <= 23), so it
+moves by at most 2^-(N+1) of itself; zero stays zero, a depth keeps its sign, and a wet
+cell stays wet. K = 1 keeps every frame. Two uses (docs/accuracy.md, "How much of that is
+chaos?"): a perturbation of known size, to measure how far the debris answer moves when
+the flow barely changes; and smaller files that inflate faster (the low bits become
+zeros).
 """
 import os
 import sys
@@ -16,10 +25,12 @@ import sys
 import netCDF4
 
 
-def copy_variable(src, dst, name, k):
+def copy_variable(src, dst, name, k, keep_bits=None):
     v = src.variables[name]
     dims = v.dimensions
     kwargs = {}
+    if keep_bits is not None and dims == ("time", "y", "x") and v.dtype.kind == "f":
+        kwargs.update(significant_digits=keep_bits, quantize_mode="BitRound")
     if v.chunking() != "contiguous":
         kwargs["chunksizes"] = v.chunking()
     filters = v.filters() or {}
@@ -39,6 +50,15 @@ def copy_variable(src, dst, name, k):
 
 
 def main(argv):
+    keep_bits = None
+    if len(argv) == 6 and argv[4] == "--keep-bits":
+        try:
+            keep_bits = int(argv[5])
+        except ValueError:
+            sys.exit(f"subsample_flow.py: --keep-bits must be a whole number, got {argv[5]!r}")
+        if not 1 <= keep_bits <= 23:
+            sys.exit(f"subsample_flow.py: --keep-bits must be 1 to 23 (a float's mantissa bits), got {keep_bits}")
+        argv = argv[:4]
     if len(argv) != 4:
         print(__doc__, file=sys.stderr)
         return 2
@@ -54,10 +74,11 @@ def main(argv):
             size = (n + k - 1) // k if name == "time" else len(d)
             dst.createDimension(name, None if d.isunlimited() else size)
         attrs = {a: src.getncattr(a) for a in src.ncattrs()}
-        attrs["history"] = attrs.get("history", "") + f"\nsubsample_flow.py: every {k}th frame of {os.path.basename(path_in)}"
+        what = f"every {k}th frame" + (f", h u v kept to {keep_bits} significant bits (BitRound)" if keep_bits else "")
+        attrs["history"] = attrs.get("history", "") + f"\nsubsample_flow.py: {what} of {os.path.basename(path_in)}"
         dst.setncatts(attrs)
         for name in src.variables:
-            copy_variable(src, dst, name, k)
+            copy_variable(src, dst, name, k, keep_bits)
     os.replace(part, path_out)
     return 0
 

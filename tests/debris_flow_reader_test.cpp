@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "cases/debris_flows.hpp"
@@ -591,7 +595,7 @@ TEST(TileDecoder, OpensOnlyTheLayoutItDecodes) {
     ASSERT_TRUE(d->read(0, 1, 1, 1, tile.data()));  // frame 1, cells x 4..5, y 4: values 30 + 6 y + x
     EXPECT_EQ(tile[0], (30 + 6 * 4 + 4) * 0.25f - 3.0f);
     EXPECT_EQ(tile[1], (30 + 6 * 4 + 5) * 0.25f - 3.0f);
-    EXPECT_FALSE(d->read(1, 0, 0, 0, tile.data()));  // never written: netCDF gives its fill
+    EXPECT_FALSE(d->read(1, 0, 0, 0, tile.data()));         // never written: netCDF gives its fill
     EXPECT_THROW(d->read(0, 2, 0, 0, tile.data()), Error);  // no frame 2
 }
 
@@ -618,4 +622,59 @@ TEST(FlowReader, ADamagedTileIsANamedError) {
                 << msg;
         }
     }
+}
+
+// pipelines/subsample_flow.py --keep-bits N (docs/accuracy.md, "How much of that is chaos?")
+// perturbs a flow by a known amount: each stored h, u, v keeps N significant bits, so it
+// moves by at most 2^-(N+1) of itself; dry stays dry and wet stays wet. Read back through
+// the replay's own reader (its tile decoder). By hand, for N = 12: u = 1 + 2^-13 + 2^-20
+// lies above the midpoint 1 + 2^-13 of 1 and 1 + 2^-12, so it becomes 1 + 2^-12 (a change
+// of 1.2e-4, not a round-off); v = 5/32 needs three bits and stays exact.
+TEST(FlowReader, FieldsKeptToFewerBitsMoveByAtMostHalfTheirLastBit) {
+    const auto dir = test::scratch_dir("fr_keep_bits");
+    const float u_in = 1.0f + std::ldexp(1.0f, -13) + std::ldexp(1.0f, -20);
+    auto depth = [](double x, double y, double t) { return x < -0.45 ? 0.0 : 0.1 + 0.013 * x + 0.003 * y + 0.001 * t; };
+    const auto in = test::write_flow(
+        dir + "/in.nc", grid, {0.0, 1.0}, [](double, double) { return -0.5; },
+        [&](double x, double y, double t) {
+            return test::FlowState{float(depth(x, y, t)), u_in, 0.15625f};
+        });
+    const std::string out = dir + "/out.nc";
+    auto run = [&](const std::string& args) {
+        const std::string cmd =
+            "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.subsample_flow " + args + " > " + dir + "/log.txt 2>&1";
+        const int rc = std::system(cmd.c_str());
+        std::ifstream f(dir + "/log.txt");
+        return std::make_pair(rc, std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>()));
+    };
+    const auto [rc, log] = run(in + " 1 " + out + " --keep-bits 12");
+    ASSERT_EQ(rc, 0) << log;
+    FlowReader original(in), kept(out);
+    original.prepare(0.0);  // frames 0 and 1
+    kept.prepare(0.0);
+    int wet = 0, changed = 0;
+    for (double t : {0.0, 1.0})
+        for (int j = 0; j < grid.ny; ++j)
+            for (int i = 0; i < grid.nx; ++i) {
+                const double x = grid.x(i), y = grid.y(j);
+                const FlowPoint a = original.sample(x, y, t), b = kept.sample(x, y, t);
+                if (a.depth == 0.0) {
+                    EXPECT_EQ(b.depth, 0.0) << "dry cell " << i << ", " << j << " got water";
+                    continue;
+                }
+                ++wet;
+                EXPECT_GT(b.depth, 0.0);
+                EXPECT_LE(std::abs(b.depth - a.depth), std::ldexp(a.depth, -13)) << i << ", " << j;
+                changed += b.depth != a.depth;
+                EXPECT_NEAR(b.u, 1.0 + std::ldexp(1.0, -12), 1e-6) << i << ", " << j;
+                EXPECT_NEAR(b.v, 0.15625, 1e-7) << i << ", " << j;
+            }
+    EXPECT_GT(wet, grid.nx * grid.ny);  // both frames mostly wet
+    EXPECT_GT(changed, wet / 2);        // most depths need more than 12 bits: the perturbation happened
+    // A bad bit count is refused with the option named, and leaves no output.
+    const auto [bad_rc, bad_log] = run(in + " 1 " + dir + "/bad.nc --keep-bits 30");
+    EXPECT_NE(bad_rc, 0);
+    EXPECT_NE(bad_log.find("--keep-bits must be 1 to 23"), std::string::npos) << bad_log;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bad.nc"));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bad.nc.part"));
 }
