@@ -16,6 +16,15 @@ gives, in brackets, the 90 % interval of its difference from the reference over 
 records resampled with replacement (N resamples, paired: the same records drawn for both,
 a fixed seed, so the same output every time). An interval that excludes 0 is a
 difference the records' own spread does not explain.
+
+That interval does not hold the tracks' chaos: the same records with the flow barely
+changed can move a count or a median beyond it (docs/accuracy.md, "How much of that is
+chaos?"). --floor LABEL=DIR (repeatable) names stats of such perturbed copies of the
+reference (`python3 -m pipelines.subsample_flow IN.nc 1 OUT.nc --keep-bits N` on its
+flows, then the same sweep and stats). A "chaos floor" column then gives, per statistic,
+the largest difference from the reference that any of them shows, and a later column's
+value is bold where its difference is beyond that floor and its interval excludes 0:
+beyond both the records and the chaos.
 """
 import argparse
 import csv
@@ -82,6 +91,15 @@ class Bootstrap:
         return self.interval(out) if out else None
 
 
+def beyond(diff, floor, interval):
+    """A difference beyond the chaos floor whose interval over the records excludes 0."""
+    return floor is not None and interval is not None and abs(diff) > floor + 1e-12 and (interval[0] > 0 or interval[1] < 0)
+
+
+def bold_if(text, flag):
+    return f"**{text}**" if flag else text
+
+
 def bracket(interval, scale=1.0, digits=0):
     if interval is None:
         return ""
@@ -94,16 +112,21 @@ def main():
     ap.add_argument("runs", nargs="+", help="LABEL=DIR of a stats --csv folder")
     ap.add_argument("--regions", default="channel_a,channel_b", help="regions to count (comma-separated)")
     ap.add_argument("--bootstrap", type=int, default=2000, help="resamples of the records (0: no intervals)")
+    ap.add_argument("--floor", action="append", default=[],
+                    help="LABEL=DIR of stats of a perturbed copy of the reference (repeatable): the chaos floor")
     args = ap.parse_args()
-    runs = []
-    for spec in args.runs:
+
+    def load(spec):
         if "=" not in spec:
             ap.error(f"'{spec}': expected LABEL=DIR")
         label, folder = spec.split("=", 1)
         for name in ("regions.csv", "sections.csv"):
             if not os.path.isfile(os.path.join(folder, name)):
                 ap.error(f"{folder}: no {name} (write it with flotsam stats --csv {folder})")
-        runs.append((label, read(folder, "regions.csv"), read(folder, "sections.csv"), members(folder)))
+        return (label, read(folder, "regions.csv"), read(folder, "sections.csv"), members(folder))
+
+    runs = [load(spec) for spec in args.runs]
+    floors = [load(spec) for spec in args.floor]
     labels = [r[0] for r in runs]
     wanted = args.regions.split(",")
     boot = Bootstrap(args.bootstrap) if args.bootstrap > 0 and all(r[3] is not None for r in runs) else None
@@ -111,38 +134,74 @@ def main():
     if boot:
         print(f"In brackets: the 90 % interval of the difference from {labels[0]} over the records resampled "
               f"({args.bootstrap} paired resamples).")
+    if floors:
+        print(f"Chaos floor: the largest difference from {labels[0]} of its perturbed copies "
+              f"({', '.join(f[0] for f in floors)}); bold: beyond the floor, with an interval that excludes 0.")
+    if boot or floors:
         print()
+    floor_head = " | chaos floor" if floors else ""
 
-    print("| body, model | region | " + " | ".join(labels) + " |")
-    print("| --- | --- |" + " --- |" * len(labels))
+    def region_row(regions, key):
+        return next((r for r in regions if (r["body"], r["variant"], r["region"]) == key), None)
+
+    def section_row(sections, key):
+        row = next((r for r in sections if (r["body"], r["variant"], r["section"]) == key), None)
+        return row if row and int(row["count"]) > 0 else None
+
+    def largest(diffs):
+        return max(diffs) if diffs else None
+
+    print("| body, model | region | " + " | ".join(labels) + floor_head + " |")
+    print("| --- | --- |" + " --- |" * (len(labels) + bool(floors)))
     keys = [(r["body"], r["variant"], r["region"]) for r in runs[0][1] if r["region"] in wanted]
-    for body, variant, region in keys:
+    for key in keys:
+        body, variant, region = key
+        ref = region_row(runs[0][1], key)
+        floor = largest([abs(int(f_row["count"]) - int(ref["count"])) for f in floors if (f_row := region_row(f[1], key))])
         cells = []
         for k, (_, regions, _, mem) in enumerate(runs):
-            row = next((r for r in regions if (r["body"], r["variant"], r["region"]) == (body, variant, region)), None)
+            row = region_row(regions, key)
             cell = f"{row['count']}/{row['members']}" if row else "–"
             if boot and k > 0 and row:
-                cell += bracket(boot.count_difference(ref_members, mem, (body, variant), lambda m: m["region_at_arrival"] == region))
+                interval = boot.count_difference(ref_members, mem, (body, variant), lambda m: m["region_at_arrival"] == region)
+                cell = bold_if(cell + bracket(interval), beyond(int(row["count"]) - int(ref["count"]), floor, interval))
             cells.append(cell)
+        if floors:
+            cells.append("–" if floor is None else f"±{floor}")
         print(f"| {body} {variant} | {region} | " + " | ".join(cells) + " |")
 
     print()
-    print("| body, model | section | " + " | ".join(f"{l}: crossed, y median, speed median" for l in labels) + " |")
-    print("| --- | --- |" + " --- |" * len(labels))
+    print("| body, model | section | " + " | ".join(f"{l}: crossed, y median, speed median" for l in labels) + floor_head +
+          " |")
+    print("| --- | --- |" + " --- |" * (len(labels) + bool(floors)))
     keys = [(r["body"], r["variant"], r["section"]) for r in runs[0][2] if r["section"].startswith(r["body"].lower())]
-    for body, variant, section in keys:
+    for key in keys:
+        body, variant, section = key
+        ref = section_row(runs[0][2], key)
+
+        def value(row, column):
+            return float(row[column])
+
+        floor_y = largest([abs(value(f_row, "y_median_m") - value(ref, "y_median_m")) for f in floors
+                           if ref and (f_row := section_row(f[2], key))])
+        floor_s = largest([abs(value(f_row, "speed_median_m_s") - value(ref, "speed_median_m_s")) for f in floors
+                           if ref and (f_row := section_row(f[2], key))])
         cells = []
         for k, (_, _, sections, mem) in enumerate(runs):
-            row = next((r for r in sections if (r["body"], r["variant"], r["section"]) == (body, variant, section)), None)
-            if not row or int(row["count"]) == 0:
+            row = section_row(sections, key)
+            if not row:
                 cells.append("0")
                 continue
             y, speed = f"{float(row['y_median_m']):+.2f} m", f"{float(row['speed_median_m_s']) * 100:.1f} cm/s"
-            if boot and k > 0:
-                y += bracket(boot.median_difference(ref_members, mem, (body, variant), section + "_y_m", section), 1.0, 2)
-                speed += bracket(boot.median_difference(ref_members, mem, (body, variant), section + "_speed_m_s", section),
-                                 100.0, 1)
+            if boot and k > 0 and ref:
+                iy = boot.median_difference(ref_members, mem, (body, variant), section + "_y_m", section)
+                i_s = boot.median_difference(ref_members, mem, (body, variant), section + "_speed_m_s", section)
+                y = bold_if(y + bracket(iy, 1.0, 2), beyond(value(row, "y_median_m") - value(ref, "y_median_m"), floor_y, iy))
+                speed = bold_if(speed + bracket(i_s, 100.0, 1),
+                                beyond(value(row, "speed_median_m_s") - value(ref, "speed_median_m_s"), floor_s, i_s))
             cells.append(f"{row['count']}, {y}, {speed}")
+        if floors:
+            cells.append("–" if floor_y is None else f"±{floor_y:.2f} m, ±{floor_s * 100:.1f} cm/s")
         print(f"| {body} {variant} | {section} | " + " | ".join(cells) + " |")
 
 

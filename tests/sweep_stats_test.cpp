@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <functional>
+#include <iterator>
 
 #include "common/netcdf.hpp"
 #include "common/sha256.hpp"
@@ -353,6 +353,7 @@ TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
 // - a sweep that lost one member of record 0 differs by minus the times record 0 is drawn,
 //   binomial(10, 0.1): P(0) = 0.349, P(>= 3) = 0.070, P(>= 4) = 0.013, so its 5 % quantile
 //   is -3 and its 95 % quantile 0. One record's difference is not called a difference.
+// Then --floor: a difference is bold only beyond both its interval and the chaos floor.
 TEST(ResolutionStats, IntervalsOverResampledRecords) {
     const auto dir = test::scratch_dir("resolution_stats");
     const auto folder = [&](const std::string& name, int in_channel, double y, double speed, bool lose_record_0) {
@@ -368,8 +369,9 @@ TEST(ResolutionStats, IntervalsOverResampledRecords) {
         const std::string d = dir + "/" + name;
         std::filesystem::create_directories(d);
         test::write_file(d, "members.csv", m);
-        test::write_file(d, "regions.csv",
-                         "body,variant,param_label,region,count,members\nFD,CC+SC,all,channel_a," + std::to_string(count) + ",20\n");
+        test::write_file(
+            d, "regions.csv",
+            "body,variant,param_label,region,count,members\nFD,CC+SC,all,channel_a," + std::to_string(count) + ",20\n");
         test::write_file(d, "sections.csv",
                          "body,variant,param_label,section,count,y_median_m,speed_median_m_s\nFD,CC+SC,all,fd_x1.8,20," +
                              std::to_string(y) + "," + std::to_string(speed) + "\n");
@@ -377,16 +379,37 @@ TEST(ResolutionStats, IntervalsOverResampledRecords) {
     };
     const std::string runs = folder("ref", 1, -2.2, 0.05, false) + " " + folder("same", 1, -2.2, 0.05, false) + " " +
                              folder("shifted", 0, -2.3, 0.07, false) + " " + folder("one", 1, -2.2, 0.05, true);
-    const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.resolution_stats --regions channel_a " +
-                            runs + " > " + dir + "/table.md 2>&1";
-    const int rc = std::system(cmd.c_str());
-    std::ifstream f(dir + "/table.md");
-    const std::string table((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    ASSERT_EQ(rc, 0) << table;
+    const auto table_of = [&](const std::string& extra) {
+        const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.resolution_stats --regions channel_a " +
+                                runs + extra + " > " + dir + "/table.md 2>&1";
+        const int rc = std::system(cmd.c_str());
+        std::ifstream f(dir + "/table.md");
+        const std::string table((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        EXPECT_EQ(rc, 0) << table;
+        return table;
+    };
+    const std::string table = table_of("");
     EXPECT_NE(table.find("| FD CC+SC | channel_a | 10/20 | 10/20 [+0, +0] | 0/20 [-10, -10] | 9/20 [-3, +0] |"), std::string::npos)
         << table;
     EXPECT_NE(table.find("| FD CC+SC | fd_x1.8 | 20, -2.20 m, 5.0 cm/s | 20, -2.20 m [+0.00, +0.00], 5.0 cm/s [+0.0, +0.0] | "
                          "20, -2.30 m [-0.10, -0.10], 7.0 cm/s [+2.0, +2.0] | 20, -2.20 m [+0.00, +0.00], 5.0 cm/s [+0.0, +0.0] |"),
               std::string::npos)
         << table;
+    // The chaos floor: with "one" as a perturbed copy of the reference, the count's floor
+    // is |9 - 10| = 1 and the sections' 0, so the shifted sweep (-10 members, -0.10 m,
+    // +2.0 cm/s, every interval excluding 0) is beyond it everywhere: bold.
+    const std::string floored = table_of(" --floor perturbed=" + dir + "/one");
+    EXPECT_NE(floored.find("| FD CC+SC | channel_a | 10/20 | 10/20 [+0, +0] | **0/20 [-10, -10]** | 9/20 [-3, +0] | ±1 |"),
+              std::string::npos)
+        << floored;
+    EXPECT_NE(floored.find("| 20, **-2.30 m [-0.10, -0.10]**, **7.0 cm/s [+2.0, +2.0]** | 20, -2.20 m [+0.00, +0.00], 5.0 cm/s "
+                           "[+0.0, +0.0] | ±0.00 m, ±0.0 cm/s |"),
+              std::string::npos)
+        << floored;
+    // With the shifted sweep itself as the floor, its own difference (10) is not beyond
+    // the floor (10): beyond the records, but not called a difference.
+    const std::string within = table_of(" --floor perturbed=" + dir + "/shifted");
+    EXPECT_NE(within.find("| FD CC+SC | channel_a | 10/20 | 10/20 [+0, +0] | 0/20 [-10, -10] | 9/20 [-3, +0] | ±10 |"),
+              std::string::npos)
+        << within;
 }
