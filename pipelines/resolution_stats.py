@@ -96,6 +96,10 @@ def beyond(diff, floor, interval):
     return floor is not None and interval is not None and abs(diff) > floor + 1e-12 and (interval[0] > 0 or interval[1] < 0)
 
 
+def value(row, column):
+    return float(row[column])
+
+
 def bold_if(text, flag):
     return f"**{text}**" if flag else text
 
@@ -178,10 +182,6 @@ def main():
     for key in keys:
         body, variant, section = key
         ref = section_row(runs[0][2], key)
-
-        def value(row, column):
-            return float(row[column])
-
         floor_y = largest([abs(value(f_row, "y_median_m") - value(ref, "y_median_m")) for f in floors
                            if ref and (f_row := section_row(f[2], key))])
         floor_s = largest([abs(value(f_row, "speed_median_m_s") - value(ref, "speed_median_m_s")) for f in floors
