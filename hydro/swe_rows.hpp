@@ -146,6 +146,7 @@ void x_slopes_at_tips(const std::vector<Tip>& tips, int nx, int c0, int c1, Real
 
 // Flux through a tip's back face from the wedge state (n: +1 when the front moves toward
 // +x or +y, the tip on the face's high side), tangential velocities ut_lo, ut_hi.
+// Tips are computed in double whatever Real is: their state (TipFace) is double.
 template <class Real>
 FaceFlux back_face_flux(const Sweep<Real>& s, const TipFace& f, double n, double ut_lo, double ut_hi) {
     FaceFlux out;
