@@ -506,6 +506,8 @@ CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) con
 }
 
 FlowReader::TimeStencil FlowReader::at_time(double t) const {
+    // Every sample goes through here: without frames it would read unallocated memory.
+    if (!loaded_) fail(path(), "", "sampled at t = " + std::to_string(t) + " s before prepare() loaded any frame");
     TimeStencil ts;
     const double t0 = times_[role(1).index], t1 = times_[role(2).index];
     if (t1 > t0) {

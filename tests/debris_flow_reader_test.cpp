@@ -650,6 +650,8 @@ TEST(FlowReader, FieldsKeptToFewerBitsMoveByAtMostHalfTheirLastBit) {
     const auto [rc, log] = run(in + " 1 " + out + " --keep-bits 12");
     ASSERT_EQ(rc, 0) << log;
     FlowReader original(in), kept(out);
+    // Sampling before prepare() is refused, not a read of unloaded memory.
+    EXPECT_NE(error_of([&] { original.sample(0.0, 2.2, 0.5); }).find("before prepare()"), std::string::npos);
     original.prepare(0.0);  // frames 0 and 1
     kept.prepare(0.0);
     int wet = 0, changed = 0;
