@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
     std::string dir = (std::filesystem::temp_directory_path() / "flotsam-sweep-bench").string();
     std::string ground;
     std::string dt_max = "0.02";  // [s], as TOML text: the spec reader checks it
+    double window_margin = -1.0;  // [body lengths]; < 0: debris::WorldDef's default
     std::vector<std::string> args;
     for (int k = 1; k < argc; ++k) {
         const std::string a = argv[k];
@@ -65,13 +66,15 @@ int main(int argc, char** argv) {
             ground = argv[++k];
         else if (a == "--dt-max" && k + 1 < argc)
             dt_max = argv[++k];
+        else if (a == "--window-margin" && k + 1 < argc)
+            window_margin = std::atof(argv[++k]);
         else
             args.push_back(a);
     }
     if (args.size() < 2) {
         std::fprintf(stderr,
-                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--decode-threads N] [--ground FILE] [--dt-max S] [--out DIR] SCENE FLOW [FLOW "
-                     "...]\n");
+                     "usage: sweep_bench [--threads N] [--no-read-ahead] [--netcdf-reads] [--decode-threads N] [--ground FILE] [--dt-max S] [--window-margin LENGTHS] [--out DIR] "
+                     "SCENE FLOW [FLOW ...]\n");
         return 2;
     }
     const std::string scene = args[0];
@@ -95,6 +98,7 @@ int main(int argc, char** argv) {
         sweep::SweepSpec spec = sweep::read_sweep_spec(spec_path);
         spec.world.flow.decode_tiles = decode_tiles;
         spec.world.flow.decode_threads = decode_threads;
+        if (window_margin >= 0.0) spec.world.window_margin_lengths = window_margin;
         sweep::SweepRunDef def;
         def.threads = threads;
         def.read_ahead = read_ahead;
@@ -126,9 +130,10 @@ int main(int argc, char** argv) {
         std::printf("  wall time: %.1f s (run %.1f s, writing outputs %.1f s)\n", wall, run, write);
         std::printf("  body-runs/s: %.2f (one 420 s body-run: %.3f s of wall time)\n", st.members / wall, wall / st.members);
         std::printf("  body steps: %ld (%.0f steps/s over compute time)\n", st.steps, double(st.steps) / compute);
-        std::printf("  frames read: %zu over %zu flow openings (%.1f per flow)\n", st.frames_loaded, st.flows_opened,
-                    double(st.frames_loaded) / double(st.flows_opened));
-        std::printf("  cells read: %.3g a frame, %.0f %% of the bodies' bounding windows (only the tiles under the bodies)\n",
+        std::printf("  frames read: %zu over %zu flow openings (%.1f per flow); %zu refit to a moved window (its new tiles read)\n",
+                    st.frames_loaded, st.flows_opened, double(st.frames_loaded) / double(st.flows_opened), st.frames_refit);
+        std::printf("  window margin: %g body lengths beyond each body's reach\n", spec.world.window_margin_lengths);
+        std::printf("  cells read: %.3g a frame read (refits' included), %.0f %% of the bodies' bounding windows (only the tiles under the bodies)\n",
                     double(st.cells_read) / double(std::max<std::size_t>(st.frames_loaded, 1)),
                     100.0 * double(st.cells_read) / double(std::max<std::size_t>(st.window_cells, 1)));
         std::printf("  I/O: %.1f s (%.0f %%) = frame reading %.1f s + output writing %.1f s; compute %.1f s (%.0f %%)\n", io,

@@ -270,6 +270,55 @@ double FlowReader::read_frame(Frame& f, std::size_t frame, const Area& a) const 
     for (const CellWindow& r : rects) read_cells(f, frame, w, r, decoder_ != nullptr);
     if (has_ground()) depth_over_ground(f, a);
     f.index = frame;
+    f.area = a;
+    return thread_cpu_seconds() - start_cpu + helpers_cpu;
+}
+
+bool FlowReader::tile_loaded(const Area& a, int ti, int tj) const {
+    const TileRange t = tiles_of(a.window);
+    if (ti < t.ti0 || ti >= t.ti0 + t.nti || tj < t.tj0 || tj >= t.tj0 + t.ntj) return false;
+    return a.tiles.empty() || a.tiles[std::size_t((tj - t.tj0) * t.nti + (ti - t.ti0))];
+}
+
+double FlowReader::refit_frame(Frame& f, const Area& to) {
+    const double start_cpu = thread_cpu_seconds();
+    double helpers_cpu = 0.0;
+    if (!(f.area == to)) {
+        const CellWindow &w = to.window, old = f.area.window;
+        const std::size_t n = std::size_t(w.i1 - w.i0) * std::size_t(w.j1 - w.j0);
+        const std::size_t wnx = std::size_t(w.i1 - w.i0), onx = std::size_t(old.i1 - old.i0);
+        std::vector<float>* fields[3] = {&f.h, &f.qx, &f.qy};
+        std::vector<float>* olds[3] = {&refit_spare_.h, &refit_spare_.qx, &refit_spare_.qy};
+        for (int k = 0; k < 3; ++k) {
+            std::swap(*fields[k], *olds[k]);
+            fields[k]->assign(n, 0.0f);  // as read_frame: cells not read are dry and never sampled
+        }
+        // A tile the old window held whole within the new one is copied; the rest are read.
+        const TileRange t = tiles_of(w);
+        Area fresh{w, std::vector<char>(std::size_t(t.nti * t.ntj), 0)};
+        for (int tj = t.tj0; tj < t.tj0 + t.ntj; ++tj)
+            for (int ti = t.ti0; ti < t.ti0 + t.nti; ++ti) {
+                if (!tile_loaded(to, ti, tj)) continue;
+                const CellWindow c = tile_cells(w, ti, tj);
+                if (!tile_loaded(f.area, ti, tj) || !old.contains(c)) {
+                    fresh.tiles[std::size_t((tj - t.tj0) * t.nti + (ti - t.ti0))] = 1;
+                    continue;
+                }
+                for (int k = 0; k < 3; ++k)
+                    for (int j = c.j0; j < c.j1; ++j)
+                        std::copy_n(olds[k]->data() + std::size_t(j - old.j0) * onx + std::size_t(c.i0 - old.i0), c.i1 - c.i0,
+                                    fields[k]->data() + std::size_t(j - w.j0) * wnx + std::size_t(c.i0 - w.i0));
+            }
+        const std::vector<CellWindow> rects = read_rects(fresh);
+        if (decoder_) helpers_cpu = decode_frame(f, f.index, w, rects);
+        for (const CellWindow& r : rects) {
+            read_cells(f, f.index, w, r, decoder_ != nullptr);
+            cells_read_ += std::size_t(r.i1 - r.i0) * std::size_t(r.j1 - r.j0);
+        }
+        f.area = to;
+        ++frames_refit_;
+    }
+    if (has_ground()) depth_over_ground(f, to);  // on the new window, or over a new ground
     return thread_cpu_seconds() - start_cpu + helpers_cpu;
 }
 
@@ -312,8 +361,7 @@ void FlowReader::read_ahead(double t) {
     }
     if (next == no_frame) return;
     if (!ahead_) ahead_ = std::make_unique<ReadAhead>();
-    if (ahead_->wanted == next && ahead_->area.window == window_ && ahead_->area.tiles == window_tiles_)
-        return;  // under way already
+    if (ahead_->wanted == next) return;  // under way already; on an earlier window, refit when taken
     drop_read_ahead();
     ReadAhead* a = ahead_.get();
     a->wanted = next;
@@ -333,16 +381,21 @@ void FlowReader::finish_read_ahead() {
 }
 
 bool FlowReader::take_read_ahead(Frame& f, std::size_t frame) {
-    if (!ahead_ || ahead_->wanted != frame || !(ahead_->area.window == window_ && ahead_->area.tiles == window_tiles_))
-        return false;
+    if (!ahead_ || ahead_->wanted != frame) return false;
+    const std::exception_ptr error = ahead_->task.wait();
     ahead_->wanted = no_frame;
     count_read(ahead_->area);
     load_cpu_seconds_ += ahead_->cpu_seconds;
-    // A frame that fails its checks is reported where it is needed, as without
-    // read-ahead; one never needed is never reported.
-    if (const std::exception_ptr error = ahead_->task.wait()) std::rethrow_exception(error);
+    if (error) {
+        // A frame that fails its checks is reported where it is needed, as without
+        // read-ahead; one never needed is never reported. Read on a window since moved,
+        // the bad cells may lie outside the new one: read it there instead.
+        if (ahead_->area == area()) std::rethrow_exception(error);
+        return false;
+    }
     std::swap(f, ahead_->frame);  // f's arrays are the next read's
     ++frames_read_ahead_;
+    if (!(f.area == area())) load_cpu_seconds_ += refit_frame(f, area());  // the window moved since the read began
     return true;
 }
 
@@ -449,6 +502,10 @@ void FlowReader::set_regions(const std::vector<CellWindow>& regions) {
         box = CellWindow{std::min(box.i0, wide.back().i0), std::max(box.i1, wide.back().i1), std::min(box.j0, wide.back().j0),
                          std::max(box.j1, wide.back().j1)};
     }
+    // Whole tiles (cut only by the grid's edge): a tile is then the same cells in every
+    // window that loads it, and a refit keeps it.
+    box = CellWindow{box.i0 / tile_x_ * tile_x_, std::min(grid_.nx, (box.i1 + tile_x_ - 1) / tile_x_ * tile_x_),
+                     box.j0 / tile_y_ * tile_y_, std::min(grid_.ny, (box.j1 + tile_y_ - 1) / tile_y_ * tile_y_)};
     Area a{box, {}};
     const TileRange t = tiles_of(box);
     a.tiles.assign(std::size_t(t.nti * t.ntj), 0);
@@ -481,7 +538,6 @@ std::size_t FlowReader::tiles_loaded() const {
 
 void FlowReader::set_area(Area a) {
     if (a.window == window_ && a.tiles == window_tiles_ && loaded_) return;
-    drop_read_ahead();  // read on the old area
     window_ = a.window;
     window_tiles_ = std::move(a.tiles);
     if (has_ground()) ground_window_ = ground_window(window_);
@@ -490,9 +546,13 @@ void FlowReader::set_area(Area a) {
 
 void FlowReader::reload() {
     if (!loaded_) return;
+    const auto start_clock = std::chrono::steady_clock::now();
+    wait_read_ahead();  // one netCDF caller at a time; the frame read ahead is refit when taken
+    for (Frame& f : frames_)
+        if (f.index != no_frame) load_cpu_seconds_ += refit_frame(f, area());
+    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
     const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};
-    for (Frame& f : frames_) f.index = no_frame;  // stored on the old window or ground: read again
-    hold(need);
+    hold(need);  // the roles' arrays moved
 }
 
 CellWindow FlowReader::cells_for(double x0, double x1, double y0, double y1) const {

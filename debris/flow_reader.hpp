@@ -133,18 +133,21 @@ public:
     // reads one new frame; each frame is read once while time advances.
     void prepare(double t);
     // Starts reading, in the background, the first frame that prepare(t) needs and does
-    // not hold (none: nothing to do). A read under way for another frame is dropped.
+    // not hold (none: nothing to do). A read under way for another frame is dropped; one
+    // for the same frame on an earlier window is kept (it is refit when taken).
     void read_ahead(double t);
     // Waits for a read under way; the frame stays for prepare(). After it the caller may
     // use netCDF again.
     void finish_read_ahead();
-    // Restricts loading to cells `w` (clamped to the grid); reloads the current frames
-    // (and drops a frame read ahead on the old window).
+    // Restricts loading to cells `w` (clamped to the grid). The frames held, and one read
+    // ahead when it is taken, are brought to the new window: of each, only the tiles the
+    // old window did not hold are read.
     void set_window(const CellWindow& w);
     // Loads, of the frames, only the tiles (the file's chunks) under the regions, each
     // widened by region_margin cells: far-apart bodies do not pay for the cells between
-    // them. The window is then the regions' bounding box; cells of it outside those
-    // tiles hold zeros and must not be sampled (covers()). Reloads as set_window does.
+    // them. The window is then the regions' bounding box, widened to whole tiles (so that
+    // a tile stays whole when the window moves); cells of it outside those tiles hold
+    // zeros and must not be sampled (covers()). Refits the frames as set_window does.
     void set_regions(const std::vector<CellWindow>& regions);
     // Whether cells `w`, widened by region_margin, are loaded: sampling at points whose
     // stencils lie in w, the ground's depths included, reads loaded cells only.
@@ -158,7 +161,8 @@ public:
     CellWindow cells_for(double x0, double x1, double y0, double y1) const;
     std::size_t frames_loaded() const { return frames_loaded_; }          // frames read, read ahead ones included
     std::size_t frames_read_ahead() const { return frames_read_ahead_; }  // of them, read ahead and used
-    std::size_t cells_read() const { return cells_read_; }                // cells of those frames read (tiles under the regions)
+    std::size_t cells_read() const { return cells_read_; }                // cells of those frames read (tiles under the regions), refits' included
+    std::size_t frames_refit() const { return frames_refit_; }            // frames brought to a moved window, only its new tiles read
     std::size_t window_cells() const { return window_cells_; }            // cells of their windows (what a dense read takes)
     double load_seconds() const { return load_seconds_; }          // wall time the caller spent reading or waiting for frames [s]
     double load_cpu_seconds() const { return load_cpu_seconds_; }  // CPU time of the reading, on whichever thread [s]
@@ -192,6 +196,12 @@ public:
 
 private:
     static constexpr std::size_t no_frame = std::size_t(-1);
+    // What is loaded of a frame: a window and which of its tiles (all: the whole window).
+    struct Area {
+        CellWindow window;
+        std::vector<char> tiles;  // per tile over the window, row-major; empty: all of them
+        bool operator==(const Area&) const = default;
+    };
     // One stored frame on the window: depth, x- and y-discharge, row-major x fastest.
     struct Frame {
         std::size_t index = no_frame;
@@ -199,12 +209,7 @@ private:
         std::vector<float> slab;          // one tile run as read, before it is placed
         std::vector<TileDecoder::StoredTile> stored;  // the tiles as stored (decode_frame)
         std::vector<float> ground_depth;  // with a ground: depth at its cell centres over ground_window(window) [m]
-    };
-    // What is loaded of a frame: a window and which of its tiles (all: the whole window).
-    struct Area {
-        CellWindow window;
-        std::vector<char> tiles;  // per tile over the window, row-major; empty: all of them
-        bool operator==(const Area&) const = default;
+        Area area;                        // what of the frame is read
     };
     // The tiles (tile_x_ × tile_y_ cells, aligned to the grid's origin) that window w touches.
     struct TileRange {
@@ -237,7 +242,12 @@ private:
     void frames_needed(double t, std::size_t (&need)[4]) const;
     // Puts frames need[r] into the roles r that the interpolant uses, reusing what is held.
     void hold(const std::size_t (&need)[4]);
-    void reload();  // reads the held frames again (after a window or ground change)
+    void reload();  // brings the held frames to the window and ground (after a change of either)
+    // Brings frame f, read on f.area, to area `to`: the tiles both load are kept, only the
+    // others read, and the frame carried down to the ground again. The same bits as
+    // reading it on `to`. Returns the CPU time it took [s].
+    double refit_frame(Frame& f, const Area& to);
+    bool tile_loaded(const Area& a, int ti, int tj) const;  // tile (ti, tj) of the grid is read on a
     void load(Frame& f, std::size_t frame);
     TileRange tiles_of(const CellWindow& w) const;
     // The cells of tile (ti, tj) within w.
@@ -279,6 +289,7 @@ private:
     bool loaded_ = false;
     std::size_t frames_loaded_ = 0;
     std::size_t frames_read_ahead_ = 0;
+    std::size_t frames_refit_ = 0;
     std::size_t cells_read_ = 0, window_cells_ = 0;
     double load_seconds_ = 0.0;
     double load_cpu_seconds_ = 0.0;
@@ -286,6 +297,7 @@ private:
     // its nearest neighbour). The linear interpolant holds roles 1 and 2 only and maps
     // 0 → 1, 3 → 2 (their weights are zero).
     Frame frames_[4];
+    Frame refit_spare_;  // refit_frame's arrays for the old layout, kept for the next refit
     int role_slot_[4] = {0, 1, 2, 3};
     Field h_, qx_, qy_;                 // the roles' arrays, set when frames are loaded
     Field ground_depth_;                // the roles' depths over the ground (with one)

@@ -121,6 +121,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         st.flows_opened += 1;
         st.frames_loaded += world.flow().frames_loaded();
         st.cells_read += world.flow().cells_read();
+        st.frames_refit += world.flow().frames_refit();
         st.window_cells += world.flow().window_cells();
         st.io_seconds += world.flow().load_seconds();
         st.read_cpu_seconds += world.flow().load_cpu_seconds();

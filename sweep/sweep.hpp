@@ -20,8 +20,9 @@ struct SweepRunDef {
 // What the run cost, for reports and the benchmark.
 struct SweepRunStats {
     std::size_t flows_opened = 0;
-    std::size_t frames_loaded = 0;  // frame reads, over all flows (a refitted window re-reads its pair)
-    std::size_t cells_read = 0;     // cells of those frames read (the tiles under the bodies)
+    std::size_t frames_loaded = 0;  // frame reads, over all flows
+    std::size_t frames_refit = 0;   // frames brought to a moved window (only its new tiles read)
+    std::size_t cells_read = 0;     // cells read, of those frames and refits (the tiles under the bodies)
     std::size_t window_cells = 0;   // cells of their windows (the bodies' bounding box)
     double io_seconds = 0.0;        // wall time the stepping waited for frames (read, or being read ahead) [s]
     double read_cpu_seconds = 0.0;  // CPU time of the reading, on whichever thread [s]

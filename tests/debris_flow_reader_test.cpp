@@ -427,8 +427,8 @@ TEST(FlowReader, DryToleranceComesFromTheFlowFile) {
 // Two bodies far apart (set_regions): only the tiles (the file's 8 × 8 chunks here) under
 // each region widened by region_margin are read. Region A, cells i 4..7, j 4..7, widens
 // to i 1..10, j 1..10: tiles (0..1, 0..1); region B, i 30..33, j 14..17, to i 27..36,
-// j 11..20: tiles (3..4, 1..2). The window is their bounding box, 5 × 3 tiles, of which
-// 8 are read. Every sample the regions serve, over a finer ground too, equals to the bit
+// j 11..20: tiles (3..4, 1..2). The window is their bounding box widened to whole tiles,
+// 5 × 3 tiles, of which 8 are read. Every sample the regions serve, over a finer ground too, equals to the bit
 // what a reader of the whole grid gives, for both interpolants, as time advances.
 TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
     const auto dir = test::scratch_dir("fr_regions");
@@ -457,7 +457,7 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
                 whole.set_ground(fine, ground);
             }
             sparse.set_regions({a, b});
-            EXPECT_EQ(sparse.window(), (CellWindow{1, 37, 1, 21}));
+            EXPECT_EQ(sparse.window(), (CellWindow{0, 40, 0, 24}));
             EXPECT_EQ(sparse.tiles_loaded(), 8u);
             EXPECT_TRUE(sparse.covers(a));
             EXPECT_TRUE(sparse.covers(b));
@@ -484,6 +484,89 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
                 }
             }
             EXPECT_GT(compared, 100) << "the regions' points must be wet, mostly";
+        }
+}
+
+// A body's region moving across the tiles (set_regions, 8 × 8 tiles): the frames held,
+// and one read ahead before the move, are refit to the new window by reading only the
+// tiles the old one did not hold, and every sample equals to the bit what a reader of
+// the whole grid gives (both interpolants, with and without a finer ground). Counted
+// by hand for the linear one (cells of 64-cell tiles):
+//   region A (i 4..7, j 4..7; tiles 0..1 × 0..1), prepare(0.5): frames 0, 1 read, 2 × 4 tiles;
+//   read_ahead(1.0): frame 2 on A's 4 tiles;
+//   region B (i 10..13, j 4..7; tiles 0..2 × 0..1): frames 0, 1 refit, 2 × 2 new tiles;
+//   prepare(1.0): frame 2 taken from the read-ahead and refit, 2 new tiles;
+//   region C (i 20..23, j 12..15; tiles 2..3 × 1..2): frames 1, 2 refit, 2 × 3 new tiles
+//   (tile (2, 1) is kept).
+// So 3 frames read (12 tiles) and 5 refits (12 tiles): 24 tiles, 1 536 cells. Reading
+// every frame anew on each window, as before the refits, reads 38 tiles.
+TEST(FlowReader, AMovedWindowReadsOnlyItsNewTiles) {
+    const auto dir = test::scratch_dir("fr_refit");
+    const Grid g{40, 24, 0.025, 0.025, 0.05, 0.05};
+    const auto bed = [](double x, double y) { return -0.01 + 0.01 * x - 0.005 * y; };
+    const auto path = test::write_flow(
+        dir + "/f.nc", g, {0.0, 1.0, 2.0, 3.5, 5.0}, bed,
+        [](double x, double y, double t) {
+            const double h = 0.01 + 0.03 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t);  // dry in places
+            return test::FlowState{float(std::max(0.0, h)), float(0.3 * x - 0.1 * t), float(0.2 * y + 0.05 * t)};
+        },
+        {}, 8);
+    const Grid fine{80, 48, 0.0125, 0.0125, 0.025, 0.025};
+    std::vector<float> ground(fine.size());
+    for (int j = 0; j < fine.ny; ++j)
+        for (int i = 0; i < fine.nx; ++i)
+            ground[fine.index(i, j)] = float(bed(fine.x(i), fine.y(j)) + 0.004 * std::sin(40 * fine.x(i) + 30 * fine.y(j)));
+    const CellWindow a{4, 8, 4, 8}, b{10, 14, 4, 8}, c{20, 24, 12, 16};
+    for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic})
+        for (const bool on_ground : {false, true}) {
+            FlowReaderDef def;
+            def.time_interpolation = interp;
+            FlowReader moving(path, def), whole(path, def);
+            if (on_ground) {
+                moving.set_ground(fine, ground);
+                whole.set_ground(fine, ground);
+            }
+            int compared = 0;
+            const auto same_bits = [&](const CellWindow& r, double t) {
+                ASSERT_TRUE(moving.covers(r));
+                whole.prepare(t);
+                EXPECT_EQ(moving.min_depth(r), whole.min_depth(r)) << t;
+                for (double fx = 0.0; fx <= 1.0; fx += 0.23)
+                    for (double fy = 0.0; fy <= 1.0; fy += 0.31) {
+                        const double x = g.x(r.i0) + fx * (g.x(r.i1 - 1) - g.x(r.i0));
+                        const double y = g.y(r.j0) + fy * (g.y(r.j1 - 1) - g.y(r.j0));
+                        const FlowPointAccel p = moving.sample_accel(x, y, t), q = whole.sample_accel(x, y, t);
+                        EXPECT_EQ(p.depth, q.depth) << x << ", " << y << ", " << t;
+                        EXPECT_EQ(p.u, q.u);
+                        EXPECT_EQ(p.v, q.v);
+                        EXPECT_EQ(p.du_dt, q.du_dt);
+                        EXPECT_EQ(p.dv_dt, q.dv_dt);
+                        EXPECT_EQ(moving.depth(x, y, t), whole.depth(x, y, t));
+                        compared += p.depth > 0.0;
+                    }
+            };
+            moving.set_regions({a});
+            moving.prepare(0.5);
+            same_bits(a, 0.5);
+            moving.read_ahead(1.0);
+            moving.set_regions({b});
+            EXPECT_FALSE(moving.covers(c));
+            same_bits(b, 0.7);
+            moving.prepare(1.0);
+            same_bits(b, 1.0);
+            moving.set_regions({c});
+            EXPECT_FALSE(moving.covers(a));
+            same_bits(c, 1.2);
+            if (interp == TimeInterpolation::linear) {
+                EXPECT_EQ(moving.frames_loaded(), 3u);
+                EXPECT_EQ(moving.frames_refit(), 5u);
+                EXPECT_EQ(moving.cells_read(), 24u * 64u);
+            }
+            for (double t = 1.3; t <= 5.0; t += 0.45) {  // on to new frames, read on C's 4 tiles
+                moving.prepare(t);
+                same_bits(c, t);
+            }
+            EXPECT_GT(compared, 150) << "the regions' points must be wet, mostly";
         }
 }
 
