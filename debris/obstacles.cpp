@@ -179,6 +179,11 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
     const double clear = 1e-6 * std::min(grid_.dx, grid_.dy);
     const Outline outline(box);
     for (int j = r.j0; j <= r.j1; ++j) {
+        // A row inside the grid with nothing above the bottom's reach under the whole
+        // bounding box holds no contact: ruled out before the body's part in it is found.
+        if (inside_x && j >= 0 && j < grid_.ny &&
+            !(double(row_max(wall_top_.data() + grid_.index(0, j), r.i0, r.i1)) > bottom + step_height))
+            continue;
         // Only the row's cells that meet the body's part within the row's band (widened by
         // `clear`) can overlap it: the cells beside it are not tested.
         const double yc = grid_.y0 + j * grid_.dy;
