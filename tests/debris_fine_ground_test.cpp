@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "cases/debris_flows.hpp"
 #include "debris/footprint.hpp"
@@ -223,6 +224,37 @@ TEST(FineGround, NoSliverPatchesWhereBodyEdgesLieOnCellEdges) {
         }
         EXPECT_NEAR(area, 0.025, 1e-12) << heading;
     }
+}
+
+// A corner a fraction of a micrometre past a cell edge cuts a triangle of legs ~1e-7 m
+// from that cell: above the sliver threshold (1e-9 of a cell) from legs of about 5e-7 m.
+// Its centroid, by the shoelace sums in map coordinates (x ≈ 4.3 m here), was found up
+// to 1.5 cm away: a cell and a half, outside the body, where the depth was then sampled.
+// Every patch centroid must lie in the body (to 1e-9 m).
+// The poses: random headings, each moved so that its westmost corner lies 0–1e-6 m past
+// a cell edge, at map coordinates of the real layout's port.
+TEST(FineGround, EveryPatchCentroidLiesInTheBody) {
+    const Grid g{900, 400, -0.995, -3.995, 0.01, 0.01};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> heading(-M_PI, M_PI), past(0.0, 1e-6), at(0.0, 1.0);
+    int slivers = 0;
+    for (int k = 0; k < 4000; ++k) {
+        Box box = Box::make({4.3 + 0.3 * at(rng), -1.86 + 0.3 * at(rng)}, heading(rng), 0.25, 0.1);
+        double west = 1e300;
+        for (const Vec2& c : box.corners()) west = std::min(west, c.x);
+        const double edge = g.x0 - 0.5 * g.dx + std::ceil((west - (g.x0 - 0.5 * g.dx)) / g.dx) * g.dx;  // the cell edge east of it
+        box = Box::make({box.centre.x + (edge - west) - past(rng), box.centre.y}, std::atan2(box.axis_long.y, box.axis_long.x),
+                        0.25, 0.1);
+        std::vector<FootprintPatch> patches;
+        footprint_patches(box, g, patches);
+        for (const auto& p : patches) {
+            slivers += p.area < 1e-6 * g.dx * g.dy;
+            const Vec2 r = p.centroid - box.centre;
+            ASSERT_LE(std::fabs(dot(r, box.axis_long)), box.half_length + 1e-9) << k << " area " << p.area;
+            ASSERT_LE(std::fabs(dot(r, box.axis_wide)), box.half_width + 1e-9) << k << " area " << p.area;
+        }
+    }
+    EXPECT_GT(slivers, 100);  // the poses do make such triangles
 }
 
 // A body that has not moved reuses its patches (FootprintCache); any change of pose, even
