@@ -27,7 +27,23 @@ void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams&
             flow.cells_for(xg.x - box.extent_x(), xg.x + box.extent_x(), xg.y - box.extent_y(), xg.y + box.extent_y());
         if (!(flow.min_depth(cells) < b.draft)) return;  // no point under the body can be shallower than the draft
     }
-    const std::vector<FootprintPatch>& footprint = footprint_cache.patches(box, grid);
+    // Likewise row by row: a row of cells none of whose points can be shallower than the
+    // draft gives no patch, so it is neither clipped nor sampled. Every patch centroid of
+    // a row lies in the footprint's part in it (to some 1e-12 m: footprint.cpp), whose
+    // band is widened here by a thousandth of a cell; the draft is raised by 1e-9 of
+    // itself (the interpolated depth may lie round-off below its nodes' smallest). The
+    // bound then holds whatever the rounding, and the patches are the same bits.
+    struct RowBound {
+        const FlowReader& flow;
+        double pad, draft;
+    };
+    const RowBound bound{flow, 1e-3 * std::min(grid.dx, grid.dy), b.draft * (1.0 + 1e-9)};
+    const FootprintCache::RowFilter shallow_somewhere = [](const void* c, double x0, double x1, double y0, double y1) {
+        const RowBound& r = *static_cast<const RowBound*>(c);
+        return r.flow.min_depth(r.flow.cells_for(x0 - r.pad, x1 + r.pad, y0 - r.pad, y1 + r.pad)) < r.draft;
+    };
+    const std::vector<FootprintPatch>& footprint =
+        depth_bound ? footprint_cache.patches(box, grid, shallow_somewhere, &bound) : footprint_cache.patches(box, grid);
     const FlowReader::TimeStencil at_t = flow.at_time(t);
     // The depths at the patches' centroids, sampled a block of patches at a time.
     constexpr int block = 64;

@@ -12,11 +12,7 @@ namespace {
 // Overlaps below this fraction of a cell are round-off, not contact [-].
 constexpr double sliver_fraction = 1e-9;
 
-// A convex polygon of at most 8 vertices (a rectangle clipped by four half-planes).
-struct Poly {
-    Vec2 p[8];
-    int n = 0;
-};
+using Poly = FootprintPoly;
 
 // The vertex after k of a polygon of n vertices (k + 1) % n, without an integer division.
 int next_vertex(int k, int n) { return k + 1 < n ? k + 1 : 0; }
@@ -80,72 +76,114 @@ Span inner_span(const Box& box, double y, double inset) {
 
 }  // namespace
 
-void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out) {
+void FootprintCache::set_box(const Box& box, const Grid& grid) {
+    box_ = box;
+    grid_ = grid;
+    valid_ = true;
+    row_count_ = 0;
     const auto corners = box.corners();
     Poly body;
     for (const Vec2& c : corners) body.p[body.n++] = c;
-    const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
+    const double hy = 0.5 * grid.dy;
     // A cell inside the footprint shrunk by this much passes the four corner tests below
     // whatever the round-off (some 1e-15 m), so it needs none of them [m].
     const double inset = 1e-6 * std::min(grid.dx, grid.dy);
     const int j0 = std::max(0, int(std::floor((box.centre.y - box.extent_y() - grid.y0) / grid.dy + 0.5)));
     const int j1 = std::min(grid.ny - 1, int(std::floor((box.centre.y + box.extent_y() - grid.y0) / grid.dy + 0.5)));
-    const int i0 = std::max(0, int(std::floor((box.centre.x - box.extent_x() - grid.x0) / grid.dx + 0.5)));
-    const int i1 = std::min(grid.nx - 1, int(std::floor((box.centre.x + box.extent_x() - grid.x0) / grid.dx + 0.5)));
     for (int j = j0; j <= j1; ++j) {
         const double yc = grid.y(j);
-        // The footprint cut to this row of cells, then to each cell of the row.
-        const Poly row = clip(clip(body, 1, yc - hy, -1.0), 1, yc + hy, 1.0);
-        if (row.n < 3) continue;
+        // The footprint cut to this row of cells, then (clip_row) to each cell of the row.
+        const Poly part = clip(clip(body, 1, yc - hy, -1.0), 1, yc + hy, 1.0);
+        if (part.n < 3) continue;
+        if (row_count_ == rows_.size()) rows_.emplace_back();
+        Row& row = rows_[row_count_++];
+        row.j = j;
+        row.part = part;
+        row.clipped = false;
+        row.patches.clear();
         // A cell wholly beside the row's part of the footprint clips to nothing: skipped
         // before clipping (strictly beside: a cell touching it still goes through the clip).
-        double row_x0 = row.p[0].x, row_x1 = row.p[0].x;
-        for (int k = 1; k < row.n; ++k) {
-            row_x0 = std::min(row_x0, row.p[k].x);
-            row_x1 = std::max(row_x1, row.p[k].x);
+        row.x0 = row.x1 = part.p[0].x;
+        for (int k = 1; k < part.n; ++k) {
+            row.x0 = std::min(row.x0, part.p[k].x);
+            row.x1 = std::max(row.x1, part.p[k].x);
         }
         // Where both of the row's edges lie inside the shrunk footprint, so do whole cells
         // (the footprint is convex).
         const Span lower = inner_span(box, yc - hy, inset), upper = inner_span(box, yc + hy, inset);
-        const double inner_x0 = std::max(lower.x0, upper.x0), inner_x1 = std::min(lower.x1, upper.x1);
-        for (int i = i0; i <= i1; ++i) {
-            const double xc = grid.x(i);
-            if (xc + hx < row_x0 || xc - hx > row_x1) continue;
-            const Vec2 cc{xc, yc};
-            FootprintPatch patch;
-            // Fast path: a cell whose four corners are inside the footprint is covered whole.
-            const bool whole = (xc - hx >= inner_x0 && xc + hx <= inner_x1) ||
-                               (box.contains(cc + Vec2{hx, hy}) && box.contains(cc + Vec2{-hx, hy}) &&
-                                box.contains(cc + Vec2{hx, -hy}) && box.contains(cc + Vec2{-hx, -hy}));
-            if (whole) {
-                patch.area = grid.dx * grid.dy;
-                patch.centroid = cc;
-            } else {
-                const Poly cell = clip(clip(row, 0, xc - hx, -1.0), 0, xc + hx, 1.0);
-                if (cell.n < 3) continue;
-                area_centroid(cell, cc, patch.area, patch.centroid);
-                // A clip this thin is round-off where an edge of the body lies on a cell
-                // edge (a grid-aligned start); its centroid, area / area, is noise that
-                // can land anywhere. It holds no ground: left out.
-                if (!(patch.area > sliver_fraction * grid.dx * grid.dy)) continue;
-            }
-            out.push_back(patch);
-        }
+        row.inner_x0 = std::max(lower.x0, upper.x0);
+        row.inner_x1 = std::min(lower.x1, upper.x1);
     }
 }
 
-const std::vector<FootprintPatch>& FootprintCache::patches(const Box& box, const Grid& grid) {
+void FootprintCache::clip_row(Row& row) const {
+    const Grid& grid = grid_;
+    const Box& box = box_;
+    const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
+    const int i0 = std::max(0, int(std::floor((box.centre.x - box.extent_x() - grid.x0) / grid.dx + 0.5)));
+    const int i1 = std::min(grid.nx - 1, int(std::floor((box.centre.x + box.extent_x() - grid.x0) / grid.dx + 0.5)));
+    const double yc = grid.y(row.j);
+    for (int i = i0; i <= i1; ++i) {
+        const double xc = grid.x(i);
+        if (xc + hx < row.x0 || xc - hx > row.x1) continue;
+        const Vec2 cc{xc, yc};
+        FootprintPatch patch;
+        // Fast path: a cell whose four corners are inside the footprint is covered whole.
+        const bool whole = (xc - hx >= row.inner_x0 && xc + hx <= row.inner_x1) ||
+                           (box.contains(cc + Vec2{hx, hy}) && box.contains(cc + Vec2{-hx, hy}) &&
+                            box.contains(cc + Vec2{hx, -hy}) && box.contains(cc + Vec2{-hx, -hy}));
+        if (whole) {
+            patch.area = grid.dx * grid.dy;
+            patch.centroid = cc;
+        } else {
+            const Poly cell = clip(clip(row.part, 0, xc - hx, -1.0), 0, xc + hx, 1.0);
+            if (cell.n < 3) continue;
+            area_centroid(cell, cc, patch.area, patch.centroid);
+            // A clip this thin is round-off where an edge of the body lies on a cell
+            // edge (a grid-aligned start); its centroid, area / area, is noise that
+            // can land anywhere. It holds no ground: left out.
+            if (!(patch.area > sliver_fraction * grid.dx * grid.dy)) continue;
+        }
+        row.patches.push_back(patch);
+    }
+}
+
+const std::vector<FootprintPatch>& FootprintCache::patches(const Box& box, const Grid& grid, RowFilter wanted,
+                                                           const void* context) {
     const auto same = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
     const bool same_grid = grid.nx == grid_.nx && grid.ny == grid_.ny && same(grid.dx, grid_.dx) && same(grid.dy, grid_.dy) &&
                            same(grid.x0, grid_.x0) && same(grid.y0, grid_.y0);
-    if (!(valid_ && same_grid && same(box, box_))) {
+    bool changed = !(valid_ && same_grid && same(box, box_));
+    if (changed) set_box(box, grid);
+    if (taken_.size() != row_count_) {
+        taken_.assign(row_count_, 0);
+        changed = true;
+    }
+    const double hy = 0.5 * grid.dy;
+    for (std::size_t r = 0; r < row_count_; ++r) {
+        Row& row = rows_[r];
+        const double yc = grid.y(row.j);
+        const char take = !wanted || wanted(context, row.x0, row.x1, yc - hy, yc + hy);
+        rows_left_out_ += !take;
+        if (take && !row.clipped) {
+            clip_row(row);
+            row.clipped = true;
+        }
+        changed = changed || take != taken_[r];
+        taken_[r] = take;
+    }
+    if (changed) {
         patches_.clear();
-        footprint_patches(box, grid, patches_);
-        box_ = box;
-        grid_ = grid;
-        valid_ = true;
+        for (std::size_t r = 0; r < row_count_; ++r)
+            if (taken_[r]) patches_.insert(patches_.end(), rows_[r].patches.begin(), rows_[r].patches.end());
     }
     return patches_;
+}
+
+void footprint_patches(const Box& box, const Grid& grid, std::vector<FootprintPatch>& out) {
+    FootprintCache every_row;
+    const std::vector<FootprintPatch>& p = every_row.patches(box, grid);
+    out.insert(out.end(), p.begin(), p.end());
 }
 
 }  // namespace flotsam::debris

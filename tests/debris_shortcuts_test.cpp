@@ -192,6 +192,7 @@ TEST(StepShortcuts, ContactPatchesWithoutTheDepthBoundAreTheSame) {
     def.contact = ContactModel::local;
     const BodyParams p = make_body_params(def, 1000.0);
     int skipped = 0, grounded = 0;
+    std::size_t rows_left_out = 0;
     for (double x = -0.5; x <= 0.5; x += 0.0137)
         for (const double heading : {0.0, 0.4, 1.3}) {
             const Box box = Box::make({x, 0.01}, heading, def.length, def.width);
@@ -209,7 +210,12 @@ TEST(StepShortcuts, ContactPatchesWithoutTheDepthBoundAreTheSame) {
             }
             skipped += with.empty() && flow.min_depth(flow.cells_for(x - 0.14, x + 0.14, -0.13, 0.15)) >= p.draft;
             grounded += !with.empty();
+            rows_left_out += with.empty() ? 0 : cache_with.rows_left_out();
+            EXPECT_EQ(cache_without.rows_left_out(), 0u);
         }
     EXPECT_GT(skipped, 10);   // the bound does skip in the west
     EXPECT_GT(grounded, 10);  // and there are contacts in the east
+    // Turned, a partly grounded body's rows of cells reach different depths: those that
+    // cannot touch are neither clipped nor sampled, and the patches are the same.
+    EXPECT_GT(rows_left_out, 30u);
 }
