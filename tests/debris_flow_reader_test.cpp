@@ -424,6 +424,35 @@ TEST(FlowReader, DryToleranceComesFromTheFlowFile) {
     }
 }
 
+namespace {
+// A flow on 8 × 8 tiles (40 × 24 cells: 5 × 3 tiles) that varies in x, y and t and is
+// dry in places, and a ground twice as fine under it with bumps of its own: for the
+// tests of reading only some tiles.
+struct TiledFlow {
+    Grid grid{40, 24, 0.025, 0.025, 0.05, 0.05};
+    Grid fine{80, 48, 0.0125, 0.0125, 0.025, 0.025};
+    std::string path;
+    std::vector<float> ground;  // [m] on `fine`
+};
+TiledFlow tiled_flow(const std::string& dir) {
+    TiledFlow f;
+    const auto bed = [](double x, double y) { return -0.01 + 0.01 * x - 0.005 * y; };
+    f.path = test::write_flow(
+        dir + "/f.nc", f.grid, {0.0, 1.0, 2.0, 3.5, 5.0}, bed,
+        [](double x, double y, double t) {
+            const double h = 0.01 + 0.03 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t);  // dry in places
+            return test::FlowState{float(std::max(0.0, h)), float(0.3 * x - 0.1 * t), float(0.2 * y + 0.05 * t)};
+        },
+        {}, 8);
+    f.ground.resize(f.fine.size());
+    for (int j = 0; j < f.fine.ny; ++j)
+        for (int i = 0; i < f.fine.nx; ++i)
+            f.ground[f.fine.index(i, j)] =
+                float(bed(f.fine.x(i), f.fine.y(j)) + 0.004 * std::sin(40 * f.fine.x(i) + 30 * f.fine.y(j)));
+    return f;
+}
+}  // namespace
+
 // Two bodies far apart (set_regions): only the tiles (the file's 8 × 8 chunks here) under
 // each region widened by region_margin are read. Region A, cells i 4..7, j 4..7, widens
 // to i 1..10, j 1..10: tiles (0..1, 0..1); region B, i 30..33, j 14..17, to i 27..36,
@@ -431,21 +460,9 @@ TEST(FlowReader, DryToleranceComesFromTheFlowFile) {
 // 5 × 3 tiles, of which 8 are read. Every sample the regions serve, over a finer ground too, equals to the bit
 // what a reader of the whole grid gives, for both interpolants, as time advances.
 TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
-    const auto dir = test::scratch_dir("fr_regions");
-    const Grid g{40, 24, 0.025, 0.025, 0.05, 0.05};
-    const auto bed = [](double x, double y) { return -0.01 + 0.01 * x - 0.005 * y; };
-    const auto path = test::write_flow(
-        dir + "/f.nc", g, {0.0, 1.0, 2.0, 3.5, 5.0}, bed,
-        [](double x, double y, double t) {
-            const double h = 0.01 + 0.03 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t);  // dry in places
-            return test::FlowState{float(std::max(0.0, h)), float(0.3 * x - 0.1 * t), float(0.2 * y)};
-        },
-        {}, 8);
-    const Grid fine{80, 48, 0.0125, 0.0125, 0.025, 0.025};
-    std::vector<float> ground(fine.size());
-    for (int j = 0; j < fine.ny; ++j)
-        for (int i = 0; i < fine.nx; ++i)
-            ground[fine.index(i, j)] = float(bed(fine.x(i), fine.y(j)) + 0.004 * std::sin(40 * fine.x(i) + 30 * fine.y(j)));
+    const TiledFlow flow = tiled_flow(test::scratch_dir("fr_regions"));
+    const Grid& g = flow.grid;
+    const std::string& path = flow.path;
     const CellWindow a{4, 8, 4, 8}, b{30, 34, 14, 18}, between{18, 22, 8, 12};
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic})
         for (const bool on_ground : {false, true}) {
@@ -453,8 +470,8 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
             def.time_interpolation = interp;
             FlowReader sparse(path, def), whole(path, def);
             if (on_ground) {
-                sparse.set_ground(fine, ground);
-                whole.set_ground(fine, ground);
+                sparse.set_ground(flow.fine, flow.ground);
+                whole.set_ground(flow.fine, flow.ground);
             }
             sparse.set_regions({a, b});
             EXPECT_EQ(sparse.window(), (CellWindow{0, 40, 0, 24}));
@@ -501,21 +518,9 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
 // So 3 frames read (12 tiles) and 5 refits (12 tiles): 24 tiles, 1 536 cells. Reading
 // every frame anew on each window, as before the refits, reads 38 tiles.
 TEST(FlowReader, AMovedWindowReadsOnlyItsNewTiles) {
-    const auto dir = test::scratch_dir("fr_refit");
-    const Grid g{40, 24, 0.025, 0.025, 0.05, 0.05};
-    const auto bed = [](double x, double y) { return -0.01 + 0.01 * x - 0.005 * y; };
-    const auto path = test::write_flow(
-        dir + "/f.nc", g, {0.0, 1.0, 2.0, 3.5, 5.0}, bed,
-        [](double x, double y, double t) {
-            const double h = 0.01 + 0.03 * std::sin(3 * x + t) * std::cos(4 * y - 0.7 * t);  // dry in places
-            return test::FlowState{float(std::max(0.0, h)), float(0.3 * x - 0.1 * t), float(0.2 * y + 0.05 * t)};
-        },
-        {}, 8);
-    const Grid fine{80, 48, 0.0125, 0.0125, 0.025, 0.025};
-    std::vector<float> ground(fine.size());
-    for (int j = 0; j < fine.ny; ++j)
-        for (int i = 0; i < fine.nx; ++i)
-            ground[fine.index(i, j)] = float(bed(fine.x(i), fine.y(j)) + 0.004 * std::sin(40 * fine.x(i) + 30 * fine.y(j)));
+    const TiledFlow flow = tiled_flow(test::scratch_dir("fr_refit"));
+    const Grid& g = flow.grid;
+    const std::string& path = flow.path;
     const CellWindow a{4, 8, 4, 8}, b{10, 14, 4, 8}, c{20, 24, 12, 16};
     for (TimeInterpolation interp : {TimeInterpolation::linear, TimeInterpolation::cubic})
         for (const bool on_ground : {false, true}) {
@@ -523,8 +528,8 @@ TEST(FlowReader, AMovedWindowReadsOnlyItsNewTiles) {
             def.time_interpolation = interp;
             FlowReader moving(path, def), whole(path, def);
             if (on_ground) {
-                moving.set_ground(fine, ground);
-                whole.set_ground(fine, ground);
+                moving.set_ground(flow.fine, flow.ground);
+                whole.set_ground(flow.fine, flow.ground);
             }
             int compared = 0;
             const auto same_bits = [&](const CellWindow& r, double t) {
