@@ -310,10 +310,15 @@ double FlowReader::refit_frame(Frame& f, const Area& to) {
                                     fields[k]->data() + std::size_t(j - w.j0) * wnx + std::size_t(c.i0 - w.i0));
             }
         const std::vector<CellWindow> rects = read_rects(fresh);
-        if (decoder_) helpers_cpu = decode_frame(f, f.index, w, rects);
-        for (const CellWindow& r : rects) {
-            read_cells(f, f.index, w, r, decoder_ != nullptr);
-            cells_read_ += std::size_t(r.i1 - r.i0) * std::size_t(r.j1 - r.j0);
+        try {
+            if (decoder_) helpers_cpu = decode_frame(f, f.index, w, rects);
+            for (const CellWindow& r : rects) {
+                read_cells(f, f.index, w, r, decoder_ != nullptr);
+                cells_read_ += std::size_t(r.i1 - r.i0) * std::size_t(r.j1 - r.j0);
+            }
+        } catch (...) {
+            f.index = no_frame;  // half refit: held by no role, read anew if needed again
+            throw;
         }
         f.area = to;
         ++frames_refit_;

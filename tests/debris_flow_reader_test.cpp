@@ -380,6 +380,10 @@ TEST(FlowReader, ABadFrameReadAheadIsReportedWhereItIsNeeded) {
     moved.set_window(moved.cells_for(-0.9, -0.2, 2.1, 2.4));  // west of the bad cells
     EXPECT_NO_THROW(moved.prepare(1.0));
     EXPECT_EQ(moved.sample(-0.5, 2.2, 1.5).depth, 0.3f);
+    // Moved east over them, the frame held is refit: its new tiles are read and checked.
+    const std::string refit = error_of([&] { moved.set_window(moved.cells_for(-0.9, 0.8, 2.1, 2.4)); });
+    EXPECT_NE(refit.find("frame 2"), std::string::npos) << refit;
+    EXPECT_NE(refit.find("h = nan"), std::string::npos) << refit;
 }
 
 TEST(FlowReader, RejectsAFileThatIsNotAFlow) {
