@@ -94,7 +94,7 @@ std::vector<SuiteCase> suite() {
          [](int n) { return test::dam_break_case(n, 0.005, 0.0, 6.0); }},
         {"ritter-2cm", "Ritter's dam break: 2 cm, 3 s (tip at 7.658 m)", {400, 800, 1600}, {400, 800, 1600, 3200},
          [](int n) { return test::dam_break_case(n, 0.02, 0.0, 3.0); }},
-        {"stoker", "Stoker's dam break onto a thin wet bed: 5 mm | 0.05 mm at 5 m, 4 rows, walls, 6 s", {400, 800, 1600},
+        {"stoker", "Stoker's dam break onto a thin wet bed: 5 mm west of x = 5 m, 0.05 mm east, 4 rows, walls, 6 s", {400, 800, 1600},
          {400, 800, 1600, 3200}, [](int n) { return test::dam_break_case(n, 0.005, 0.00005, 6.0); }},
         {"steps-at-rest",
          "Lakes at rest over stair steps partly out of the water, a ridge 2e-9 m above the water, a sill 3e-9 m under it: "
