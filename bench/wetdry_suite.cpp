@@ -40,16 +40,22 @@ struct Variant {
     std::function<void(PhysicsDef&)> tweak;
 };
 
-FiniteVolumeDef with_fronts(FrontTreatment f) {
+FiniteVolumeDef scheme(TimeStepping stepping, FrontTreatment fronts) {
     FiniteVolumeDef fv;
-    fv.fronts = f;
+    fv.stepping = stepping;
+    fv.fronts = fronts;
     return fv;
 }
 
 std::vector<Variant> variants() {
     return {
-        {"tracked", with_fronts(FrontTreatment::tracked), {}},
-        {"plain", with_fronts(FrontTreatment::plain), {}},
+        {"tracked", scheme(TimeStepping::heun, FrontTreatment::tracked), {}},
+        {"plain", scheme(TimeStepping::heun, FrontTreatment::plain), {}},
+        {"split", scheme(TimeStepping::split, FrontTreatment::plain), {}},
+        {"split-1e-7", scheme(TimeStepping::split, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-7; }},
+        {"split-1e-6", scheme(TimeStepping::split, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-6; }},
+        {"split-1e-5", scheme(TimeStepping::split, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-5; }},
+        {"plain-1e-6", scheme(TimeStepping::heun, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-6; }},
     };
 }
 

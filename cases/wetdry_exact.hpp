@@ -386,12 +386,12 @@ inline WetDryCase solitary_runup_case(int n, const SolitaryRunup& sr = SolitaryR
 //  - west third: stairs rising to the north-east in 1 cm steps (z from -4 cm to +2 cm,
 //    their edges across the cells at an angle to the grid), the one at z = 0 exactly at the
 //    water's level, the two above it dry;
-//  - a ridge along y (x in [0.45, 0.55) m) whose crest stands 2e-9 m above the water, twice
-//    the dry tolerance, holding back ...
+//  - a ridge along y (x in [0.45, 0.55) m) whose crest stands twice the dry tolerance
+//    above the water, holding back ...
 //  - ... an east lake whose level is 1 mm lower (bed -2 cm), with a sill in it (x in
-//    [0.75, 0.80) m) covered by 3e-9 m of water, just above the dry tolerance.
+//    [0.75, 0.80) m) covered by three times the dry tolerance of water.
 // The exact answer: the state stays as it is (each lake at rest, the ridge dry).
-inline Scene steps_at_rest(int n) {
+inline Scene steps_at_rest(int n, double dry_depth = hydro::PhysicsDef{}.dry_depth) {
     Scene s = flat_scene(n, n, 1.0 / n, 0.0, 0.0);
     s.grid.y0 = 0.5 * s.grid.dy;
     s.eta0.assign(s.grid.size(), 0.0);
@@ -401,9 +401,9 @@ inline Scene steps_at_rest(int n) {
             const double x = s.grid.x(i), y = s.grid.y(j);
             double z = -0.02, level = 0.0;
             if (x < 1.0 / 3.0) z = -0.04 + 0.01 * std::floor(7.0 * (1.5 * x + y) / 1.5);  // steps 0..6
-            if (x >= 0.45 && x < 0.55) z = 2e-9;
+            if (x >= 0.45 && x < 0.55) z = 2.0 * dry_depth;
             if (x >= 0.55) level = -0.001;
-            if (x >= 0.75 && x < 0.80) z = -0.001 - 3e-9;
+            if (x >= 0.75 && x < 0.80) z = -0.001 - 3.0 * dry_depth;
             s.z[k] = z;
             s.eta0[k] = std::max(level, z);
         }
