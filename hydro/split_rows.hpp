@@ -86,7 +86,7 @@ private:
 // tangential ut (m before, 0 the cell, p after): the slopes s_eta, s_h, s_un, s_ut and the
 // predictor increments dh, dun, dut over half the step. hdt = dt / (2 dx).
 template <class Real>
-inline void slopes_and_predictor(const Sweep<Real>& s, Real hdt, Real hm, Real em, Real unm, Real utm, Real h0, Real e0, Real un0,
+[[gnu::always_inline]] inline void slopes_and_predictor(const Sweep<Real>& s, Real hdt, Real hm, Real em, Real unm, Real utm, Real h0, Real e0, Real un0,
                                  Real ut0, Real hp, Real ep, Real unp, Real utp, Real& se, Real& sh, Real& sun, Real& sut, Real& dh,
                                  Real& dun, Real& dut) {
     const Real slope_e = limited_slope(e0 - em, ep - e0, s.theta);
@@ -111,7 +111,7 @@ inline void slopes_and_predictor(const Sweep<Real>& s, Real hdt, Real hm, Real e
 // friction of the whole step (friction_dt), and no momentum where no water (+0, so that
 // dry land stays skippable; arithmetic, not a select, so that the loop vectorises).
 template <class Real, bool kFriction>
-inline void update_cell(Real dt, Real h, Real qn, Real qt, Real rate_h, Real rate_qn, Real rate_qt, Real g_n2, Real friction_dt,
+[[gnu::always_inline]] inline void update_cell(Real dt, Real h, Real qn, Real qt, Real rate_h, Real rate_qn, Real rate_qt, Real g_n2, Real friction_dt,
                         Real dry, Real& h_out, Real& qn_out, Real& qt_out, long& fixes, Real& worst) {
     Real hn = h + dt * rate_h;
     Real a = qn + dt * rate_qn;

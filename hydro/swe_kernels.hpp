@@ -121,7 +121,7 @@ struct FaceFluxOf {
 using FaceFlux = FaceFluxOf<double>;
 
 template <class Real>
-inline Real face_flux(Real etaL, Real hL, Real unL, Real utL, Real etaR, Real hR, Real unR, Real utR, Real g, Real dry_depth,
+[[gnu::always_inline]] inline Real face_flux(Real etaL, Real hL, Real unL, Real utL, Real etaR, Real hR, Real unR, Real utR, Real g, Real dry_depth,
                       FaceFluxOf<Real>& f) {
     const Real zL = etaL - hL, zR = etaR - hR;
     const Real zs = std::max(zL, zR);
@@ -169,13 +169,15 @@ inline Real face_flux(Real etaL, Real hL, Real unL, Real utL, Real etaR, Real hR
     const Real pfL = Real(0.5) * g * hL * hL, pfR = Real(0.5) * g * hR * hR;
     const Real cfL = std::sqrt(g * hL), cfR = std::sqrt(g * hR);
     const Real starL = std::max(Real(0), cfL + Real(0.5) * unL), starR = std::max(Real(0), cfR - Real(0.5) * unR);
-    const bool wallL = (hL > dry_depth) & !(hR > dry_depth) & (std::max(hL, starL * starL * (Real(1) / g)) + zL < zR);
-    const bool wallR = (hR > dry_depth) & !(hL > dry_depth) & (std::max(hR, starR * starR * (Real(1) / g)) + zR < zL);
+    const Real wallL = (hL > dry_depth) && !(hR > dry_depth) && std::max(hL, starL * starL * (Real(1) / g)) + zL < zR ? Real(1) : Real(0);
+    const Real wallR = (hR > dry_depth) && !(hL > dry_depth) && std::max(hR, starR * starR * (Real(1) / g)) + zR < zL ? Real(1) : Real(0);
     const Real qfL = hL * unL, qfR = hR * unR;
     const Real reactL = std::max(-pfL, qfL * unL + (std::abs(unL) + cfL) * qfL);
     const Real reactR = std::max(-pfR, qfR * unR - (std::abs(unR) + cfR) * qfR);
-    f.normal_L = normal + (pfL - pL) + (wallL ? reactL : Real(0));
-    f.normal_R = normal + (pfR - pR) + (wallR ? reactR : Real(0));
+    // Weights 0 or 1, not a select after the roots nor a bool converted: either keeps GCC
+    // 12 from vectorising the face loops.
+    f.normal_L = normal + (pfL - pL) + reactL * wallL;
+    f.normal_R = normal + (pfR - pR) + reactR * wallR;
     f.tangential = mass * (mass > Real(0) ? utL : utR);
     return std::max(-sL, sR);
 }
