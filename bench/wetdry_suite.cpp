@@ -48,14 +48,12 @@ FiniteVolumeDef scheme(TimeStepping stepping, FrontTreatment fronts) {
 }
 
 std::vector<Variant> variants() {
+    const auto dry = [](double depth) { return [depth](PhysicsDef& d) { d.dry_depth = depth; }; };
     return {
-        {"tracked", scheme(TimeStepping::heun, FrontTreatment::tracked), {}},
-        {"plain", scheme(TimeStepping::heun, FrontTreatment::plain), {}},
-        {"split", scheme(TimeStepping::split, FrontTreatment::plain), {}},
-        {"split-1e-7", scheme(TimeStepping::split, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-7; }},
-        {"split-1e-6", scheme(TimeStepping::split, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-6; }},
-        {"split-1e-5", scheme(TimeStepping::split, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-5; }},
-        {"plain-1e-6", scheme(TimeStepping::heun, FrontTreatment::plain), [](PhysicsDef& d) { d.dry_depth = 1e-6; }},
+        {"default", FiniteVolumeDef{}, {}},  // split steps, plain fronts, dry tolerance 1e-6 m
+        {"heun-plain", scheme(TimeStepping::heun, FrontTreatment::plain), {}},
+        {"tracked", scheme(TimeStepping::heun, FrontTreatment::tracked), dry(1e-9)},
+        {"default-1e-9", FiniteVolumeDef{}, dry(1e-9)},
     };
 }
 
