@@ -35,6 +35,7 @@
 
 using namespace flotsam;
 using namespace flotsam::hydro::rows;
+using flotsam::hydro::kGhost;
 
 namespace {
 

@@ -5,6 +5,8 @@
 
 namespace flotsam::hydro {
 
+inline constexpr int kGhost = 2;  // ghost cells on each side of a row and column
+
 struct ColumnRange {
     int begin = 0, end = 0;
     bool empty() const { return begin >= end; }

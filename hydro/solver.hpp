@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/timeseries.hpp"
@@ -83,6 +84,13 @@ struct GridState {
         bound.swap(o.bound);
     }
 };
+
+namespace rows {
+template <class Real>
+struct Sweep;
+template <class Real>
+class RowBuffers;
+}  // namespace rows
 
 class Solver {
 public:
@@ -179,14 +187,32 @@ private:
     void fill_side_cells(Side side, const SideForcing& forcing, std::vector<double>& h, std::vector<double>& hu,
                          std::vector<double>& hv, double t, int k0, int k1) const;
     // One Heun stage at time t: predictor U1 = E(U), corrector U = (U + E(U1)) / 2, with
-    // E(U) = friction(U + dt L(U)). Fused: one sweep over the rows (see solver.cpp).
+    // E(U) = friction(U + dt L(U)). Fused: one pass over the rows (heun_stage.cpp).
     void stage(Stage which, double dt, double t);
+    // What a stage reads and writes, worked out before its rows.
+    struct StagePlan {
+        bool corrector = false, last = false, fronts = false;
+        double dt = 0.0, t_out = 0.0, pump_rate = 0.0;  // [s], [s], [m/s]
+        GridState* in = nullptr;                        // now_ (predictor) or mid_ (corrector)
+        GridState* out = nullptr;                       // mid_ or next_
+        std::array<SideForcing, 4> out_forcing{};       // the sides at t_out (tracked fronts)
+    };
+    StagePlan prepare_stage(Stage which, double dt, double t);
+    // Rows j0 <= j < j1 of a stage, with this thread's row buffers `mem`.
+    void stage_strip(const StagePlan& plan, std::vector<double>& mem, int j0, int j1, long& fixes, double& worst,
+                     double& amax);
+    void update_stage_row(const StagePlan& plan, const rows::Sweep<double>& s, const rows::RowBuffers<double>& w, int j,
+                          ColumnRange cols, long& fixes, double& worst, double& amax);
     // Columns of each row whose rate may be nonzero in this stage, into active_.
     void find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu,
                              const std::vector<double>& hv, bool pumping);
     // The same for an input known to be zero outside `bound` (whole rows with `whole_rows`).
     void find_active_columns(const std::vector<ColumnRange>& bound, bool whole_rows, const std::vector<double>& h,
                              const std::vector<double>& hu, const std::vector<double>& hv, bool pumping);
+    // Shares the rows among threads by the columns active_ computes (and sizes work_);
+    // then the rows [first, last) of a thread.
+    void balance_strips();
+    std::pair<int, int> strip_rows(int thread, int threads) const;
     // The split step (split_rows.hpp): two sweeps, now_ -> mid_ -> next_, then next_ swapped in.
     enum class Axis { x, y };
     void split_step(double dt);
@@ -194,6 +220,14 @@ private:
     // `whole_rows`) into `out`; ghosts at time t; `last`: the step's second sweep (friction,
     // CFL rate).
     void sweep(Axis axis, bool last, double dt, double t, GridState& in, bool whole_rows, GridState& out);
+    struct SweepPlan {
+        GridState* in = nullptr;
+        GridState* out = nullptr;
+        bool last = false;
+        double dt = 0.0, pump_depth = 0.0;  // [s], [m] added to the pump's cells (x sweep)
+    };
+    void x_sweep_strip(const SweepPlan& plan, std::vector<double>& mem, int j0, int j1, long& fixes, double& worst, double& amax);
+    void y_sweep_strip(const SweepPlan& plan, std::vector<double>& mem, int j0, int j1, long& fixes, double& worst, double& amax);
     // The CFL rate of one cell for the stepping in use [1/s].
     double cell_rate(double h, double hu, double hv) const;
     std::vector<double>& changed_outside(std::vector<double>& v) {

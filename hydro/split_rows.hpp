@@ -44,7 +44,6 @@
 
 namespace flotsam::hydro::split {
 
-using rows::kGhost;
 using rows::Sweep;
 
 // The step's CFL rate of a cell for the split step: the larger of the two directions'.

@@ -17,8 +17,6 @@
 
 namespace flotsam::hydro::rows {
 
-inline constexpr int kGhost = 2;  // ghost cells on each side of a row and column
-
 // The row functions below are called once per row and kept out of line (noinline):
 // inlined into the stage's OpenMP region, GCC 12 stops vectorising some of them.
 
@@ -128,7 +126,7 @@ template <class Real>
 // ---- Fronts (front.hpp): the sweep's changes at tip cells ----
 // A tip cell and its neighbours along the front's direction are first order (slopes
 // zero); its back face takes the wedge's state, its face toward the dry side is shut.
-bool is_x(TipDir d) { return d == TipDir::east || d == TipDir::west; }
+inline bool is_x(TipDir d) { return d == TipDir::east || d == TipDir::west; }
 
 // Zero the x-slopes of a row's x-tips and their x-neighbours, in padded columns [c0, c1);
 // an edge cell's ghost too, so that a wall's mirror image stays a mirror image (else the
