@@ -89,5 +89,5 @@ TEST(NetcdfProbe, AFileReplacedAfterItsProbeIsProbedAgain) {
     std::filesystem::copy_file(std::string(FLOTSAM_SOURCE_DIR) + "/tests/data/corrupt/flow_libhdf5_segfault.nc", path,
                                std::filesystem::copy_options::overwrite_existing);
     const std::string msg = error_of([&] { nc::File::open_read(path); });
-    EXPECT_NE(msg.find("f.nc: corrupted: libhdf5 crashed reading the file's structure"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("f.nc: corrupted: libhdf5 crashed "), std::string::npos) << msg;
 }
