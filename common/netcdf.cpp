@@ -1,6 +1,7 @@
 #include "common/netcdf.hpp"
 
 #include <fcntl.h>
+#include <malloc.h>
 #include <hdf5.h>
 #include <poll.h>
 #include <sys/stat.h>
@@ -209,13 +210,21 @@ int check_in_child(const char* path, Report& report) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     report.stage("opening the file through libhdf5");
     const hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (file < 0) return 0;  // not HDF5 (netCDF-3, say): nothing more to walk
     ChunkWalk walk{&report, 0, ""};
-    H5Fget_filesize(file, &walk.file_size);
-    hsize_t index = 0;
-    H5Literate(file, H5_INDEX_NAME, H5_ITER_NATIVE, &index, walk_dataset, &walk);
-    report.stage("closing the file through libhdf5");
-    H5Fclose(file);
+    if (file >= 0) {  // else not HDF5 (netCDF-3, say): nothing more to walk
+        H5Fget_filesize(file, &walk.file_size);
+        hsize_t index = 0;
+        H5Literate(file, H5_INDEX_NAME, H5_ITER_NATIVE, &index, walk_dataset, &walk);
+        report.stage("closing the file through libhdf5");
+        H5Fclose(file);
+    }
+    // A damaged heap can make libhdf5 write past its own allocations without crashing
+    // yet: the process then dies later, in libhdf5's free lists or glibc's bins (at exit,
+    // "double free or corruption"). Free the lists and consolidate the heap here, where
+    // that shows as a crash of the child.
+    report.stage("freeing what it read");
+    H5garbage_collect();
+    ::malloc_trim(0);
     if (!walk.problem.empty()) {
         report.problem(walk.problem);
         return 3;
@@ -241,7 +250,8 @@ std::string last_stage(const std::string& text) {
         if (text[at] == '@') last = text.substr(at + 1, end - at - 1);
         at = end + 1;
     }
-    if (last.rfind("reading ", 0) == 0 || last.rfind("opening ", 0) == 0 || last.rfind("closing ", 0) == 0) return last;
+    for (const char* verb : {"reading ", "opening ", "closing ", "freeing "})
+        if (last.rfind(verb, 0) == 0) return last;
     return "reading " + last;
 }
 
