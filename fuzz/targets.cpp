@@ -685,6 +685,15 @@ void copy_with_dimension(const std::string& in, const std::string& out, const st
     save_or_throw(m, out);
 }
 
+void copy_with_transposed(const std::string& in, const std::string& out, const std::string& var) {
+    Model m = load_model(in);
+    Var& v = var_named(m, var);
+    if (v.dims.size() != 2) throw std::runtime_error(in + ": variable '" + var + "' is not 2-D");
+    std::swap(v.dims[0], v.dims[1]);
+    m.fit(v);
+    save_or_throw(m, out);
+}
+
 void copy_with_value(const std::string& in, const std::string& out, const std::string& var, std::size_t index, double value) {
     Model m = load_model(in);
     var_named(m, var).numbers.at(index) = value;

@@ -44,6 +44,9 @@ const std::vector<Target>& targets();
 void copy_with_short_column(const std::string& in, const std::string& out, const std::string& var, std::size_t length);
 // Dimension `dim` resized to `length`; every variable on it follows.
 void copy_with_dimension(const std::string& in, const std::string& out, const std::string& dim, std::size_t length);
+// The two dimensions of the 2-D variable `var` swapped (x(trajectory, time) as x(time,
+// trajectory)), its values kept in their order.
+void copy_with_transposed(const std::string& in, const std::string& out, const std::string& var);
 // Value `index` (flat) of variable `var` set to `value`.
 void copy_with_value(const std::string& in, const std::string& out, const std::string& var, std::size_t index, double value);
 

@@ -944,6 +944,8 @@ TEST(ReliabilityCli, FilesGivenTogetherAreCheckedAgainstEachOther) {
     fuzz::copy_with_value(o.flow, early, "arrival_time", 10, -5.0);
     const std::string nan_x = copy_of(traj, c.dir + "/nan_x.nc");
     fuzz::copy_with_value(traj, nan_x, "x", 3, std::nan(""));
+    const std::string transposed = c.dir + "/transposed.nc";  // drawn as garbage lines before
+    fuzz::copy_with_transposed(traj, transposed, "x");
     const std::string flow_index = c.dir + "/flow_index.nc", one_body = c.dir + "/one_body.nc";
     fuzz::copy_with_value(o.sweep, flow_index, "flow_index", 0, 99);
     fuzz::copy_with_dimension(o.sweep, one_body, "body", 1);
@@ -958,6 +960,7 @@ TEST(ReliabilityCli, FilesGivenTogetherAreCheckedAgainstEachOther) {
         {"export --flow " + nan_depth + gis, "nan_depth.nc: variable 'max_depth': missing (NaN or a fill value) at flat index 0"},
         {"export --flow " + early + gis, "early.nc: variable 'arrival_time': -5 at flat index 10 is outside [-1e-06, 4]"},
         {"export --trajectories " + nan_x + gis, "nan_x.nc: variable 'x': trajectory 0, time index 3: nan is not a position"},
+        {"export --trajectories " + transposed + gis, "transposed.nc: variable 'x': must have dimensions (trajectory, time)"},
         {"export --trajectories " + flow_index + gis, "flow_index.nc: trajectory 0: body, variant, flow or parameter set not in"},
         {"export --trajectories " + one_body + gis, "one_body.nc: trajectory "},
         {"export --trajectories " + traj + " --flow " + c.dir + "/other_flow.nc" + gis, "comes from another scene than"},
