@@ -693,10 +693,20 @@ std::vector<std::string> File::get_strings(int var) const {
     if (t == NC_CHAR) {
         const std::vector<std::size_t> s = shape(var);
         const std::size_t length = s.empty() ? 1 : s.back(), bytes = checked_size(*this, var, 1);
+        // As many strings as value_shape says, whatever the string length: a string
+        // dimension of length 0 holds empty strings (a table's column then has its rows).
+        if (length == 0) {
+            const std::vector<std::size_t> rows(s.begin(), s.end() - 1);
+            std::string dims;
+            for (auto k : rows) dims += (dims.empty() ? "" : " x ") + std::to_string(k);
+            check_allocation(var_label(var), dims.empty() ? "a scalar" : dims, double(product(rows)), double(sizeof(std::string)),
+                             "strings", path_);
+            return std::vector<std::string>(product(rows));
+        }
         std::string all(bytes, '\0');
         if (bytes > 0) check(nc_get_var_text(id_, var, all.data()), var_label(var));
         std::vector<std::string> out;
-        for (std::size_t k = 0; k + length <= all.size() && length > 0; k += length) {
+        for (std::size_t k = 0; k + length <= all.size(); k += length) {
             std::string one = all.substr(k, length);
             one.erase(std::find(one.begin(), one.end(), '\0'), one.end());
             out.push_back(std::move(one));

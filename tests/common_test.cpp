@@ -92,3 +92,22 @@ TEST(NetcdfProbe, AFileReplacedAfterItsProbeIsProbedAgain) {
     const std::string msg = error_of([&] { nc::File::open_read(path); });
     EXPECT_NE(msg.find("f.nc: corrupted: libhdf5 crashed "), std::string::npos) << msg;
 }
+
+// A character array whose string dimension has length 0 still holds one (empty) string per
+// row: a table's column then has as many entries as the table (the scene fuzzer found a
+// point_kind of 0 characters read as no kinds at all, and point k's kind read past the end).
+TEST(Netcdf, ACharacterArrayOfEmptyStringsHasItsRows) {
+    const auto dir = test::scratch_dir("nc_empty_strings");
+    const std::string path = dir + "/e.nc";
+    {
+        nc::File f = nc::File::create(path);
+        const int dp = f.def_dim("point", 3), ds = f.def_dim("point_kind_strlen", 0);
+        f.def_var("point_kind", NC_CHAR, {dp, ds});
+        f.enddef();
+        f.close();
+    }
+    const nc::File f = nc::File::open_read(path);
+    const std::vector<std::string> kinds = f.get_strings(f.var("point_kind"));
+    ASSERT_EQ(kinds.size(), 3u);
+    for (const auto& k : kinds) EXPECT_EQ(k, "");
+}
