@@ -30,6 +30,7 @@ def main():
     p.add_argument("--bytes", type=int, default=16384, help="corrupt within the first this many bytes")
     p.add_argument("--single", action="store_true", help="one byte a copy")
     p.add_argument("--scene", help="the scene, for --kind sweep")
+    p.add_argument("--timeout", type=float, default=180, help="seconds before a run counts as a hang")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     data = open(a.flow, "rb").read()
@@ -49,7 +50,7 @@ def main():
                "scene": [a.flotsam, "hydro", "--scene", path, "--west", "wall", "--duration", "0.2", "--quiet", "--out", out],
                "sweep": [a.flotsam, "stats", "--sweep", path, "--scene", a.scene or "", "--out", out]}[a.kind]
         try:
-            r = subprocess.run(cmd, env=env, capture_output=True, timeout=180)
+            r = subprocess.run(cmd, env=env, capture_output=True, timeout=a.timeout)
         except subprocess.TimeoutExpired:
             counts["hang"] += 1
             continue
