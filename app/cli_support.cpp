@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/toml_lite.hpp"
@@ -37,7 +38,7 @@ std::string join_command_line(int argc, char** argv, const std::vector<DroppedOp
 const std::vector<DroppedOption>& hydro_run_control_options() {
     static const std::vector<DroppedOption> options = {
         {"out", true},        {"restart", false},           {"threads", true}, {"quiet", false}, {"label", true},
-        {"stop-after", true}, {"checkpoint-interval", true}};
+        {"stop-after", true}, {"checkpoint-interval", true}, {"allow-large-run", false}};
     return options;
 }
 
@@ -48,6 +49,10 @@ CLI::Validator in_range(const Range& r) {
             char* e = nullptr;
             const double v = std::strtod(b, &e);
             if (e == b || *e != '\0') return "'" + text + "' is not a number";
+            // Decimal only: strtod also reads hexadecimal ("0x10" is 16), which nobody
+            // means in a setting.
+            if (text.find_first_of("xXpP") != std::string::npos)
+                return "'" + text + "' is not a decimal number (write 16, not 0x10)";
             return range_problem(v, r);
         },
         describe(r), "range");
@@ -72,7 +77,7 @@ void command_names(const CLI::App* app, std::set<std::string>& out) {
 }
 
 // Runs the option's own checks (in_range and the like) on one value from a settings file.
-void check_setting(CLI::Option* opt, const std::string& path, const std::string& key, const std::string& value) {
+void check_setting(CLI::Option* opt, const std::string& path, const std::string& what, const std::string& value) {
     std::vector<std::string> parts;
     const char delimiter = opt->get_delimiter();
     if (delimiter != '\0') {
@@ -98,7 +103,7 @@ void check_setting(CLI::Option* opt, const std::string& path, const std::string&
         }
         for (std::string p : parts) {
             const std::string problem = (*check)(p);
-            if (!problem.empty()) fail(path, "key '" + key + "'", problem);
+            if (!problem.empty()) fail(path, what, problem);
         }
     }
 }
@@ -188,7 +193,7 @@ std::vector<std::string> expand_config_files(CLI::App& app, int argc, char** arg
             if (values.empty() || (values.size() == 1 && values[0].empty())) continue;  // "" or []: not set
             if (values.size() > 1 && opt->get_items_expected_max() == 1)
                 toml_fail(doc, t, key, "takes one value, the file gives an array of " + std::to_string(values.size()));
-            for (const auto& value : values) check_setting(opt, path, key, value);
+            for (const auto& value : values) check_setting(opt, path, "key '" + key + "'", value);
             from_file.push_back("--" + key);
             from_file.insert(from_file.end(), values.begin(), values.end());
         }
@@ -204,6 +209,7 @@ namespace flotsam {
 
 std::string apply_scene_hydro_defaults(CLI::App* sub, const std::string& scene_path) {
     const nc::File f = nc::File::open_read(scene_path);
+    cf::require_kind(f, {"scene"}, "--scene");
     const std::string text = f.att_text(NC_GLOBAL, "flotsam_hydro_defaults").value_or("");
     std::string applied;
     std::istringstream in(text);
@@ -218,8 +224,16 @@ std::string apply_scene_hydro_defaults(CLI::App* sub, const std::string& scene_p
         if (!opt) fail(scene_path, "attribute 'flotsam_hydro_defaults'", "names an unknown hydro option '" + key + "'");
         if (opt->count() > 0) continue;  // the command line (or --config) wins
         if (one_grid && key.rfind("nest-", 0) == 0) continue;
-        opt->add_result(value);
-        opt->run_callback();
+        // The scene's value goes through the option's own checks, and a failure names the
+        // scene and its attribute, not an option the user never gave.
+        const std::string here = "attribute 'flotsam_hydro_defaults', line '" + line + "'";
+        check_setting(opt, scene_path, here, value);
+        try {
+            opt->add_result(value);
+            opt->run_callback();
+        } catch (const CLI::Error& e) {
+            fail(scene_path, here, std::string(e.what()) + " (a setting the scene recommends; give --" + key + " to override it)");
+        }
         applied += (applied.empty() ? "" : ", ") + key + " = " + value;
     }
     return applied;

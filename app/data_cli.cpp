@@ -5,6 +5,8 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "common/checks.hpp"
+#include "common/error.hpp"
 #include "common/output_lock.hpp"
 #include "data/boundary_generator.hpp"
 #include "data/dem_import.hpp"
@@ -126,7 +128,22 @@ void register_boundary_generate(CLI::App* boundary) {
         ->capture_default_str()
         ->check(in_range(Range::positive().up_to(1e4)));
     add_config_option(sub);
-    sub->callback([def, dir, scale] {
+    auto allow_large = std::make_shared<bool>(false);
+    sub->add_flag("--allow-large-run", *allow_large,
+                  "write the records even when their samples pass the bound flotsam stops at (docs/reliability.md)");
+    sub->callback([def, dir, scale, allow_large] {
+        // The records' size before anything is computed: count x (duration / dt + 1)
+        // samples (Froude scaling stretches duration and dt alike).
+        const double samples = double(def->count) * (def->duration / def->dt + 1.0);
+        const std::string span = number_text(def->count) + " records of " + number_text(def->duration) + " s every " +
+                                 number_text(def->dt) + " s";
+        check_work("--dt", span, samples, max_boundary_samples, "samples", *allow_large);
+        check_allocation("--dt", span, samples, 3.0 * sizeof(double), "samples");
+        // Levels a flume or a coast can have, after scaling: no sea is 11 km higher than still water.
+        if (!(std::fabs(def->peak * *scale) <= 11000.0))
+            fail("--peak", number_text(def->peak) + " m",
+                 "x --froude-scale " + number_text(*scale) + " is a level of " + number_text(def->peak * *scale) +
+                     " m, beyond the 11 km of any ocean's depth");
         std::vector<NamedPath> outputs;
         for (const auto& p : boundary_record_paths(*dir, def->count)) outputs.push_back({"--out-dir", p});
         const OutputGuard guard(outputs, {});

@@ -34,6 +34,7 @@ struct DebrisOptions {
     bool quiet = false;
     std::string body_type;  // catalogue entry; "": the options' values (the paper's box)
     bool list_bodies = false;
+    bool allow_large_run = false;  // run even past the bounds of check_replay_work
 };
 
 // The body options that a catalogue entry sets when the command line leaves them out.
@@ -114,11 +115,15 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
         start_names.emplace_back();
     }
 
-    const debris::WorldDef wdef = debris::scaled_to_bodies(o.world, bodies, !dt_max_default);
+    debris::WorldDef wdef = debris::scaled_to_bodies(o.world, bodies, !dt_max_default);
+    // More threads than processors only slow a run down, and thousands cannot be started.
+    wdef.threads = capped_threads(wdef.threads, "--threads", o.quiet);
     debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef, ground.get());
     const double t0 = world.time();
     const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
     if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
+    debris::check_replay_work(world.flow(), world.obstacles().grid(), wdef.step, t0, t_end, double(bodies.size()),
+                              o.allow_large_run, "--dt-max", "--vertex-step-fraction");
     check_allocation("--output-interval", number_text(o.output_interval) + " s", (t_end - t0) / o.output_interval + 2,
                      7.0 * sizeof(double) * double(bodies.size()), "trajectory samples");
 
@@ -147,8 +152,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
                      world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
     }
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
-    const cf::GridMapping crs = cf::read_crs(nc::File::open_read(o.flow), "h");
-    debris::write_trajectory_file(o.out, world, series, {command_line, o.flow, start_names, crs});
+    debris::write_trajectory_file(o.out, world, series,
+                                  {command_line, o.flow, start_names, world.flow().crs(), world.flow().scene_buildings_sha256()});
 }
 
 }  // namespace
@@ -183,6 +188,8 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_flag("!--no-read-ahead", opts->world.read_ahead,
                   "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)");
     sub->add_flag("--quiet", opts->quiet, "no progress lines");
+    sub->add_flag("--allow-large-run", opts->allow_large_run,
+                  "run even when the estimated work (steps x bodies) passes the bound flotsam stops at (docs/reliability.md)");
     sub->add_option("--body", opts->body_type,
                     "a body from the catalogue (docs/debris.md): its dimensions, mass and coefficients, unless given as "
                     "options; one of " +

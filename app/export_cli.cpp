@@ -1,10 +1,14 @@
 // `flotsam export`: hazard maps as Cloud-Optimised GeoTIFF and tracks as GIS lines, in
 // the scene's CRS, for QGIS and the other GIS tools (export/gis_export.hpp).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "common/cf.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "export/gis_export.hpp"
 
@@ -18,9 +22,50 @@ struct ExportOptions {
     std::string tracks_format = "gpkg";
 };
 
+// Files of one scene only: the same CRS, the same cell size where both say, the same
+// building mask where both record it (scene_buildings_sha256).
+void check_same_scene(const gis::SceneOf& a, const gis::SceneOf& b) {
+    cf::check_same_crs(a.path, a.crs, b.path, b.crs);
+    if (a.cell > 0 && b.cell > 0 && std::fabs(a.cell - b.cell) > 1e-6 * std::max(a.cell, b.cell))
+        fail(a.path, "",
+             "comes from a scene of " + number_text(a.cell) + " m cells, " + b.path + " from one of " + number_text(b.cell) +
+                 " m: one export combines the files of one scene (export them in two runs)");
+    if (!a.fingerprint.empty() && !b.fingerprint.empty() && a.fingerprint != b.fingerprint)
+        fail(a.path, "",
+             "comes from another scene than " + b.path + " (their scenes' grid or building mask differ: scene_buildings_sha256 " +
+                 a.fingerprint + " and " + b.fingerprint +
+                 "): one export combines the files of one scene (export them in two runs)");
+}
+
 void run_export(const ExportOptions& o) {
     if (o.stats.empty() && o.flows.empty() && o.trajectories.empty())
         fail("export", "inputs", "give at least one of --stats, --flow, --trajectories");
+    check_input_file("--stats", o.stats);
+    for (const auto& f : o.flows) check_input_file("--flow", f);
+    for (const auto& t : o.trajectories) check_input_file("--trajectories", t);
+    // Everything is read and checked, each file and the files against each other, before
+    // anything is written.
+    std::vector<gis::SceneOf> scenes;
+    Grid stats_grid, flow_grid;
+    cf::GridMapping stats_crs, flow_crs;
+    std::vector<gis::MapLayer> stats_layers, flow_layers;
+    if (!o.stats.empty()) {
+        scenes.emplace_back();
+        stats_layers = gis::stats_maps(o.stats, stats_grid, stats_crs, &scenes.back());
+    }
+    if (!o.flows.empty()) {
+        scenes.emplace_back();
+        flow_layers = gis::flow_maps(o.flows, flow_grid, flow_crs, &scenes.back());
+    }
+    auto track_path = [&](const std::string& t) {
+        const std::string stem = std::filesystem::path(t).stem().string();
+        return (std::filesystem::path(o.out_dir) / (stem + "_tracks." + o.tracks_format)).string();
+    };
+    for (const auto& t : o.trajectories) {
+        scenes.emplace_back();
+        gis::write_tracks(t, track_path(t), &scenes.back(), true);
+    }
+    for (std::size_t a = 1; a < scenes.size(); ++a) check_same_scene(scenes[a], scenes[0]);
     auto write_maps = [&](const std::vector<gis::MapLayer>& maps, const Grid& g, const cf::GridMapping& crs,
                           const std::string& from) {
         for (const auto& m : maps) {
@@ -30,21 +75,11 @@ void run_export(const ExportOptions& o) {
                         crs.empty() ? "no CRS: local metres" : crs.name().c_str());
         }
     };
-    if (!o.stats.empty()) {
-        Grid g;
-        cf::GridMapping crs;
-        const auto maps = gis::stats_maps(o.stats, g, crs);
-        write_maps(maps, g, crs, o.stats);
-    }
-    if (!o.flows.empty()) {
-        Grid g;
-        cf::GridMapping crs;
-        const auto maps = gis::flow_maps(o.flows, g, crs);
-        write_maps(maps, g, crs, o.flows.size() == 1 ? o.flows[0] : std::to_string(o.flows.size()) + " flows");
-    }
+    if (!o.stats.empty()) write_maps(stats_layers, stats_grid, stats_crs, o.stats);
+    if (!o.flows.empty())
+        write_maps(flow_layers, flow_grid, flow_crs, o.flows.size() == 1 ? o.flows[0] : std::to_string(o.flows.size()) + " flows");
     for (const auto& t : o.trajectories) {
-        const std::string stem = std::filesystem::path(t).stem().string();
-        const std::string path = (std::filesystem::path(o.out_dir) / (stem + "_tracks." + o.tracks_format)).string();
+        const std::string path = track_path(t);
         const std::size_t n = gis::write_tracks(t, path);
         std::printf("export: %s (%zu tracks)\n", path.c_str(), n);
     }

@@ -81,7 +81,10 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
         check_range("--gauge '" + g + "': x", o.run.gauges.back().x, Range::any("m"));
         check_range("--gauge '" + g + "': y", o.run.gauges.back().y, Range::any("m"));
     }
-    if (o.threads > 0) omp_set_num_threads(o.threads);
+    // More threads than processors only slow a run down, and thousands cannot be started.
+    if (const int threads = capped_threads(o.threads > 0 ? o.threads : omp_get_max_threads(), "--threads", o.run.quiet);
+        o.threads > 0 || threads != omp_get_max_threads())
+        omp_set_num_threads(threads);
     o.run.command_line = command_line;
     o.run.config_text = result_settings(sub->config_to_str(true, false));
     // SIGTERM (a batch system's notice before it kills the job, Slurm's at its time limit
@@ -179,6 +182,8 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->check(in_range(Range::count(0, 9)));
     sub->add_option("--label", r.label, "Progress label")->capture_default_str();
     sub->add_flag("--quiet", r.quiet, "No progress output");
+    sub->add_flag("--allow-large-run", r.allow_large_run,
+                  "Run even when the estimated work (cells x steps) passes the bound flotsam stops at (docs/reliability.md)");
     sub->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")
         ->capture_default_str()
         ->check(in_range(Range::count(0, 4096)));

@@ -6,8 +6,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
 
 #include "app/commands.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/version.hpp"
 
@@ -40,6 +42,12 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const flotsam::Error& e) {
         std::fprintf(stderr, "flotsam: error: %s\n", e.what());
+        exit_after_error(1);
+    } catch (const std::bad_alloc&) {
+        // The inputs and options that size a run are checked before it allocates
+        // (docs/reliability.md); what is left is the machine's memory itself.
+        std::fprintf(stderr, "flotsam: error: out of memory (%.3g GB this process may use): the inputs or options ask for more\n",
+                     flotsam::memory_limit_bytes() / 1e9);
         exit_after_error(1);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "flotsam: internal error: %s\n", e.what());

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/output_lock.hpp"
 #include "formats/scene.hpp"
@@ -20,6 +21,7 @@ struct SweepOptions {
     int threads = 0;
     bool no_read_ahead = false;
     bool quiet = false;
+    bool allow_large_run = false;
 };
 
 struct MergeOptions {
@@ -42,7 +44,8 @@ void run_sweep_command(const SweepOptions& o) {
     const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;
     def.shard = sweep::parse_shard(o.shard);
-    def.threads = o.threads;
+    def.threads = capped_threads(o.threads, "--threads", o.quiet);  // more than processors only slows a run down
+    def.allow_large_run = o.allow_large_run;
     def.read_ahead = !o.no_read_ahead;
     def.quiet = o.quiet;
     sweep::SweepRunStats st;
@@ -75,6 +78,14 @@ void run_stats_command(const StatsOptions& o, const std::string& command_line) {
     if (scene_path.empty())
         fail(o.sweep, "scene_file", "the sweep names no scene: give --scene (its sections and regions are needed)");
     const Scene scene = read_scene(scene_path);
+    // The sweep's trajectories are positions on its flows' scene: the same grid, bed and
+    // buildings (when the sweep recorded them) and the same CRS.
+    if (!r.scene_buildings_sha256.empty() && r.scene_buildings_sha256 != scene_buildings_sha256(scene))
+        fail(o.sweep, "",
+             "was run on another scene than " + scene_path + " (the grid or the building mask differ: scene_buildings_sha256 " +
+                 r.scene_buildings_sha256 + " in the sweep, " + scene_buildings_sha256(scene) + " for the scene); give the sweep's scene (" +
+                 r.scene_file + ")");
+    cf::check_same_crs(o.sweep, r.crs, scene_path, scene.crs);
     const sweep::SweepStats s = sweep::compute_stats(r, scene, o.def);
     sweep::write_stats_file(o.out, s, o.def, o.sweep, scene_path, command_line);
     if (!o.csv.empty()) sweep::write_stats_csv(o.csv, s, r);
@@ -105,6 +116,9 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
         ->check(CLI::ExistingFile);
     sweep_cmd->add_option("--flow", so->flows, "flow file (repeatable; replaces the spec's [flows])")->check(CLI::ExistingFile);
     sweep_cmd->add_flag("--quiet", so->quiet, "no progress lines");
+    sweep_cmd->add_flag("--allow-large-run", so->allow_large_run,
+                        "run even when the estimated work (steps x members) passes the bound flotsam stops at "
+                        "(docs/reliability.md)");
     sweep_cmd->require_subcommand(0, 1);
 
     auto mo = std::make_shared<MergeOptions>();
@@ -141,7 +155,7 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
         ->check(in_range(Range::non_negative("m/s")));
     stats->add_option("--yaw-bin", to->def.yaw_bin_width, "yaw histogram bin width [degree]")
         ->capture_default_str()
-        ->check(in_range(Range::positive("degree").up_to(360.0)));
+        ->check(in_range(Range::closed(0.01, 360.0, "degree")));
     stats
         ->add_option("--r-min-distance", to->def.r_min_distance,
                      "R(t) undefined where the control's mean distance is below this [m]")

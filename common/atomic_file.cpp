@@ -6,11 +6,21 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 
 namespace flotsam {
 
-AtomicOutput::AtomicOutput(std::string final_path) : final_(std::move(final_path)), temp_(final_ + ".part"), lock_(final_) {
+namespace {
+// Never rename over a device, a FIFO or a directory (checked before the lock is taken).
+std::string checked_output(std::string path) {
+    check_output_file("output", path);
+    return path;
+}
+}  // namespace
+
+AtomicOutput::AtomicOutput(std::string final_path)
+    : final_(checked_output(std::move(final_path))), temp_(final_ + ".part"), lock_(final_) {
     ensure_parent_dir(final_);
     std::error_code ec;
     temp_existed_ = std::filesystem::exists(temp_, ec) || std::filesystem::is_symlink(temp_, ec);

@@ -1,5 +1,6 @@
 #include "common/cf.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <string>
@@ -8,8 +9,14 @@
 
 namespace flotsam::cf {
 
+std::size_t longest(const std::vector<std::string>& values) {
+    std::size_t n = 0;
+    for (const auto& s : values) n = std::max(n, s.size());
+    return n;
+}
+
 int def_var(nc::File& f, const VarDef& v) {
-    const int id = f.def_var(v.name, v.type, v.dims);
+    const int id = v.type == NC_CHAR ? f.def_text_var(v.name, v.dims, v.text_length) : f.def_var(v.name, v.type, v.dims);
     if (!v.chunks.empty()) f.def_chunking(id, v.chunks);
     if (v.deflate > 0) f.def_deflate(id, v.deflate, true);
     if (!v.standard_name.empty()) f.put_att(id, "standard_name", v.standard_name);
@@ -106,6 +113,56 @@ XYAxes def_xy(nc::File& f, int x_dim, int y_dim, const std::string& what) {
 void put_conventions(nc::File& f, const std::string& feature_type) {
     f.put_att(NC_GLOBAL, "Conventions", std::string(conventions));
     if (!feature_type.empty()) f.put_att(NC_GLOBAL, "featureType", feature_type);
+}
+
+void check_same_crs(const std::string& a_path, const cf::GridMapping& a, const std::string& b_path, const cf::GridMapping& b) {
+    if (a.wkt() == b.wkt() && a.name() == b.name()) return;
+    const auto label = [](const cf::GridMapping& c) { return c.empty() ? std::string("none (local metres)") : c.name(); };
+    fail(a_path, "crs",
+         "is " + label(a) + ", that of " + b_path + " is " + label(b) +
+             ": files in different coordinate reference systems do not combine (positions would mean other places)");
+}
+
+void put_kind(nc::File& f, const std::string& kind) { f.put_att(NC_GLOBAL, kind_attribute, kind); }
+
+namespace {
+
+const char* kind_description(const std::string& kind) {
+    if (kind == "scene") return "a scene (written by `flotsam scene generate` or `scene import`)";
+    if (kind == "flow") return "a flow file (written by `flotsam hydro`)";
+    if (kind == "trajectories") return "a trajectory file (written by `flotsam debris`)";
+    if (kind == "sweep") return "a sweep file (written by `flotsam sweep`)";
+    if (kind == "stats") return "a statistics file (written by `flotsam stats`)";
+    return nullptr;
+}
+
+}  // namespace
+
+std::string kind_of(const nc::File& f) {
+    if (const auto k = f.att_text(NC_GLOBAL, kind_attribute)) {
+        if (!kind_description(*k))
+            fail(f.path(), std::string("attribute '") + kind_attribute + "'",
+                 "'" + *k + "' is not a kind of flotsam file (scene, flow, trajectories, sweep, stats)");
+        return *k;
+    }
+    // Files written before the attribute: what their variables say.
+    if (f.has_var("pass_probability") && f.has_var("group_body")) return "stats";
+    if (f.has_var("member_id") && f.has_var("flow_path")) return "sweep";
+    if (f.has_dim("trajectory") && f.has_var("trajectory_id")) return "trajectories";
+    if (f.has_dim("time") && f.has_var("h") && f.has_var("max_depth")) return "flow";
+    if (f.has_var("z") && f.has_var("x") && f.has_var("y") && !f.has_dim("time")) return "scene";
+    return "";
+}
+
+void require_kind(const nc::File& f, const std::vector<std::string>& accepted, const std::string& option) {
+    const std::string k = kind_of(f);
+    if (k.empty()) return;
+    for (const auto& a : accepted)
+        if (k == a) return;
+    std::string wanted;
+    for (std::size_t n = 0; n < accepted.size(); ++n)
+        wanted += std::string(n == 0 ? "" : n + 1 == accepted.size() ? " or " : ", ") + kind_description(accepted[n]);
+    fail(option.empty() ? f.path() : option + " " + f.path(), "", std::string("is ") + kind_description(k) + ", not " + wanted);
 }
 
 std::vector<double> filled(std::vector<double> v) {

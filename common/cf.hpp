@@ -33,7 +33,10 @@ struct VarDef {
     int deflate = 0;                  // 0 (off) .. 9, with the shuffle filter
     bool fill = false;                // missing values are stored as fill_value
     std::string grid_mapping;         // the grid-mapping variable locating x/y ("crs"); "": none
+    std::size_t text_length = 0;      // NC_CHAR: the longest string [bytes] (nc::File::def_text_var)
 };
+// The length of the longest string (for VarDef::text_length).
+std::size_t longest(const std::vector<std::string>& values);
 int def_var(nc::File& f, const VarDef& v);
 
 // A coordinate reference system as a CF grid-mapping variable: a scalar variable whose
@@ -63,6 +66,9 @@ int def_crs(nc::File& f, const GridMapping& crs);
 // variable or the attribute is absent). Errors name the file when the attribute names a
 // variable that is not there.
 GridMapping read_crs(const nc::File& f, const std::string& data_var);
+// Throws naming both files when their CRSs differ (one in local metres and one in a map
+// projection, or two projections): their x and y would mean other places.
+void check_same_crs(const std::string& a_path, const GridMapping& a, const std::string& b_path, const GridMapping& b);
 // What to put in VarDef::grid_mapping for a file with this CRS.
 inline std::string grid_mapping_of(const GridMapping& crs) { return crs.empty() ? std::string() : std::string(crs_variable); }
 
@@ -79,6 +85,21 @@ XYAxes def_xy(nc::File& f, int x_dim, int y_dim, const std::string& what);
 
 // Global Conventions, and featureType when not empty.
 void put_conventions(nc::File& f, const std::string& feature_type = "");
+
+// ---- the kind of a flotsam file ----
+//
+// Every file flotsam writes says what it is in the global attribute flotsam_file_kind:
+// "scene", "flow", "trajectories" (flotsam debris), "sweep", "stats". Readers check it
+// before anything else, so a flow given as a scene is refused by name instead of read as
+// one. Files written before the attribute existed are recognised by their variables.
+inline constexpr const char* kind_attribute = "flotsam_file_kind";
+void put_kind(nc::File& f, const std::string& kind);
+// The file's kind: the attribute, else what its variables say ("" when none fits: a file
+// from another program, read on its own terms).
+std::string kind_of(const nc::File& f);
+// Throws "<path>: is a flow file (written by `flotsam hydro`), not a scene ..." when the
+// file's kind is known and is none of `accepted` (the first one names what was wanted).
+void require_kind(const nc::File& f, const std::vector<std::string>& accepted, const std::string& option = "");
 
 // NaN becomes fill_value (NetCDF readers then mask it).
 std::vector<double> filled(std::vector<double> v);

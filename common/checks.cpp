@@ -1,5 +1,7 @@
 #include "common/checks.hpp"
 
+#include <sched.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -83,6 +85,69 @@ void check_allocation(const std::string& name, const std::string& value_text, do
     std::snprintf(buf, sizeof buf, "%s would make %.3g %s (%.3g GB), more than this machine's %.3g GB", value_text.c_str(), count,
                   what.c_str(), bytes / 1e9, limit / 1e9);
     fail(file, name, buf);
+}
+
+void check_work(const std::string& name, const std::string& estimate_text, double estimate, double bound, const std::string& what,
+                bool allowed, const std::string& file) {
+    if (allowed || (std::isfinite(estimate) && estimate <= bound)) return;
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "%s would make %.3g %s, more than the %.3g flotsam runs without being asked to; check the value, or pass "
+                  "--allow-large-run to run it anyway (docs/reliability.md)",
+                  estimate_text.c_str(), estimate, what.c_str(), bound);
+    fail(file, name, buf);
+}
+
+int capped_threads(int requested, const std::string& option, bool quiet) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    int processors = ::sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
+    if (processors <= 0) processors = int(::sysconf(_SC_NPROCESSORS_ONLN));
+    if (processors <= 0) processors = 1;
+    if (requested <= processors) return requested;
+    if (!quiet)
+        std::fprintf(stderr, "flotsam: %s %d: capped at %d, the processors this run may use\n", option.c_str(), requested,
+                     processors);
+    return processors;
+}
+
+std::string file_type_of(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return "";
+    if (S_ISREG(st.st_mode)) return "a regular file";
+    if (S_ISDIR(st.st_mode)) return "a directory";
+    if (S_ISCHR(st.st_mode)) return "a character device";
+    if (S_ISBLK(st.st_mode)) return "a block device";
+    if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
+    if (S_ISSOCK(st.st_mode)) return "a socket";
+    return "not a regular file";
+}
+
+void check_input_file(const std::string& option, const std::string& path) {
+    if (path.empty()) return;
+    const std::string type = file_type_of(path);
+    if (type.empty() || type == "a regular file") return;  // a missing file: the reader says so
+    fail(option, path,
+         "is " + type + ", not a regular file: flotsam reads its inputs from files (a device or a pipe may never end)");
+}
+
+void check_output_file(const std::string& option, const std::string& path) {
+    if (path.empty()) return;
+    for (const std::string& p : {path, path + ".part"}) {
+        const std::string type = file_type_of(p);
+        if (type.empty() || type == "a regular file") continue;
+        fail(option, p,
+             "is " + type + ", not a regular file: flotsam writes " + path + ".part and renames it over " + path +
+                 ", which would replace it; give the path of a file");
+    }
+}
+
+void check_input_size(const std::string& option, const std::string& path, double max_bytes, const std::string& what) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || double(st.st_size) <= max_bytes) return;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%.3g bytes, more than the %.3g bytes %s may have", double(st.st_size), max_bytes, what.c_str());
+    fail(option, path, buf);
 }
 
 }  // namespace flotsam

@@ -63,4 +63,46 @@ double memory_limit_bytes();
 void check_allocation(const std::string& name, const std::string& value_text, double count, double bytes_each,
                       const std::string& what, const std::string& file = "");
 
+// ---- bounded runs ----
+
+// The bounds of the work a run may ask for without --allow-large-run (docs/reliability.md,
+// "Every run is bounded"): generous for any study on one machine, far below what
+// never ends.
+inline constexpr double max_body_steps_per_body = 1e7;  // steps of one body (the paper's box: 4e4 to 3e5)
+inline constexpr double max_body_steps = 1e10;          // steps of all bodies of a run (about 15 processor hours)
+inline constexpr double max_boundary_samples = 1e8;     // samples of all records of `boundary generate`
+inline constexpr double max_cell_updates = 1e13;        // cell updates of a hydro run (a 1 cm flow: about 1e11)
+
+// Throws "<name>: <estimate_text>: <what> <estimate>, more than the <bound> flotsam runs
+// without --allow-large-run ..." when `estimate` exceeds `bound` (or is not finite) and
+// the run was not allowed to.
+void check_work(const std::string& name, const std::string& estimate_text, double estimate, double bound, const std::string& what,
+                bool allowed, const std::string& file = "");
+
+// The number of threads to start: `requested` (0: the OpenMP default) capped at the
+// processors this process may run on, with a note on stderr when capped (more threads
+// than processors only slow a run down, and thousands cannot be started).
+int capped_threads(int requested, const std::string& option, bool quiet);
+
+// ---- files ----
+
+// What a path is on disk ("a regular file", "a directory", "a character device", "a
+// FIFO", ...); "" when it does not exist. Symbolic links are followed.
+std::string file_type_of(const std::string& path);
+
+// An input must be a regular file: a device, a FIFO or a socket is a stream that may never
+// end (/dev/zero), a directory holds no data. Throws "<option>: <path>: is a FIFO, not a
+// regular file ...". Empty paths are skipped.
+void check_input_file(const std::string& option, const std::string& path);
+
+// An existing output (or its "<path>.part") must be a regular file: flotsam writes
+// "<path>.part" and renames it over <path>, which would replace a device node such as
+// /dev/null with a regular file. Throws naming the option and what the path is. A path
+// that does not exist yet is fine.
+void check_output_file(const std::string& option, const std::string& path);
+
+// An input's size [bytes] against `max_bytes` (a text file read whole): throws naming the
+// option, the file and both sizes.
+void check_input_size(const std::string& option, const std::string& path, double max_bytes, const std::string& what);
+
 }  // namespace flotsam

@@ -12,9 +12,17 @@
 
 namespace flotsam::nc {
 
-// Walks the structure of a NetCDF file in a child process and throws naming the file
-// when libhdf5 crashes or hangs on it (a corrupted file); File::open_read calls it.
+// Reads a NetCDF file in a child process the way the readers will (its structure, every
+// attribute, every string, every variable up to 16 MB and one value of the larger ones,
+// the close, and the chunk index of every variable through libhdf5) and throws naming
+// the file, and what was being read, when libhdf5 crashes or hangs on it there or a
+// stored chunk lies past the end of the file (a corrupted file). File::open_read calls
+// it; a file that passed is not probed again by the process while it is unchanged.
 void probe_structure(const std::string& path);
+// Whether probe_structure() probes: FLOTSAM_NO_PROBE=1 turns it off, and so may the
+// caller (the fuzz targets, for the files they write themselves).
+bool probe_enabled();
+void set_probe_enabled(bool on);
 
 class File {
 public:
@@ -36,6 +44,11 @@ public:
     // ---- definition mode ----
     int def_dim(const std::string& name, std::size_t length);
     int def_var(const std::string& name, nc_type type, const std::vector<int>& dims);
+    // Strings as a character array (NC_CHAR) over `dims` plus a dimension "<name>_strlen" of
+    // `length` (at least 1): strings of up to `length` bytes, padded with NUL. flotsam
+    // stores its strings so (never as NC_STRING, whose variable-length data libhdf5 keeps
+    // in a global heap: a damaged heap crashed libhdf5 when reading or closing).
+    int def_text_var(const std::string& name, const std::vector<int>& dims, std::size_t length);
     void def_chunking(int var, const std::vector<std::size_t>& chunks);
     void def_deflate(int var, int level, bool shuffle);
     void def_fill(int var, double fill);  // _FillValue of the variable's own type
@@ -52,7 +65,7 @@ public:
     void put(int var, const std::vector<float>& values);
     void put(int var, const std::vector<int>& values);
     void put(int var, const std::vector<std::int8_t>& values);
-    void put(int var, const std::vector<std::string>& values);  // NC_STRING, 1-D
+    void put(int var, const std::vector<std::string>& values);  // a character array (def_text_var), or NC_STRING
     void put_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, const float* data);
     void put_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, const double* data);
     void put_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, const std::int8_t* data);
@@ -72,7 +85,13 @@ public:
     std::vector<double> get_double(int var) const;
     std::vector<float> get_float(int var) const;
     std::vector<int> get_int(int var) const;
+    // The strings of a character array (its last dimension the string length; NUL padding
+    // removed) or of an NC_STRING variable (files written by earlier versions).
     std::vector<std::string> get_strings(int var) const;
+    // A variable's dimensions and shape as its values go: those of a character array
+    // without its string-length dimension (the last); of any other variable, all.
+    std::vector<std::string> value_dims(int var) const;
+    std::vector<std::size_t> value_shape(int var) const;
     void get_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, float* out) const;
     void get_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, double* out) const;
     std::optional<std::string> att_text(int var, const std::string& name) const;  // var = NC_GLOBAL for global

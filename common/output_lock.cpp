@@ -12,6 +12,7 @@
 #include <mutex>
 
 #include "common/atomic_file.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 
 namespace flotsam {
@@ -118,6 +119,8 @@ bool same_file(const std::string& a, const std::string& b) {
 }  // namespace
 
 OutputGuard::OutputGuard(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
+    for (const NamedPath& in : inputs) check_input_file(in.option, in.path);
+    for (const NamedPath& out : outputs) check_output_file(out.option, out.path);
     for (std::size_t k = 0; k < outputs.size(); ++k) {
         const NamedPath& out = outputs[k];
         if (out.path.empty()) continue;

@@ -36,7 +36,9 @@ struct NamedPath {
     std::string path;
 };
 
-// Refuses an output that is one of the inputs (the same file: same device and inode, so
+// Refuses an input that is not a regular file (a device, a FIFO: a stream that may never
+// end) and an existing output that is not one (a device, a FIFO, a directory), then an
+// output that is one of the inputs (the same file: same device and inode, so
 // symbolic links, hard links and relative spellings are caught), whose ".part" is an
 // input, or that is another output of the same command; then takes the lock of every
 // output. Empty paths are skipped. Errors name both options and the path.

@@ -18,9 +18,21 @@ std::vector<int> def_setting_vars(nc::File& f, const Settings<Def>& table, const
                                   const std::string& prefix = "") {
     std::vector<int> ids;
     for (const auto& s : table) {
-        const nc_type type = s.is_switch() ? NC_BYTE : s.is_choice() ? NC_STRING : s.is_whole() ? NC_INT : NC_DOUBLE;
-        ids.push_back(
-            cf::def_var(f, {.name = prefix + s.variable(), .type = type, .dims = dims, .units = s.unit, .long_name = s.help}));
+        const nc_type type = s.is_switch() ? NC_BYTE : s.is_choice() ? NC_CHAR : s.is_whole() ? NC_INT : NC_DOUBLE;
+        std::size_t length = 0;  // a choice: as long as its longest name ("a, b, c")
+        if (s.is_choice()) {
+            const std::string names = s.choice().names();
+            for (std::size_t a = 0, b; a < names.size(); a = b + 2) {
+                b = std::min(names.find(", ", a), names.size());
+                length = std::max(length, b - a);
+            }
+        }
+        ids.push_back(cf::def_var(f, {.name = prefix + s.variable(),
+                                      .type = type,
+                                      .dims = dims,
+                                      .units = s.unit,
+                                      .long_name = s.help,
+                                      .text_length = length}));
     }
     return ids;
 }
@@ -53,7 +65,7 @@ void get_setting_vars(const nc::File& f, const Settings<Def>& table, std::vector
         if (!required && !f.has_var(name)) continue;
         const int id = f.var(name);
         // One value per row, or a named error (never a read past the column's end).
-        const std::vector<std::size_t> shape = f.shape(id);
+        const std::vector<std::size_t> shape = f.value_shape(id);
         if (shape.empty() || shape[0] != defs.size())
             fail(f.path(), "variable '" + name + "'", "must have one value per row (" + std::to_string(defs.size()) + ")");
         if (s.is_choice()) {

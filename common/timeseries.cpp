@@ -1,12 +1,14 @@
 #include "common/timeseries.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "common/atomic_file.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 
 namespace flotsam {
@@ -26,6 +28,14 @@ double TimeSeries::at(double t) const {
 }
 
 namespace {
+// A header's name for the time column: "time", "time_s", "Time [s]", "t", "seconds".
+bool names_time(std::string c) {
+    for (char& ch : c) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    const auto a = c.find_first_not_of(" \t\""), b = c.find_last_not_of(" \t\"\r");
+    if (a == std::string::npos) return false;
+    c = c.substr(a, b - a + 1);
+    return c.rfind("time", 0) == 0 || c == "t" || c == "t_s" || c == "t [s]" || c == "seconds" || c == "s";
+}
 bool parse_double(const std::string& s, double& out) {
     const char* b = s.c_str();
     while (*b == ' ' || *b == '\t') ++b;
@@ -38,6 +48,8 @@ bool parse_double(const std::string& s, double& out) {
 }  // namespace
 
 TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
+    check_input_file("", path);  // /dev/zero or a FIFO would be read forever
+    check_input_size("", path, 1e9, "a time series");
     std::ifstream f(path);
     if (!f) fail(path, "", "cannot open");
     TimeSeries s;
@@ -46,8 +58,11 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
     int lineno = 0;
     bool header_allowed = true;
     std::vector<int> lines;  // file line of each sample
+    const int time_column = 0;  // time first, the value second
+    std::string header;         // for messages
     while (std::getline(f, line)) {
         ++lineno;
+        if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
         if (!line.empty() && line.back() == '\r') line.pop_back();
         const auto first = line.find_first_not_of(" \t");
         if (first == std::string::npos || line[first] == '#') continue;
@@ -57,10 +72,17 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
         while (std::getline(ss, c, ',')) cols.push_back(c);
         const std::string here = "line " + std::to_string(lineno);
         double t = 0, v = 0;
-        const bool numeric = cols.size() == 2 && parse_double(cols[0], t) && parse_double(cols[1], v);
+        const bool numeric = cols.size() == 2 && parse_double(cols[time_column], t) && parse_double(cols[1 - time_column], v);
         if (!numeric) {
             if (header_allowed && cols.size() == 2) {  // a header such as "time,eta"
                 header_allowed = false;
+                header = line;
+                // A header naming time second contradicts how the file is read: say so
+                // here, not as a time-order error further down.
+                if (!names_time(cols[0]) && names_time(cols[1]))
+                    fail(path, here + ": header '" + line + "'",
+                         "names time in column 2: flotsam reads time in column 1 and the value in column 2; write the "
+                         "columns (and the header) as time,value");
                 continue;
             }
             if (cols.size() != 2)
@@ -72,7 +94,11 @@ TimeSeries read_time_series_csv(const std::string& path, double max_gap) {
         if (!s.time.empty()) {
             if (!(t > s.time.back()))
                 fail(path, here,
-                     "time " + std::to_string(t) + " s does not increase (previous " + std::to_string(s.time.back()) + " s)");
+                     "time " + std::to_string(t) + " s does not increase (previous " + std::to_string(s.time.back()) + " s; " +
+                         (header.empty() ? std::string("no header: column 1 is read as time")
+                                         : "column " + std::to_string(time_column + 1) + " of the header '" + header +
+                                               "' is read as time") +
+                         ")");
             if (max_gap > 0.0 && t - s.time.back() > max_gap)
                 fail(path, here,
                      "gap of " + std::to_string(t - s.time.back()) + " s between samples (at most " + std::to_string(max_gap) +

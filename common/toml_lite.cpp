@@ -6,6 +6,7 @@
 #include <fstream>
 #include <utility>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 
 namespace flotsam {
@@ -103,6 +104,9 @@ const TomlValue& need(const TomlDoc& doc, const TomlTable& t, const std::string&
 }  // namespace
 
 TomlDoc read_toml_lite(const std::string& path) {
+    check_input_file("", path);  // a directory reads as empty, a FIFO may never end
+    if (file_type_of(path).empty()) fail(path, "", "no such file");
+    check_input_size("", path, 16e6, "a settings or spec file");
     std::ifstream in(path);
     if (!in) fail(path, "", "cannot open");
     TomlDoc doc;
@@ -112,6 +116,8 @@ TomlDoc read_toml_lite(const std::string& path) {
     int line = 0;
     while (std::getline(in, raw)) {
         ++line;
+        // A UTF-8 byte-order mark (some Windows editors write one) is not part of the text.
+        if (line == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0) raw.erase(0, 3);
         const std::string s = trim(strip_comment(raw));
         const std::string here = "line " + std::to_string(line);
         if (s.empty()) continue;

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 
 namespace flotsam {
@@ -39,7 +40,10 @@ double rise_slope(const BoundaryGenDef& d, double t) {
 
 void check(const BoundaryGenDef& d) {
     if (d.count < 1) fail("--count", "", "needs at least one record");
-    if (!(d.dt > 0.0) || !(d.duration > d.dt)) fail("--dt/--duration", "", "need 0 < dt < duration");
+    if (!(d.dt > 0.0)) fail("--dt", number_text(d.dt) + " s", "must be positive");
+    if (!(d.duration > d.dt))
+        fail("--duration", number_text(d.duration) + " s",
+             "is not longer than --dt (" + number_text(d.dt) + " s): a record needs at least two samples");
     if (!(d.spread >= 0.0) || !(d.peak > 0.0)) fail("--peak/--spread", "", "need peak > 0 and spread >= 0");
     if (!(d.period_min > 0.0 && d.period_max >= d.period_min) || d.modes < 1)
         fail("boundary generate", "periods", "need 0 < period_min <= period_max and modes >= 1");

@@ -114,6 +114,7 @@ double header_value(const std::map<std::string, double>& h, const std::string& p
 }  // namespace
 
 Dem read_ascii_grid(const std::string& path) {
+    check_input_file("", path);
     std::ifstream in(path);
     if (!in) fail(path, "", "cannot open");
     std::map<std::string, double> h;

@@ -11,7 +11,9 @@
 #include <omp.h>
 
 #include "common/background_task.hpp"
+#include "common/cf.hpp"
 #include "common/error.hpp"
+#include "common/units.hpp"
 #include "debris/kernels.hpp"
 #include "formats/flow_file.hpp"
 
@@ -81,13 +83,26 @@ void size_chunk_cache(const nc::File& f, int var) {
 }  // namespace
 
 FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file_(nc::File::open_read(path)), def_(def) {
+    cf::require_kind(file_, {"flow"});
     var_h_ = find_field(file_, flow_names::depth, "depth h");
     var_u_ = find_field(file_, flow_names::x_velocity, "x velocity u");
     var_v_ = find_field(file_, flow_names::y_velocity, "y velocity v");
     for (const char* name : {"time", "x", "y", "z"})
         if (!file_.has_var(name)) fail(path, "", std::string("not a flow file: no variable '") + name + "'");
+    // Other units than flotsam's (time in hours, x in km, h in cm, u in km h-1) are
+    // converted to seconds, metres and metres per second; units it cannot convert are refused.
     times_ = nc::read_finite(file_, "time");
-    grid_ = grid_from_coordinates(nc::read_finite(file_, "x"), nc::read_finite(file_, "y"), path);
+    if (const double ft = units::time_factor(file_, file_.var("time")); ft != 1.0)
+        for (double& t : times_) t *= ft;
+    std::vector<double> xs = nc::read_finite(file_, "x"), ys = nc::read_finite(file_, "y");
+    if (const double fx = units::length_factor(file_, file_.var("x")); fx != 1.0)
+        for (double& a : xs) a *= fx;
+    if (const double fy = units::length_factor(file_, file_.var("y")); fy != 1.0)
+        for (double& a : ys) a *= fy;
+    grid_ = grid_from_coordinates(xs, ys, path);
+    scale_h_ = float(units::length_factor(file_, var_h_));
+    scale_u_ = float(units::speed_factor(file_, var_u_));
+    scale_v_ = float(units::speed_factor(file_, var_v_));
     if (grid_.nx < 2 || grid_.ny < 2) fail(path, "x, y", "a flow needs at least 2 x 2 cells");
     if (times_.size() < 2)
         fail(path, "variable 'time'",
@@ -101,7 +116,14 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
     if (file_.shape(vz) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)} ||
         file_.dim_names(vz) != std::vector<std::string>{"y", "x"})
         fail(path, "variable 'z'", "must have dimensions (y, x) of the flow's grid");
-    const std::vector<double> z = nc::read_finite(file_, "z");
+    std::vector<double> z = nc::read_finite(file_, "z");
+    if (const double fz = units::length_factor(file_, vz) * units::vertical_sign(file_, vz); fz != 1.0)
+        for (double& a : z) a *= fz;
+    for (std::size_t k = 0; k < z.size(); ++k)
+        if (!(z[k] >= -11000.0 && z[k] <= 9000.0))
+            fail(path, "variable 'z'",
+                 "bed " + std::to_string(z[k]) + " m at flat index " + std::to_string(k) +
+                     " is outside [-11000, 9000] m (no bed on Earth is deeper or higher: a fill value?)");
     z_.assign(z.begin(), z.end());
     // The fields themselves must be (time, y, x) on this grid and time axis.
     for (int v : {var_h_, var_u_, var_v_})
@@ -120,6 +142,16 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def) : file
     if (def_.decode_tiles)
         decoder_ = TileDecoder::open(path, {file_.var_name(var_h_), file_.var_name(var_u_), file_.var_name(var_v_)});
     if (decoder_ && (decoder_->tile_x() != tile_x_ || decoder_->tile_y() != tile_y_)) decoder_.reset();
+}
+
+double FlowReader::largest_speed() const {
+    const auto v = file_.find_var("max_speed");
+    if (!v || file_.shape(*v) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)}) return 0.0;
+    const double factor = units::speed_factor(file_, *v);
+    double largest = 0.0;
+    for (float s : file_.get_float(*v))
+        if (std::isfinite(s) && std::fabs(s) < 1e3f) largest = std::max(largest, double(std::fabs(s)) * factor);
+    return largest;
 }
 
 double FlowReader::next_frame_time(double t) const {
@@ -173,6 +205,13 @@ void FlowReader::read_cells(Frame& f, std::size_t frame, const CellWindow& w, co
         file_.get_slab(var, start, count, f.slab.data());
         for (std::size_t j = 0; j < nj; ++j) std::copy_n(f.slab.data() + j * ni, ni, field->data() + offset + j * wnx);
     }
+    if (scale_h_ != 1.0f || scale_u_ != 1.0f || scale_v_ != 1.0f)  // the file's units to m and m/s
+        for (std::size_t j = 0; j < nj; ++j)
+            for (std::size_t k = offset + j * wnx; k < offset + j * wnx + ni; ++k) {
+                f.h[k] *= scale_h_;
+                f.qx[k] *= scale_u_;
+                f.qy[k] *= scale_v_;
+            }
     for (std::size_t j = 0; j < nj; ++j)
         for (std::size_t k = offset + j * wnx; k < offset + j * wnx + ni; ++k) {
             const float h = f.h[k], u = f.qx[k], v = f.qy[k];

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cf.hpp"
 #include "common/enum_names.hpp"
 #include "common/grid.hpp"
 #include "common/netcdf.hpp"
@@ -121,6 +122,16 @@ public:
     // SHA-256 of the scene file the flow was computed on (attribute scene_sha256; empty
     // for flows written before it existed).
     std::string scene_sha256() const { return file_.att_text(NC_GLOBAL, "scene_sha256").value_or(""); }
+
+    // The CF grid mapping of the flow's fields (empty: local metres).
+    cf::GridMapping crs() const { return cf::read_crs(file_, file_.var_name(var_h_)); }
+    // The largest speed of the flow's max_speed map [m/s] (0 when the file has none): what
+    // a run's step count is estimated from before it starts.
+    double largest_speed() const;
+    // The building mask of the flow's scene, as the hydro run recorded it (attribute
+    // scene_buildings_sha256,
+    // formats/scene.hpp; empty for flows written before it existed).
+    std::string scene_buildings_sha256() const { return file_.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""); }
 
     const FlowReaderDef& def() const { return def_; }
     // The flow's dry tolerance [m]: the file's dry_depth_m, else flow_names::fallback_dry_depth.
@@ -281,6 +292,7 @@ private:
     Grid ground_grid_{0, 0};       // set_ground's; nx = 0: the bodies stand on the flow's bed
     std::vector<float> ground_z_;  // [m] on ground_grid_
     int var_h_ = -1, var_u_ = -1, var_v_ = -1;
+    float scale_h_ = 1.0f, scale_u_ = 1.0f, scale_v_ = 1.0f;  // the file's units to m and m/s (1: as flotsam writes)
 
     int tile_x_ = 64, tile_y_ = 64;   // the file's chunk edges in x and y [cells] (64 where not chunked)
     CellWindow window_;               // the cells loaded are within it

@@ -44,6 +44,16 @@ void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
                 other_scene("the bed differs at x = " + fmt(f.x(i)) + " m, y = " + fmt(f.y(j)) + " m (" + fmt(zf) +
                             " m in the flow, " + fmt(zs) + " m in the scene)");
         }
+    cf::check_same_crs(flow.path(), flow.crs(), scene.path, scene.crs);
+    // The bed agrees on the flow's window; the building mask only the checksum that flows
+    // record tells (flows written before it: not checked).
+    if (const std::string sum = flow.scene_buildings_sha256(); !sum.empty() && sum != scene_buildings_sha256(scene))
+        fail(flow.path(), "",
+             "was not computed on scene " + scene.path +
+                 ": the bed is the same, but the building mask differs (scene_buildings_sha256 " + sum + " in the flow, " +
+                 scene_buildings_sha256(scene) +
+                 " for the scene); the bodies would meet other buildings than the flow had. Replay a flow with the scene it "
+                 "was computed on");
 }
 
 void check_body_start(const BodyDef& b, const FlowReader& flow, const Scene* scene) {

@@ -12,9 +12,11 @@ namespace flotsam::debris {
 
 // The flow's grid must be a window of the scene's (same spacing, cell centres on the
 // scene's), inside it, with the same bed elevation (buildings included) to float
-// precision. A flow whose `scene_sha256` attribute names other bytes than the scene file
-// passes if its bed matches (a scene rewritten with another history, say); the error,
-// when there is one, gives both checksums.
+// precision, and in the same CRS. A flow whose `scene_sha256` attribute names other
+// bytes than the scene file passes if its bed matches (a scene rewritten with another
+// history, say); the error, when there is one, gives both checksums. A flow that records
+// its scene's building mask (scene_buildings_sha256, formats/scene.hpp) must have this
+// scene's: the same bed with another building mask is refused.
 void check_flow_matches_scene(const FlowReader& flow, const Scene& scene);
 
 // The body's centre must lie in the flow's grid, its footprint off the scene's building

@@ -59,19 +59,29 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const std::size_t nb = world.size(), nt = series.time.size();
         const int dtraj = f.def_dim("trajectory", nb), dtime = f.def_dim("time", nt);
         const TrackVariables track_vars = define_track_variables(f, dtraj, dtime, def.crs);
-        const int vid = cf::def_var(f, {.name = "trajectory_id", .type = NC_STRING, .dims = {dtraj}});
+        // The strings, known before they are defined (character arrays are as long as the longest).
+        const std::vector<BodyParams>& bodies = world.params();
+        std::vector<std::string> starts = def.start_names;
+        starts.resize(nb);
+        const std::vector<std::string> ids = column<std::string>(bodies, [](const BodyParams& p) { return p.def.name; });
+        const std::vector<std::string> contacts =
+            column<std::string>(bodies, [](const BodyParams& p) { return std::string(enum_name(p.def.contact)); });
+        const std::vector<std::string> collisions =
+            column<std::string>(bodies, [](const BodyParams& p) { return std::string(enum_name(p.def.collision)); });
+        const int vid = f.def_text_var("trajectory_id", {dtraj}, cf::longest(ids));
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         f.put_att(vid, "long_name", std::string("body name"));
 
-        auto per_string = [&](const char* name, const char* long_name) {
-            return cf::def_var(f, {.name = name, .type = NC_STRING, .dims = {dtraj}, .long_name = long_name});
+        auto per_string = [&](const char* name, const char* long_name, const std::vector<std::string>& values) {
+            return cf::def_var(
+                f, {.name = name, .type = NC_CHAR, .dims = {dtraj}, .long_name = long_name, .text_length = cf::longest(values)});
         };
         auto per_int = [&](const char* name, const char* long_name) {
             return cf::def_var(f, {.name = name, .type = NC_INT, .dims = {dtraj}, .long_name = long_name});
         };
-        const int vstart = per_string("start_name", "scene start point of the body (empty: given by coordinates)");
-        const int vcontact = per_string("contact_model", "friction model: center (CC) or local (LC, with axis shift)");
-        const int vcoll = per_string("collision_model", "collision model: single (SC) or multi (MC)");
+        const int vstart = per_string("start_name", "scene start point of the body (empty: given by coordinates)", starts);
+        const int vcontact = per_string("contact_model", "friction model: center (CC) or local (LC, with axis shift)", contacts);
+        const int vcoll = per_string("collision_model", "collision model: single (SC) or multi (MC)", collisions);
         const std::vector<int> vcoef = def_setting_vars(f, body_coefficient_settings(), {dtraj});
         const std::vector<int> vshape = def_setting_vars(f, body_shape_settings(), {dtraj});
         const std::vector<int> vmodel = def_setting_vars(f, body_model_settings(), {dtraj});
@@ -80,23 +90,22 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
 
         cf::put_conventions(f, "trajectory");
+        cf::put_kind(f, "trajectories");
         f.put_att(NC_GLOBAL, "title", std::string("flotsam debris trajectories"));
         f.put_att(NC_GLOBAL, "source", std::string("flotsam debris: rigid box replayed through a stored shallow-water flow"));
         f.put_att(NC_GLOBAL, "flow_file", def.flow_file);
+        if (!def.scene_buildings_sha256.empty()) f.put_att(NC_GLOBAL, "scene_buildings_sha256", def.scene_buildings_sha256);
         f.put_att(NC_GLOBAL, "history", def.history);
         put_world_attributes(f, world.def());
         f.enddef();
 
         f.put(track_vars.time, series.time);
-        const std::vector<BodyParams>& bodies = world.params();
         const auto def_of = [](const BodyParams& p) -> const BodyDef& { return p.def; };
         const std::vector<BodyStats>& stats = world.stats();
-        std::vector<std::string> starts = def.start_names;
-        starts.resize(nb);
-        f.put(vid, column<std::string>(bodies, [](const BodyParams& p) { return p.def.name; }));
+        f.put(vid, ids);
         f.put(vstart, starts);
-        f.put(vcontact, column<std::string>(bodies, [](const BodyParams& p) { return enum_name(p.def.contact); }));
-        f.put(vcoll, column<std::string>(bodies, [](const BodyParams& p) { return enum_name(p.def.collision); }));
+        f.put(vcontact, contacts);
+        f.put(vcoll, collisions);
         put_setting_vars(f, vcoef, body_coefficient_settings(), bodies, def_of);
         put_setting_vars(f, vshape, body_shape_settings(), bodies, def_of);
         put_setting_vars(f, vmodel, body_model_settings(), bodies, def_of);

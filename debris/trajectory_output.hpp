@@ -23,6 +23,7 @@ struct TrajectoryFileDef {
     std::string flow_file;                 // the replayed flow
     std::vector<std::string> start_names;  // per body: the scene point, or "" for --at
     cf::GridMapping crs;                   // the flow's CRS; empty: local metres
+    std::string scene_buildings_sha256;         // the flow's scene (formats/scene.hpp); empty: not recorded
 };
 
 // The step and flow replay settings as global attributes (dt_max_s, vertex_step_fraction,

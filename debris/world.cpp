@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <optional>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "debris/scene_match.hpp"
 
@@ -45,6 +48,29 @@ WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool
     if (!dt_max_given) def.step.dt_max = d.step.dt_max * std::sqrt(s);
     def.flow.accel_depth = d.flow.accel_depth * s;  // the dry tolerance is the flow file's, set by the hydro run
     return def;
+}
+
+double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDef& step, double t0, double t_end, double bodies,
+                       bool allowed, const std::string& dt_name, const std::string& fraction_name, const std::string& file) {
+    const double speed = flow.largest_speed();
+    const double reach = step.vertex_step_fraction * std::min(cells.dx, cells.dy);
+    const double dt_vertex = speed > 0.0 ? reach / speed : std::numeric_limits<double>::infinity();
+    const bool vertex_binds = dt_vertex < step.dt_max;
+    const double dt = std::min(step.dt_max, dt_vertex);
+    const double per_body = (t_end - t0) / dt;
+    char text[400];
+    if (vertex_binds)
+        std::snprintf(text, sizeof text, "%s (steps of %.3g s at the largest speed of %s, %.3g m/s) over %s to %s s",
+                      number_text(step.vertex_step_fraction).c_str(), dt, flow.path().c_str(), speed, number_text(t0).c_str(),
+                      number_text(t_end).c_str());
+    else
+        std::snprintf(text, sizeof text, "%s s over %s to %s s of %s", number_text(step.dt_max).c_str(), number_text(t0).c_str(),
+                      number_text(t_end).c_str(), flow.path().c_str());
+    const std::string name = vertex_binds ? fraction_name : dt_name;
+    check_work(name, text, per_body, max_body_steps_per_body, "steps of each body", allowed, file);
+    check_work(name, std::string(text) + " for " + number_text(bodies) + " bodies", per_body * bodies, max_body_steps,
+               "body steps", allowed, file);
+    return per_body;
 }
 
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid) {
@@ -142,7 +168,10 @@ World make_world(const std::string& flow_path, const Scene* scene, const std::ve
             check_flow_matches_scene(probe, *scene);
             building = buildings_on_grid(*scene, probe.grid());
         }
-        if (ground) fine = ground_from_scene(*ground, probe);
+        if (ground) {
+            cf::check_same_crs(ground->path, ground->crs, flow_path, probe.crs());
+            fine = ground_from_scene(*ground, probe);
+        }
         for (const BodyDef& b : bodies) {
             check_body_start(b, probe, scene);
             if (ground) check_body_start(b, probe, ground);

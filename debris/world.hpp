@@ -48,6 +48,17 @@ const Settings<FlowReaderDef>& flow_replay_settings();  // time-interpolation
 // scaled (tests/froude_test.cpp). Used by `flotsam debris` and by sweeps.
 WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool dt_max_given);
 
+// The work of a replay, estimated before it starts (docs/reliability.md, "Every run is
+// bounded"): each body steps from t0 to t_end at the smaller of dt-max and the
+// vertex-step limit at the flow's largest stored speed (vertex-step-fraction x the
+// smaller cell of `cells` / speed). Refused when one body would take more than
+// max_body_steps_per_body steps or all `bodies` together more than max_body_steps,
+// unless `allowed`; the error names the binding option (`dt_name` or `fraction_name`,
+// as the command spells them), the span and the flow, and `file` (a spec) when given.
+// Returns the estimated steps of one body.
+double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDef& step, double t0, double t_end, double bodies,
+                       bool allowed, const std::string& dt_name, const std::string& fraction_name, const std::string& file = "");
+
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);
 

@@ -7,9 +7,12 @@
 #include <limits>
 
 #include "common/atomic_file.hpp"
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
+#include "common/units.hpp"
 #include "data/gdal_support.hpp"
+#include "sweep/sweep_file.hpp"
 
 namespace flotsam::gis {
 
@@ -25,6 +28,18 @@ float as_map_value(double v, std::optional<double> fill) {
 
 Grid grid_of(const nc::File& f) { return grid_from_coordinates(nc::read_finite(f, "x"), nc::read_finite(f, "y"), f.path()); }
 
+// The factor from a variable's units to flotsam's (m, s, m s-1; "1" for fractions), or a
+// named error for units it cannot convert.
+double si_factor(const nc::File& f, int v) {
+    const auto u = f.att_text(v, "units");
+    if (!u || u->empty() || *u == "1") return 1.0;
+    if (const auto l = units::length_to_metres(*u)) return *l;
+    if (const auto t = units::time_to_seconds(*u)) return *t;
+    if (const auto s = units::speed_to_metres_per_second(*u)) return *s;
+    fail(f.path(), "variable '" + f.var_name(v) + "' attribute 'units'",
+         "'" + *u + "' is no length, time or speed flotsam can convert (m, cm, ft, km; s, min, h; m s-1, km h-1, ...)");
+}
+
 // The slab `index` of a variable over (..., y, x), as map values.
 std::vector<float> read_map(const nc::File& f, const std::string& name, const Grid& g, std::size_t index = 0) {
     const int v = f.var(name);
@@ -39,8 +54,9 @@ std::vector<float> read_map(const nc::File& f, const std::string& name, const Gr
     std::vector<double> raw(g.size());
     f.get_slab(v, start, count, raw.data());
     const auto fill = f.att_double(v, "_FillValue");
+    const double factor = si_factor(f, v);
     std::vector<float> out(raw.size());
-    for (std::size_t k = 0; k < raw.size(); ++k) out[k] = as_map_value(raw[k], fill);
+    for (std::size_t k = 0; k < raw.size(); ++k) out[k] = as_map_value(raw[k], fill) * float(factor);
     return out;
 }
 
@@ -121,12 +137,37 @@ void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& cr
     out.commit();
 }
 
-std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs) {
+namespace {
+
+// Every value of a map within [lo, hi] where it has one (NaN: no value), and at least one
+// value: a map of nothing, or of negative depths, is no map.
+void check_map(const std::string& path, const MapLayer& m, double lo, double hi, const std::string& what) {
+    std::size_t valued = 0;
+    for (std::size_t k = 0; k < m.values.size(); ++k) {
+        const float v = m.values[k];
+        if (std::isnan(v)) continue;
+        ++valued;
+        if (!(v >= lo && v <= hi))
+            fail(path, "variable '" + m.name + "'",
+                 number_text(v) + " at flat index " + std::to_string(k) + " is outside [" + number_text(lo) + ", " +
+                     number_text(hi) + "] (" + what + ")");
+    }
+    if (valued == 0) fail(path, "variable '" + m.name + "'", "holds no value in any cell (all missing): nothing to map");
+}
+
+}  // namespace
+
+std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs, SceneOf* scene) {
     const nc::File f = nc::File::open_read(stats_path);
+    cf::require_kind(f, {"stats"}, "--stats");
     for (const char* v : {"pass_probability", "max_debris_speed", "group_body", "group_variant"})
         if (!f.has_var(v)) fail(stats_path, std::string("variable '") + v + "'", "missing: not a file written by `flotsam stats`");
     grid = grid_of(f);
     crs = cf::read_crs(f, "pass_probability");
+    if (scene) {
+        const double coarsen = f.att_double(NC_GLOBAL, "map_coarsen").value_or(1.0);
+        *scene = SceneOf{stats_path, grid.dx / std::max(coarsen, 1.0), f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""), crs};
+    }
     const auto bodies = f.get_strings(f.var("group_body")), variants = f.get_strings(f.var("group_variant"));
     std::vector<MapLayer> maps;
     for (std::size_t k = 0; k < bodies.size(); ++k) {
@@ -141,38 +182,85 @@ std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::
                     read_map(f, "pass_probability_all", grid)});
     maps.push_back({"max_debris_speed_all", "largest body speed in the cell over all trajectories [m/s]", "m s-1",
                     read_map(f, "max_debris_speed_all", grid)});
+    for (const MapLayer& m : maps) {
+        if (m.name.rfind("pass_probability", 0) == 0)
+            check_map(stats_path, m, 0.0, 1.0, "a fraction of trajectories");
+        else if (std::any_of(m.values.begin(), m.values.end(), [](float v) { return !std::isnan(v); }))
+            check_map(stats_path, m, 0.0, 1000.0, "a speed in m/s");  // no trajectory passes a cell: all missing is fine
+    }
     return maps;
 }
 
-std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs) {
+std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs, SceneOf* scene) {
     if (flow_paths.empty()) fail("--flow", "", "no flow files");
     std::vector<MapLayer> maps = {{"max_depth", "largest water depth over the run", "m", {}},
                                   {"max_speed", "largest depth-averaged speed over the run", "m s-1", {}},
                                   {"arrival_time", "time when the depth first exceeds the arrival depth", "s", {}}};
+    std::vector<float> bed;
+    std::string fingerprint;
     for (std::size_t k = 0; k < flow_paths.size(); ++k) {
         const nc::File f = nc::File::open_read(flow_paths[k]);
+        cf::require_kind(f, {"flow"}, "--flow");
+        for (const char* v : {"max_depth", "max_speed", "arrival_time", "time", "z"})
+            if (!f.has_var(v)) fail(flow_paths[k], std::string("variable '") + v + "'", "missing: not a flow written by `flotsam hydro`");
         const Grid g = grid_of(f);
+        const cf::GridMapping this_crs = cf::read_crs(f, "h");
+        const std::vector<float> z = read_map(f, "z", g);
+        const std::string this_fingerprint = f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or("");
         if (k == 0) {
             grid = g;
-            crs = cf::read_crs(f, "h");
+            crs = this_crs;
+            bed = z;
+            fingerprint = this_fingerprint;
             if (const auto depth = f.att_double(f.var("arrival_time"), "arrival_depth"))
                 maps[2].long_name += " (" + std::to_string(*depth) + " m)";
-        } else if (g.nx != grid.nx || g.ny != grid.ny || g.x0 != grid.x0 || g.y0 != grid.y0 || g.dx != grid.dx) {
-            fail(flow_paths[k], "x, y",
-                 "a different grid from " + flow_paths[0] + " (an ensemble's flows share one output window)");
+        } else {
+            // An envelope is over flows of one scene, on one window.
+            if (g.nx != grid.nx || g.ny != grid.ny || g.x0 != grid.x0 || g.y0 != grid.y0 || g.dx != grid.dx)
+                fail(flow_paths[k], "x, y",
+                     "a different grid from " + flow_paths[0] + " (an ensemble's flows share one output window)");
+            cf::check_same_crs(flow_paths[k], this_crs, flow_paths[0], crs);
+            for (std::size_t c = 0; c < z.size(); ++c)
+                if (!(z[c] == bed[c] || (std::isnan(z[c]) && std::isnan(bed[c]))))
+                    fail(flow_paths[k], "variable 'z'",
+                         "the bed differs from that of " + flow_paths[0] + " at flat index " + std::to_string(c) + " (" +
+                             number_text(z[c]) + " and " + number_text(bed[c]) +
+                             " m): the flows come from different scenes, and an envelope is over one scene's flows");
+            if (!fingerprint.empty() && !this_fingerprint.empty() && this_fingerprint != fingerprint)
+                fail(flow_paths[k], "",
+                     "was computed on another scene than " + flow_paths[0] +
+                         " (their scenes' building masks differ: scene_buildings_sha256 " + this_fingerprint + " and " + fingerprint +
+                         "); an envelope is over one scene's flows");
         }
-        const std::vector<float> depth = read_map(f, "max_depth", g), speed = read_map(f, "max_speed", g),
-                                 arrival = read_map(f, "arrival_time", g);
+        const std::vector<double> time = nc::read_finite(f, "time");
+        MapLayer depth{"max_depth", "", "m", read_map(f, "max_depth", g)}, speed{"max_speed", "", "m s-1", read_map(f, "max_speed", g)},
+            arrival{"arrival_time", "", "s", read_map(f, "arrival_time", g)};
+        // The maps a flow stores: never missing depth or speed, arrival within the run.
+        for (const MapLayer* m : {&depth, &speed})
+            for (std::size_t c = 0; c < m->values.size(); ++c)
+                if (std::isnan(m->values[c]))
+                    fail(flow_paths[k], "variable '" + m->name + "'",
+                         "missing (NaN or a fill value) at flat index " + std::to_string(c) +
+                             ": a flow stores a value in every cell (0 where always dry)");
+        check_map(flow_paths[k], depth, 0.0, 11000.0, "a water depth in m");
+        check_map(flow_paths[k], speed, 0.0, 1000.0, "a speed in m/s");
+        if (std::any_of(arrival.values.begin(), arrival.values.end(), [](float v) { return !std::isnan(v); }))
+            check_map(flow_paths[k], arrival, time.front() - 1e-6, time.back() + 1e-6,
+                      "an arrival time within the run's " + number_text(time.front()) + " to " + number_text(time.back()) + " s");
+        if (scene && k == 0) *scene = SceneOf{flow_paths[0], g.dx, fingerprint, crs};
+        const std::vector<float>& depth_values = depth.values;
+        const std::vector<float>& speed_values = speed.values;
+        const std::vector<float>& arrival_values = arrival.values;
         if (k == 0) {
-            maps[0].values = depth;
-            maps[1].values = speed;
-            maps[2].values = arrival;
+            maps[0].values = depth_values;
+            maps[1].values = speed_values;
+            maps[2].values = arrival_values;
             continue;
         }
-        for (std::size_t c = 0; c < depth.size(); ++c) {
-            maps[0].values[c] = std::fmax(maps[0].values[c], depth[c]);
-            maps[1].values[c] = std::fmax(maps[1].values[c], speed[c]);
-            maps[2].values[c] = std::fmin(maps[2].values[c], arrival[c]);
+        for (std::size_t c = 0; c < depth_values.size(); ++c) {
+            maps[0].values[c] = std::fmax(maps[0].values[c], depth_values[c]);
+            maps[1].values[c] = std::fmax(maps[1].values[c], speed_values[c]);
+            maps[2].values[c] = std::fmin(maps[2].values[c], arrival_values[c]);
         }
     }
     if (flow_paths.size() > 1)
@@ -182,12 +270,19 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
     return maps;
 }
 
-std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path) {
+std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path, SceneOf* scene, bool check_only) {
     gdal::init();
+    check_output_file("--out-dir", out_path);
     const nc::File f = nc::File::open_read(trajectory_path);
+    cf::require_kind(f, {"trajectories", "sweep"}, "--trajectories");
     for (const char* v : {"x", "y", "time", "trajectory_id"})
         if (!f.has_var(v))
             fail(trajectory_path, std::string("variable '") + v + "'", "missing: not a flotsam trajectory or sweep file");
+    // A sweep file goes through its reader, which checks its tables against each other
+    // (member ids, flow indices, the body and variant tables, finite tracks, status flags).
+    if (cf::kind_of(f) == "sweep") (void)sweep::read_sweep_file(trajectory_path);
+    if (f.value_dims(f.var("trajectory_id")) != std::vector<std::string>{"trajectory"})
+        fail(trajectory_path, "variable 'trajectory_id'", "must be one-dimensional on dimension 'trajectory'");
     const std::string ext = std::filesystem::path(out_path).extension().string();
     const char* driver_name = ext == ".gpkg"                          ? "GPKG"
                               : (ext == ".geojson" || ext == ".json") ? "GeoJSON"
@@ -195,11 +290,33 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
                                                                       : nullptr;
     if (!driver_name) fail(out_path, "extension", "'" + ext + "': use .gpkg (GeoPackage), .geojson or .shp");
     const std::size_t ntraj = f.dim_length("trajectory"), nt = f.dim_length("time");
-    const std::vector<double> time = f.get_double(f.var("time"));
-    const std::vector<double> x = f.get_double(f.var("x")), y = f.get_double(f.var("y"));
+    // Every track variable on (trajectory, time), every per-trajectory one on trajectory:
+    // a transposed or short table is a named error, never lines drawn through wrong values.
+    auto track_var = [&](const char* name) {
+        const int id = f.var(name);
+        if (f.dim_names(id) != std::vector<std::string>{"trajectory", "time"} || f.shape(id) != std::vector<std::size_t>{ntraj, nt})
+            fail(trajectory_path, std::string("variable '") + name + "'",
+                 "must have dimensions (trajectory, time) = (" + std::to_string(ntraj) + ", " + std::to_string(nt) + ")");
+        return id;
+    };
+    const std::vector<double> time = nc::read_finite(f, "time");
+    if (f.dim_names(f.var("time")) != std::vector<std::string>{"time"})
+        fail(trajectory_path, "variable 'time'", "must be one-dimensional on dimension 'time'");
+    for (std::size_t k = 1; k < time.size(); ++k)
+        if (!(time[k] > time[k - 1])) fail(trajectory_path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
+    const std::vector<double> x = f.get_double(track_var("x")), y = f.get_double(track_var("y"));
     const bool has_speed = f.has_var("u") && f.has_var("v");
-    const std::vector<double> u = has_speed ? f.get_double(f.var("u")) : std::vector<double>{},
-                              v = has_speed ? f.get_double(f.var("v")) : std::vector<double>{};
+    const std::vector<double> u = has_speed ? f.get_double(track_var("u")) : std::vector<double>{},
+                              v = has_speed ? f.get_double(track_var("v")) : std::vector<double>{};
+    // Positions are numbers: flotsam writes every sample of every track.
+    for (const auto* series : {&x, &y, &u, &v})
+        for (std::size_t k = 0; k < series->size(); ++k)
+            if (!std::isfinite((*series)[k]) || std::fabs((*series)[k]) >= 1e12)
+                fail(trajectory_path,
+                     std::string("variable '") + (series == &x ? "x" : series == &y ? "y" : series == &u ? "u" : "v") + "'",
+                     "trajectory " + std::to_string(k / std::max<std::size_t>(nt, 1)) + ", time index " +
+                         std::to_string(k % std::max<std::size_t>(nt, 1)) + ": " + number_text((*series)[k]) +
+                         " is not a position or speed (NaN, infinite or a fill value)");
     const cf::GridMapping crs = cf::read_crs(f, "yaw");
 
     // The per-trajectory variables, in the file's order, become attributes.
@@ -213,10 +330,13 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
     int nvars = 0;
     nc_inq_nvars(f.id(), &nvars);
     for (int id = 0; id < nvars; ++id) {
-        const auto dims = f.dim_names(id);
-        if (dims.size() != 1 || dims[0] != "trajectory") continue;
+        const auto dims = f.value_dims(id);  // a string column's: without its string length
+        if (dims.empty() || dims[0] != "trajectory" || (dims.size() == 2 && dims[1] == "time")) continue;
+        if (dims.size() != 1 || f.value_shape(id)[0] != ntraj)
+            fail(trajectory_path, "variable '" + f.var_name(id) + "'", "must be one-dimensional on dimension 'trajectory'");
         nc_type type{};
         nc_inq_vartype(f.id(), id, &type);
+        if (type == NC_CHAR) type = NC_STRING;  // strings either way: a character array, or NC_STRING in older files
         Column c{f.var_name(id), type, {}, {}};
         if (type == NC_STRING)
             c.text = f.get_strings(id);
@@ -224,6 +344,8 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
             c.number = f.get_double(id);
         columns.push_back(std::move(c));
     }
+    if (scene) *scene = SceneOf{trajectory_path, 0.0, f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""), crs};
+    if (check_only) return ntraj;
 
     ensure_parent_dir(out_path);
     const std::string temp = partial_name(out_path);

@@ -26,21 +26,43 @@ struct MapLayer {
 void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& crs, const MapLayer& layer,
                const std::string& source);
 
+// The scene an exported file was computed on, as far as the file says: its cell size
+// (0: not known) and its scene_buildings_sha256 (formats/scene.hpp; "" for files written
+// before it).
+// `flotsam export` refuses to combine files of different scenes.
+struct SceneOf {
+    std::string path;
+    double cell = 0.0;
+    std::string fingerprint;
+    cf::GridMapping crs;
+};
+
 // The maps of a statistics file (flotsam stats): pass probability and largest debris
-// speed per group (body and model variant) and over all trajectories.
-std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs);
+// speed per group (body and model variant) and over all trajectories. Probabilities
+// outside [0, 1], negative speeds and maps without a value are named errors.
+std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs, SceneOf* scene = nullptr);
 
 // The maps of one or more flow files of one scene: maximum depth, maximum speed, arrival
 // time. Several flows (an ensemble) give their envelope: the largest depth and speed and
-// the earliest arrival of any flow, each cell on its own.
-std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs);
+// the earliest arrival of any flow, each cell on its own. The flows must share the grid,
+// the bed, the CRS and (where recorded) the building mask; a missing depth or speed,
+// a negative one, or an arrival outside the run is a named error. Units other than m, s
+// and m s-1 are converted (or refused by name).
+std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs,
+                                SceneOf* scene = nullptr);
 
 // Writes the tracks of a trajectory or sweep file as one line per trajectory (its
 // samples in time order, fill values left out) with the per-trajectory variables as
 // attributes, plus start and end time, path length and largest speed. The format
 // follows the extension: .gpkg (GeoPackage), .geojson/.json (GeoJSON), .shp
 // (shapefile). Returns the number of lines. Atomic as above.
-std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path);
+// The file is checked first: its kind, its track variables on (trajectory, time), its
+// per-trajectory variables on trajectory, finite positions, increasing times; a sweep file
+// goes through sweep::read_sweep_file.
+// With `check_only`, it stops after the checks (nothing written) and returns the number of
+// trajectories.
+std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path, SceneOf* scene = nullptr,
+                         bool check_only = false);
 
 // File name part for a group label: letters, digits, '-', '_' kept, '+' becomes '-'.
 std::string file_safe(const std::string& label);

@@ -101,7 +101,9 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
     int gn = -1, gx = -1, gy = -1;
     if (gauges) {
         const int dg = f.def_dim("gauge", ngauge_), dgt = f.def_dim("gauge_time", def.gauge_samples);
-        gn = f.def_var("gauge_name", NC_STRING, {dg});
+        std::vector<std::string> names;
+        for (const auto& gauge : def.gauges) names.push_back(gauge.name);
+        gn = f.def_text_var("gauge_name", {dg}, cf::longest(names));
         f.put_att(gn, "cf_role", std::string("timeseries_id"));
         gx = cf::def_var(f, {.name = "gauge_x", .dims = {dg}, .units = "m"});
         gy = cf::def_var(f, {.name = "gauge_y", .dims = {dg}, .units = "m"});
@@ -123,6 +125,7 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
         gv_ = gauge_var("gauge_v", "", "m s-1", "y velocity at the gauge");
     }
     cf::put_conventions(f);
+    cf::put_kind(f, "flow");
     for (const auto& [k, val] : def.attributes) f.put_att(NC_GLOBAL, k, val);
     f.enddef();
 

@@ -1,9 +1,14 @@
 #include "formats/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "common/atomic_file.hpp"
 #include "common/cf.hpp"
+#include "common/checks.hpp"
+#include "common/sha256.hpp"
+#include "common/units.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/version.hpp"
@@ -29,7 +34,7 @@ const ScenePoint* Scene::find_point(const std::string& name) const {
 
 namespace {
 
-std::vector<double> read_field(const nc::File& f, const std::string& name, const Grid& g) {
+std::vector<double> read_field(const nc::File& f, const std::string& name, const Grid& g, double factor = 1.0) {
     const int v = f.var(name);
     const auto shape = f.shape(v);
     if (shape.size() != 2 || shape[0] != std::size_t(g.ny) || shape[1] != std::size_t(g.nx))
@@ -43,15 +48,30 @@ std::vector<double> read_field(const nc::File& f, const std::string& name, const
     const auto dims = f.dim_names(v);
     if (dims[0] != f.dim_names(f.var("y"))[0] || dims[1] != f.dim_names(f.var("x"))[0])
         fail(f.path(), "variable '" + name + "'", "dimensions must be (y, x), found (" + dims[0] + ", " + dims[1] + ")");
-    return nc::read_finite(f, name);
+    std::vector<double> values = nc::read_finite(f, name);
+    if (factor != 1.0)
+        for (double& a : values) a *= factor;
+    return values;
+}
+
+// Every value of a field within [lo, hi] (physical bounds), or a named error with the cell.
+void check_bounds(const std::string& path, const std::string& name, const std::vector<double>& v, const Grid& g, double lo,
+                  double hi, const std::string& unit, const std::string& why) {
+    for (std::size_t k = 0; k < v.size(); ++k)
+        if (!(v[k] >= lo && v[k] <= hi)) {
+            const int i = int(k % std::size_t(g.nx)), j = int(k / std::size_t(g.nx));
+            fail(path, "variable '" + name + "'",
+                 number_text(v[k]) + " " + unit + " at cell (i " + std::to_string(i) + ", j " + std::to_string(j) +
+                     ") is outside [" + number_text(lo) + ", " + number_text(hi) + "] " + unit + " (" + why + ")");
+        }
 }
 
 // A feature table column: one-dimensional, on dimension `dim` of length n. Checked before
 // it is read, so a short column is a named error, never a read past its end.
 void check_column(const nc::File& f, const std::string& var, const std::string& dim, std::size_t n) {
     const int v = f.var(var);
-    const auto dims = f.dim_names(v);
-    const auto shape = f.shape(v);
+    const auto dims = f.value_dims(v);  // a string column's: without its string length
+    const auto shape = f.value_shape(v);
     if (dims.size() == 1 && dims[0] == dim && shape[0] == n) return;
     // (Appended piecewise: GCC 12 warns -Wrestrict on one long a + b + c chain.)
     std::string found;
@@ -73,8 +93,20 @@ void check_column(const nc::File& f, const std::string& var, const std::string& 
 
 std::vector<std::string> read_names(const nc::File& f, const std::string& var) {
     const int v = f.var(var);
-    if (f.shape(v).size() != 1) fail(f.path(), "variable '" + var + "'", "must be one-dimensional");
+    if (f.value_shape(v).size() != 1) fail(f.path(), "variable '" + var + "'", "must be one-dimensional");
     return f.get_strings(v);
+}
+
+// The names of a table: none empty, none twice (runs and statistics refer to them by name).
+void check_names(const std::string& path, const std::string& var, const std::vector<std::string>& names) {
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        if (names[k].empty()) fail(path, "variable '" + var + "'", "entry " + std::to_string(k) + " is an empty name");
+        for (std::size_t q = 0; q < k; ++q)
+            if (names[q] == names[k])
+                fail(path, "variable '" + var + "'",
+                     "'" + names[k] + "' is the name of entries " + std::to_string(q) + " and " + std::to_string(k) +
+                         " (names must differ)");
+    }
 }
 
 // The columns of table `table` ("point", "section", "region"), all checked against the
@@ -82,7 +114,7 @@ std::vector<std::string> read_names(const nc::File& f, const std::string& var) {
 std::vector<std::string> read_table_names(const nc::File& f, const std::string& table, const std::vector<std::string>& columns) {
     const std::string name_var = table + "_name";
     const int v = f.var(name_var);
-    const auto dims = f.dim_names(v);
+    const auto dims = f.value_dims(v);
     if (dims.size() != 1) fail(f.path(), "variable '" + name_var + "'", "must be one-dimensional");
     const std::vector<std::string> names = f.get_strings(v);
     for (const auto& c : columns) check_column(f, c, dims[0], names.size());
@@ -93,14 +125,27 @@ std::vector<std::string> read_table_names(const nc::File& f, const std::string& 
 
 Scene read_scene(const std::string& path) {
     const nc::File f = nc::File::open_read(path);
+    cf::require_kind(f, {"scene"});
     Scene s;
     s.path = path;
-    const std::vector<double> x = nc::read_finite(f, "x");
-    const std::vector<double> y = nc::read_finite(f, "y");
     if (f.shape(f.var("x")).size() != 1) fail(path, "variable 'x'", "must be one-dimensional");
     if (f.shape(f.var("y")).size() != 1) fail(path, "variable 'y'", "must be one-dimensional");
+    // Coordinates in any length unit (km, ft) become metres.
+    std::vector<double> x = nc::read_finite(f, "x");
+    std::vector<double> y = nc::read_finite(f, "y");
+    const double fx = units::length_factor(f, f.var("x")), fy = units::length_factor(f, f.var("y"));
+    for (double& a : x) a *= fx;
+    for (double& a : y) a *= fy;
+    for (const auto* c : {&x, &y})
+        for (double a : *c)
+            if (!(std::fabs(a) <= 1e8))
+                fail(path, c == &x ? "variable 'x'" : "variable 'y'",
+                     number_text(a) + " m is no coordinate of a map (beyond 1e8 m; a fill value?)");
     s.grid = grid_from_coordinates(x, y, path);
-    s.z = read_field(f, "z", s.grid);
+    // The bed in metres, positive up, on Earth: from the deepest trench to the highest peak.
+    const int vz = f.var("z");
+    s.z = read_field(f, "z", s.grid, units::length_factor(f, vz) * units::vertical_sign(f, vz));
+    check_bounds(path, "z", s.z, s.grid, -11000.0, 9000.0, "m", "no bed on Earth is deeper or higher: a fill value?");
     if (f.has_var("manning_n")) {
         s.manning_n = read_field(f, "manning_n", s.grid);
         for (std::size_t k = 0; k < s.manning_n.size(); ++k)
@@ -120,24 +165,44 @@ Scene read_scene(const std::string& path) {
         }
     }
     const bool has_eta0 = f.has_var("eta0"), has_u0 = f.has_var("u0"), has_v0 = f.has_var("v0");
-    if (has_eta0) s.eta0 = read_field(f, "eta0", s.grid);
+    if (has_eta0) {
+        const int v = f.var("eta0");
+        s.eta0 = read_field(f, "eta0", s.grid, units::length_factor(f, v) * units::vertical_sign(f, v));
+        check_bounds(path, "eta0", s.eta0, s.grid, -11000.0, 9000.0, "m", "a water level on Earth: a fill value?");
+    }
     if (has_u0 != has_v0) fail(path, has_u0 ? "variable 'u0'" : "variable 'v0'", "u0 and v0 must be given together");
     if (has_u0) {
-        s.u0 = read_field(f, "u0", s.grid);
-        s.v0 = read_field(f, "v0", s.grid);
+        s.u0 = read_field(f, "u0", s.grid, units::speed_factor(f, f.var("u0")));
+        s.v0 = read_field(f, "v0", s.grid, units::speed_factor(f, f.var("v0")));
+        check_bounds(path, "u0", s.u0, s.grid, -1000.0, 1000.0, "m/s", "no water flows faster: a fill value?");
+        check_bounds(path, "v0", s.v0, s.grid, -1000.0, 1000.0, "m/s", "no water flows faster: a fill value?");
     }
+    if (!s.building.empty() && std::find(s.building.begin(), s.building.end(), 0) == s.building.end())
+        fail(path, "variable 'building'", "every cell is a building: a scene needs open ground or water");
 
     if (f.has_var("point_name")) {
         const auto names = read_table_names(f, "point", {"point_kind", "point_x", "point_y", "point_heading"});
         const auto kinds = read_names(f, "point_kind");
         const auto px = nc::read_finite(f, "point_x"), py = nc::read_finite(f, "point_y"), ph = nc::read_finite(f, "point_heading");
-        for (std::size_t k = 0; k < names.size(); ++k) s.points.push_back({names[k], kinds[k], px[k], py[k], ph[k]});
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            const std::string here = "point " + std::to_string(k) + " ('" + names[k] + "')";
+            if (kinds[k] != "gauge" && kinds[k] != "start")
+                fail(path, "variable 'point_kind'", here + ": kind '" + kinds[k] + "' is neither 'gauge' nor 'start'");
+            s.points.push_back({names[k], kinds[k], px[k] * fx, py[k] * fy, ph[k]});
+        }
+        check_names(path, "point_name", names);
     }
     if (f.has_var("section_name")) {
         const auto names = read_table_names(f, "section", {"section_x", "section_y_min", "section_y_max"});
         const auto sx = nc::read_finite(f, "section_x"), s0 = nc::read_finite(f, "section_y_min"),
                    s1 = nc::read_finite(f, "section_y_max");
-        for (std::size_t k = 0; k < names.size(); ++k) s.sections.push_back({names[k], sx[k], s0[k], s1[k]});
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            if (!(s0[k] < s1[k]))
+                fail(path, "section '" + names[k] + "'",
+                     "section_y_min " + number_text(s0[k]) + " m is not below section_y_max " + number_text(s1[k]) + " m");
+            s.sections.push_back({names[k], sx[k] * fx, s0[k] * fy, s1[k] * fy});
+        }
+        check_names(path, "section_name", names);
     }
     if (f.has_var("region_name")) {
         const auto names = read_table_names(f, "region", {"region_vertex_start", "region_vertex_count"});
@@ -150,9 +215,10 @@ Scene read_scene(const std::string& path) {
             Region r{names[k], {}};
             if (start[k] < 0 || count[k] < 3 || std::size_t(start[k]) + std::size_t(count[k]) > vx.size())
                 fail(path, "variable 'region_vertex_start'", "region '" + names[k] + "' has an invalid vertex range");
-            for (int v = start[k]; v < start[k] + count[k]; ++v) r.polygon.push_back({vx[v], vy[v]});
+            for (int v = start[k]; v < start[k] + count[k]; ++v) r.polygon.push_back({vx[v] * fx, vy[v] * fy});
             s.regions.push_back(std::move(r));
         }
+        check_names(path, "region_name", names);
     }
     s.title = f.att_text(NC_GLOBAL, "title").value_or("");
     s.source = f.att_text(NC_GLOBAL, "source").value_or("");
@@ -161,6 +227,16 @@ Scene read_scene(const std::string& path) {
     s.crs = cf::read_crs(f, "z");
     s.hydro_defaults = f.att_text(NC_GLOBAL, "flotsam_hydro_defaults").value_or("");
     return s;
+}
+
+std::string scene_buildings_sha256(const Scene& s) {
+    std::string bytes = "grid " + std::to_string(s.grid.nx) + " x " + std::to_string(s.grid.ny) + "\nbuilding ";
+    // Whole numbers only: the same scene in other units (x in km, z in ft) gives the same.
+    if (s.building.empty())
+        bytes += "none";
+    else
+        for (std::int8_t b : s.building) bytes += b ? '1' : '0';
+    return sha256_hex(bytes);
 }
 
 void write_scene(const std::string& path, const Scene& s, const std::string& history) {
@@ -202,11 +278,17 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         int pn = -1, pk = -1, px = -1, py = -1, ph = -1;
         if (!s.points.empty()) {
             const int d = f.def_dim("point", s.points.size());
-            pn = f.def_var("point_name", NC_STRING, {d});
+            std::vector<std::string> names, kinds;
+            for (const auto& p : s.points) {
+                names.push_back(p.name);
+                kinds.push_back(p.kind);
+            }
+            pn = f.def_text_var("point_name", {d}, cf::longest(names));
             pk = cf::def_var(f, {.name = "point_kind",
-                                 .type = NC_STRING,
+                                 .type = NC_CHAR,
                                  .dims = {d},
-                                 .long_name = "gauge: record a time series; start: a debris start"});
+                                 .long_name = "gauge: record a time series; start: a debris start",
+                                 .text_length = cf::longest(kinds)});
             px = cf::def_var(f, {.name = "point_x", .dims = {d}, .units = "m"});
             py = cf::def_var(f, {.name = "point_y", .dims = {d}, .units = "m"});
             ph = cf::def_var(f, {.name = "point_heading",
@@ -217,7 +299,9 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
         int sn = -1, sx = -1, s0 = -1, s1 = -1;
         if (!s.sections.empty()) {
             const int d = f.def_dim("section", s.sections.size());
-            sn = f.def_var("section_name", NC_STRING, {d});
+            std::vector<std::string> names;
+            for (const auto& c : s.sections) names.push_back(c.name);
+            sn = f.def_text_var("section_name", {d}, cf::longest(names));
             sx = cf::def_var(f, {.name = "section_x", .dims = {d}, .units = "m"});
             s0 = cf::def_var(f, {.name = "section_y_min", .dims = {d}, .units = "m"});
             s1 = cf::def_var(f, {.name = "section_y_max", .dims = {d}, .units = "m"});
@@ -236,13 +320,16 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
             }
             const int d = f.def_dim("region", s.regions.size());
             const int dv = f.def_dim("region_vertex", vxs.size());
-            rn = f.def_var("region_name", NC_STRING, {d});
+            std::vector<std::string> names;
+            for (const auto& r : s.regions) names.push_back(r.name);
+            rn = f.def_text_var("region_name", {d}, cf::longest(names));
             rs = f.def_var("region_vertex_start", NC_INT, {d});
             rc = f.def_var("region_vertex_count", NC_INT, {d});
             rx = cf::def_var(f, {.name = "region_vertex_x", .dims = {dv}, .units = "m"});
             ry = cf::def_var(f, {.name = "region_vertex_y", .dims = {dv}, .units = "m"});
         }
         cf::put_conventions(f);
+        cf::put_kind(f, "scene");
         f.put_att(NC_GLOBAL, "title", s.title);
         f.put_att(NC_GLOBAL, "source", s.source.empty() ? version_string() : s.source);
         f.put_att(NC_GLOBAL, "history", history);

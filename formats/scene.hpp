@@ -67,10 +67,21 @@ struct Scene {
     const ScenePoint* find_point(const std::string& name) const;
 };
 
-// Reads and validates a scene. Errors name the file and variable: missing x/y/z,
-// non-uniform or non-monotonic coordinates, NaN or fill values, shapes that do not
-// match (y, x), non-positive Manning n, a building mask with values other than 0/1.
+// Reads and validates a scene. Errors name the file and variable: a file of another kind
+// (a flow), missing x/y/z, non-uniform or non-monotonic coordinates, NaN or fill values,
+// a bed outside [-11000, 9000] m, shapes that do not match (y, x), non-positive Manning n,
+// a building mask with values other than 0/1 or with no open cell, a point kind other
+// than gauge or start, empty or repeated names, a section with y_min >= y_max. Lengths
+// in other units (km, ft: the units attribute) are converted to metres, a z with
+// positive = "down" is negated; units flotsam cannot convert are refused by name.
 Scene read_scene(const std::string& path);
+
+// The SHA-256 of the scene's grid size and building mask (not of its file: a scene written
+// again elsewhere, with another `history`, or in other units, gives the same). Flows,
+// sweeps, trajectories and statistics record it as `scene_buildings_sha256`, and the
+// commands that combine them compare it: the bed and the grid are compared value by value
+// where the files hold them, the buildings only through this.
+std::string scene_buildings_sha256(const Scene& scene);
 
 // Writes a scene atomically (CF-1.11 NetCDF-4).
 void write_scene(const std::string& path, const Scene& scene, const std::string& history);

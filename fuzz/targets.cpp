@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -17,6 +18,7 @@
 
 #include "app/commands.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
 #include "common/timeseries.hpp"
 #include "data/dem_import.hpp"
 #include "data/resample.hpp"
@@ -112,7 +114,8 @@ struct Var {
     nc_type type = NC_DOUBLE;
     std::vector<int> dims;  // indices into Model::dims
     std::vector<double> numbers;
-    std::vector<std::string> texts;  // NC_STRING
+    std::vector<std::string> texts;  // NC_STRING, or NC_CHAR (its last dimension the string length)
+    bool is_text() const { return type == NC_STRING || type == NC_CHAR; }
     std::vector<Att> atts;
 };
 struct Model {
@@ -124,9 +127,19 @@ struct Model {
         for (int d : v.dims) n *= dims[std::size_t(d)].second;
         return n;
     }
+    // The strings of a character array: all its dimensions but the last.
+    std::size_t strings_of(const Var& v) const {
+        if (v.type != NC_CHAR) return size_of(v);
+        std::size_t n = 1;
+        for (std::size_t k = 0; k + 1 < v.dims.size(); ++k) n *= dims[std::size_t(v.dims[k])].second;
+        return v.dims.empty() ? 1 : n;
+    }
+    std::size_t text_length(const Var& v) const {
+        return v.type == NC_CHAR && !v.dims.empty() ? dims[std::size_t(v.dims.back())].second : 0;
+    }
     void fit(Var& v) const {
-        const std::size_t n = size_of(v);
-        if (v.type == NC_STRING)
+        const std::size_t n = strings_of(v);
+        if (v.is_text())
             v.texts.resize(n);
         else
             v.numbers.resize(n, v.numbers.empty() ? 0.0 : v.numbers.back());
@@ -185,6 +198,16 @@ Model load_model(const std::string& path) {
             nc_get_var_string(id, v, p.data());
             for (auto* s : p) var.texts.emplace_back(s ? s : "");
             nc_free_string(n, p.data());
+        } else if (var.type == NC_CHAR) {
+            std::string all(n, '\0');
+            if (n) nc_get_var_text(id, v, all.data());
+            const std::size_t length = m.text_length(var);
+            for (std::size_t k = 0; length && k + length <= all.size(); k += length) {
+                std::string one = all.substr(k, length);
+                one.erase(std::find(one.begin(), one.end(), '\0'), one.end());
+                var.texts.push_back(one);
+            }
+            if (!length) var.texts.push_back(all);
         } else {
             var.numbers.resize(n);
             nc_get_var_double(id, v, var.numbers.data());
@@ -200,7 +223,7 @@ Model load_model(const std::string& path) {
 void put_atts(int id, int var, const Var* v, const std::vector<Att>& atts) {
     for (const Att& a : atts) {
         if (a.name == "_FillValue") {
-            if (v && !a.numbers.empty() && v->type != NC_STRING) {
+            if (v && !a.numbers.empty() && !v->is_text()) {
                 const double f = a.numbers[0];
                 nc_put_att_double(id, var, "_FillValue", v->type, 1, &f);
             }
@@ -243,6 +266,12 @@ bool save_model(const Model& m, const std::string& path) {
             std::vector<const char*> p;
             for (const auto& s : v.texts) p.push_back(s.c_str());
             nc_put_var_string(id, varids[k], p.data());
+        } else if (v.type == NC_CHAR) {
+            const std::size_t length = m.text_length(v);
+            std::string all(m.size_of(v), '\0');
+            for (std::size_t q = 0; q < v.texts.size() && length; ++q)
+                std::copy_n(v.texts[q].begin(), std::min(v.texts[q].size(), length), all.begin() + std::ptrdiff_t(q * length));
+            nc_put_var_text(id, varids[k], all.data());
         } else {
             nc_put_var_double(id, varids[k], v.numbers.data());  // out-of-range values stay fill
         }
@@ -276,7 +305,7 @@ void edit(Model& m, Bytes& in) {
             }
             case 2:
             case 3: {  // one value
-                if (v.type == NC_STRING) {
+                if (v.is_text()) {
                     if (!v.texts.empty()) v.texts[in.u32() % v.texts.size()] = in.text();
                 } else if (!v.numbers.empty()) {
                     v.numbers[in.u32() % v.numbers.size()] = in.value();
@@ -284,7 +313,7 @@ void edit(Model& m, Bytes& in) {
                 break;
             }
             case 4: {  // every value
-                if (v.type == NC_STRING) {
+                if (v.is_text()) {
                     const std::string s = in.text();
                     std::fill(v.texts.begin(), v.texts.end(), s);
                 } else {
@@ -294,6 +323,7 @@ void edit(Model& m, Bytes& in) {
             }
             case 5:  // transpose a 2-D variable (z(x, y) for z(y, x))
                 if (v.dims.size() == 2) std::swap(v.dims[0], v.dims[1]);
+                m.fit(v);
                 break;
             case 6:  // drop the variable
                 m.vars.erase(m.vars.begin() + (&v - m.vars.data()));
@@ -314,13 +344,13 @@ void edit(Model& m, Bytes& in) {
                 break;
             }
             case 8: {  // a fill value that some data equal
-                if (v.type == NC_STRING || v.numbers.empty()) break;
+                if (v.is_text() || v.numbers.empty()) break;
                 v.atts.push_back({"_FillValue", v.type, "", {v.numbers[in.u32() % v.numbers.size()]}});
                 break;
             }
             case 9: {  // a variable's type: float, int or byte
                 const nc_type types[] = {NC_FLOAT, NC_INT, NC_BYTE, NC_DOUBLE};
-                if (v.type != NC_STRING) v.type = types[in.byte() % 4];
+                if (!v.is_text()) v.type = types[in.byte() % 4];
                 break;
             }
         }
@@ -445,6 +475,54 @@ void expect_named_error(const std::function<void()>& f) {
     } catch (const Error&) {}
 }
 
+// The base file `from` with bytes changed, written to `name`: the input (after its first
+// byte, which chose this mode) is a list of (offset: 2 bytes, value: 1 byte), offsets
+// taken modulo the file's size (the small base files fit in 64 kB: their structure, heaps
+// and chunk index all within reach). Corrupted structure is what makes libhdf5 itself
+// crash or hang; the readers must then give a named error (nc::probe_structure).
+std::string mutated(const std::string& from, const std::string& name, const std::uint8_t* data, std::size_t size) {
+    static std::map<std::string, std::string> bytes_of;
+    auto it = bytes_of.find(from);
+    if (it == bytes_of.end()) {
+        std::ifstream in(from, std::ios::binary);
+        it = bytes_of.emplace(from, std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>())).first;
+    }
+    std::string b = it->second;
+    for (std::size_t k = 0; k + 3 <= size && !b.empty(); k += 3) {
+        const std::size_t offset = (std::size_t(data[k]) << 8 | data[k + 1]) % b.size();
+        b[offset] = char(data[k + 2]);
+    }
+    const std::string path = work_dir() + "/" + name;
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(b.data(), std::streamsize(b.size()));
+    return path;
+}
+
+// A NetCDF target's file: structure edits of the base file (first byte below 0xF0), or
+// byte mutations of it (0xF0 and above). Edited files are structurally valid (written by
+// NetCDF), so the libhdf5 probe, a fork per file, is left to FLOTSAM_NO_PROBE; a mutated
+// file is read with the probe on, as a user's would be.
+struct TargetFile {
+    std::string path;
+    bool probe;
+};
+TargetFile target_file(const std::string& from, const std::string& name, const std::uint8_t* data, std::size_t size) {
+    if (size > 0 && data[0] >= 0xF0) return {mutated(from, name, data + 1, size - 1), true};
+    return {edited(from, name, data, size), false};
+}
+
+// Runs f with the probe on or as the environment says, and restores it.
+void with_probe(bool on, const std::function<void()>& f) {
+    const bool before = nc::probe_enabled();
+    if (on) nc::set_probe_enabled(true);
+    try {
+        f();
+    } catch (...) {
+        nc::set_probe_enabled(before);
+        throw;
+    }
+    nc::set_probe_enabled(before);
+}
+
 }  // namespace
 
 const std::string& work_dir() {
@@ -520,19 +598,27 @@ void settings(const std::uint8_t* data, std::size_t size) {
 }
 
 void scene(const std::uint8_t* data, std::size_t size) {
-    const std::string path = edited(base().scene, "edited_scene.nc", data, size);
+    const TargetFile file = target_file(base().scene, "edited_scene.nc", data, size);
+    const std::string& path = file.path;
     if (path.empty()) return;
-    expect_named_error([&] {
-        const Scene s = read_scene(path);
-        for (const auto& r : s.regions) (void)r.contains(0.5, 0.5);
-        (void)s.find_point("FD");
-        (void)debris::buildings_on_grid(s, base().scene_data.grid);
+    with_probe(file.probe, [&] {
+        expect_named_error([&] {
+            const Scene s = read_scene(path);
+            for (const auto& r : s.regions) (void)r.contains(0.5, 0.5);
+            (void)s.find_point("FD");
+            (void)debris::buildings_on_grid(s, base().scene_data.grid);
+        });
     });
 }
 
 void flow(const std::uint8_t* data, std::size_t size) {
-    const std::string path = edited(base().flow, "edited_flow.nc", data, size);
+    const TargetFile file = target_file(base().flow, "edited_flow.nc", data, size);
+    const std::string& path = file.path;
     if (path.empty()) return;
+    with_probe(file.probe, [&] { flow_replay(path); });
+}
+
+void flow_replay(const std::string& path) {
     expect_named_error([&] {
         debris::World world(path, {});
         debris::BodyDef b = debris::default_body_def();
@@ -548,13 +634,24 @@ void flow(const std::uint8_t* data, std::size_t size) {
 }
 
 void sweep(const std::uint8_t* data, std::size_t size) {
-    const std::string path = edited(base().sweep, "edited_sweep.nc", data, size);
+    const TargetFile file = target_file(base().sweep, "edited_sweep.nc", data, size);
+    const std::string& path = file.path;
     if (path.empty()) return;
-    expect_named_error([&] {
-        const sweep::SweepResult r = sweep::read_sweep_file(path);
-        (void)sweep::compute_stats(r, base().scene_data);
-        sweep::write_summary_csv(work_dir() + "/summary.csv", r);
+    with_probe(file.probe, [&] {
+        expect_named_error([&] {
+            const sweep::SweepResult r = sweep::read_sweep_file(path);
+            (void)sweep::compute_stats(r, base().scene_data);
+            sweep::write_summary_csv(work_dir() + "/summary.csv", r);
+        });
     });
+}
+
+const std::string& base_file(const std::string& which) {
+    static const std::string none;
+    if (which == "scene") return base().scene;
+    if (which == "flow") return base().flow;
+    if (which == "sweep") return base().sweep;
+    return none;
 }
 
 namespace {
@@ -572,7 +669,10 @@ void copy_with_short_column(const std::string& in, const std::string& out, const
     Model m = load_model(in);
     Var& v = var_named(m, var);
     m.dims.emplace_back(var + "_short", length);
-    v.dims.assign(1, int(m.dims.size() - 1));
+    if (v.type == NC_CHAR && !v.dims.empty())
+        v.dims = {int(m.dims.size() - 1), v.dims.back()};  // strings keep their length
+    else
+        v.dims.assign(1, int(m.dims.size() - 1));
     m.fit(v);
     save_or_throw(m, out);
 }
@@ -582,6 +682,15 @@ void copy_with_dimension(const std::string& in, const std::string& out, const st
     for (auto& d : m.dims)
         if (d.first == dim) d.second = length;
     for (Var& v : m.vars) m.fit(v);
+    save_or_throw(m, out);
+}
+
+void copy_with_transposed(const std::string& in, const std::string& out, const std::string& var) {
+    Model m = load_model(in);
+    Var& v = var_named(m, var);
+    if (v.dims.size() != 2) throw std::runtime_error(in + ": variable '" + var + "' is not 2-D");
+    std::swap(v.dims[0], v.dims[1]);
+    m.fit(v);
     save_or_throw(m, out);
 }
 

@@ -4,12 +4,15 @@
 // expected answer to bad input. Anything else — a crash, a sanitizer report, another
 // exception escaping, a hang, unbounded memory — is a defect.
 //
-// The NetCDF targets (scene, flow, sweep) are structure-aware: the bytes are a list of
-// edits (resize a dimension, move a variable onto a dimension of another length, set a
-// value to NaN, infinity, a fill value or an absurd number, transpose, drop a variable
-// or attribute, ...) applied to a small valid file, so the readers see files that HDF5
-// parses but whose contents are wrong. Random bytes would mostly exercise libhdf5's own
-// parser (docs/reliability.md says what that does with corrupted files).
+// The NetCDF targets (scene, flow, sweep) take two kinds of input, chosen by the first
+// byte. Below 0xF0, structure-aware edits (resize a dimension, move a variable onto a
+// dimension of another length, set a value to NaN, infinity, a fill value or an absurd
+// number, transpose, drop a variable or attribute, ...) applied to a small valid file, so
+// the readers see files that HDF5 parses but whose contents are wrong. From 0xF0, byte
+// mutations of the same file ((offset, value) pairs), read with the libhdf5 probe on:
+// corrupted structure, where libhdf5 itself crashes or hangs (docs/reliability.md), must
+// give a named error too. Either way the file is closed (the close path is where a
+// damaged metadata cache crashed).
 //
 // Built two ways: as libFuzzer executables (fuzz/fuzz_main.cpp, `make -f
 // Makefile.pipeline fuzz`) and into tests/fuzz_regression_test.cpp, which replays every
@@ -41,8 +44,18 @@ const std::vector<Target>& targets();
 void copy_with_short_column(const std::string& in, const std::string& out, const std::string& var, std::size_t length);
 // Dimension `dim` resized to `length`; every variable on it follows.
 void copy_with_dimension(const std::string& in, const std::string& out, const std::string& dim, std::size_t length);
+// The two dimensions of the 2-D variable `var` swapped (x(trajectory, time) as x(time,
+// trajectory)), its values kept in their order.
+void copy_with_transposed(const std::string& in, const std::string& out, const std::string& var);
 // Value `index` (flat) of variable `var` set to `value`.
 void copy_with_value(const std::string& in, const std::string& out, const std::string& var, std::size_t index, double value);
+
+// The small valid files the NetCDF targets start from ("scene", "flow", "sweep"), written
+// into work_dir() on first use.
+const std::string& base_file(const std::string& which);
+
+// The flow target's reading: a replay of one body for 1.5 s (a named error is fine).
+void flow_replay(const std::string& path);
 
 // The working directory of the targets (created once per process): base files live
 // there, and specs may name them relatively (scene.nc, flow.nc).

@@ -64,6 +64,9 @@ std::vector<double> frame_times(double duration, double interval) {
     const long n = long(std::floor(duration / interval + 1e-9));
     for (long k = 0; k <= n; ++k) t.push_back(double(k) * interval);
     if (t.back() < duration - 1e-9) t.push_back(duration);
+    if (t.size() < 2)
+        fail("", "--duration",
+             number_text(duration) + " s stores one frame (t = 0) only: a flow needs at least two; give a longer --duration");
     return t;
 }
 
@@ -427,6 +430,7 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDe
     fd.attributes["flotsam_config"] = run.config_text;
     fd.attributes["scene_file"] = run.scene_file;
     fd.attributes["scene_sha256"] = sha256_file(run.scene_file);  // debris replays check it (debris/scene_match.hpp)
+    fd.attributes["scene_buildings_sha256"] = scene_buildings_sha256(scene);  // debris checks the building mask
     fd.attributes["scene_title"] = scene.title;
     fd.attributes["realisation"] = std::to_string(run.realisation);
     fd.attributes["boundary_file"] = boundary_files(def);
@@ -619,6 +623,33 @@ static_assert(RunnableSolver<Solver> && RunnableSolver<NestedSolver> && Runnable
 
 void request_stop(int signal) { stop_signal = signal; }
 
+namespace {
+
+// The run's work, estimated before it starts (docs/reliability.md, "Every run is
+// bounded"): every cell of the scene's grid updated at a step of cfl x cell / (2 (|u| +
+// c)), with c = sqrt(g h) over the deepest still water plus the highest boundary level
+// and |u| = c, or --max-dt when smaller. An estimate from above (nesting and dry land
+// make real runs cheaper); refused past max_cell_updates unless --allow-large-run.
+void check_hydro_work(const RunDef& run, const PhysicsDef& physics, const Scene& scene, double highest_level) {
+    double deepest = 0.0;
+    for (double z : scene.z) deepest = std::max(deepest, -z);
+    // No water is deeper than the oceans (a deeper state stops the run: state_checks).
+    const double depth = std::clamp(deepest + highest_level, 0.01, 11000.0);
+    const double cfl = run.scheme == Scheme::leapfrog ? run.leapfrog.courant : run.finite_volume.cfl;
+    const double cell = std::min(scene.grid.dx, scene.grid.dy);
+    const double dt_cfl = cfl * cell / (4.0 * std::sqrt(9.81 * depth));
+    const bool max_dt_binds = physics.max_dt < dt_cfl;
+    const double dt = std::min(dt_cfl, physics.max_dt);
+    const double cells = double(scene.grid.nx) * double(scene.grid.ny);
+    const double updates = cells * run.duration / dt;
+    char text[320];
+    std::snprintf(text, sizeof text, "%s s of %s over %s cells of %s m (steps of about %.2g s)", number_text(run.duration).c_str(),
+                  run.scene_file.c_str(), number_text(cells).c_str(), number_text(cell).c_str(), dt);
+    check_work(max_dt_binds ? "--max-dt" : "--duration", text, updates, max_cell_updates, "cell updates", run.allow_large_run);
+}
+
+}  // namespace
+
 RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     if (run.out_file.empty()) fail("", "--out", "an output file is required");
     const OutputLock lock(run.out_file);  // one writer per output: a second run stops here
@@ -626,9 +657,14 @@ RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     const Scene scene = read_scene(run.scene_file);
     // Boundary series must cover the whole run (or its start, where the side hands over
     // to a transmissive one when the series ends) before any work starts.
+    double highest_level = 0.0;  // [m] of any boundary series
     for (const BoundaryDef* b : {&physics.west, &physics.east, &physics.south, &physics.north})
-        if (!b->series_file.empty())
-            require_coverage(read_time_series_csv(b->series_file), 0.0, b->series_end == SeriesEnd::error ? run.duration : 0.0);
+        if (!b->series_file.empty()) {
+            const TimeSeries series = read_time_series_csv(b->series_file);
+            require_coverage(series, 0.0, b->series_end == SeriesEnd::error ? run.duration : 0.0);
+            for (double v : series.value) highest_level = std::max(highest_level, std::fabs(v));
+        }
+    check_hydro_work(run, physics, scene, highest_level);
     if (run.scheme == Scheme::leapfrog) {
         if (run.nest.nested()) {
             std::string ratios;

@@ -69,6 +69,7 @@ struct RunDef {
     std::string config_text;                        // effective configuration (TOML), for `flotsam_config`
     std::string label = "hydro";                    // progress label
     bool quiet = false;
+    bool allow_large_run = false;  // run even when the estimated work passes max_cell_updates (common/checks.hpp)
 };
 
 struct RunResult {

@@ -15,6 +15,7 @@ struct SweepRunDef {
     int threads = 0;         // OpenMP threads over members; 0: the OpenMP default
     bool read_ahead = true;  // one more thread reads the next frame meanwhile (debris::WorldDef::read_ahead)
     bool quiet = false;      // no progress lines
+    bool allow_large_run = false;  // run even past the bounds of debris::check_replay_work
 };
 
 // What the run cost, for reports and the benchmark.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <set>
 
 #include "common/atomic_file.hpp"
 #include "common/cf.hpp"
@@ -42,12 +43,12 @@ std::string summary_path_for(const std::string& nc_path) {
     return p.string();
 }
 
-ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim) {
-    auto var = [&](const std::string& name, nc_type type, const char* long_name) {
-        return cf::def_var(f, {.name = name, .type = type, .dims = {dim}, .long_name = long_name});
+ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim, const std::vector<ParameterSet>& sets) {
+    auto var = [&](const std::string& name, nc_type type, const char* long_name, std::size_t length = 0) {
+        return cf::def_var(f, {.name = name, .type = type, .dims = {dim}, .long_name = long_name, .text_length = length});
     };
     ParameterSetVariables vars{};
-    vars.label = var("param_set_label", NC_STRING, "parameter set label");
+    vars.label = var("param_set_label", NC_CHAR, "parameter set label", cf::longest(column<std::string>(sets, &ParameterSet::label)));
     vars.is_control = var("param_set_is_control", NC_BYTE, "1: the control set that R(t) compares against");
     vars.value = def_setting_vars(f, design_parameters(), {dim}, "param_set_");
     return vars;
@@ -74,20 +75,40 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         auto var = [&](const char* name, nc_type type, std::vector<int> dims, const char* units, const char* long_name) {
             return cf::def_var(f, {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name});
         };
-        const int vid = var("trajectory_id", NC_STRING, {dtraj}, "", "body/variant/parameter set/flow/perturbation");
+        // The string columns, known before they are defined (a character array is as long
+        // as its longest string).
+        const auto& ms = r.members;
+        std::vector<std::string> ids;
+        for (const auto& m : ms) ids.push_back(trajectory_label(r, m));
+        const std::vector<std::string> flows =
+            column<std::string>(ms, [&](const MemberRecord& m) { return r.flows[std::size_t(m.flow)]; });
+        const std::vector<std::string> bodies = column<std::string>(ms, &MemberRecord::body_name),
+                                       starts = column<std::string>(ms, &MemberRecord::start_name),
+                                       variants = column<std::string>(ms, &MemberRecord::variant_name);
+        const std::vector<std::string> contacts =
+            column<std::string>(ms, [](const MemberRecord& m) { return std::string(enum_name(m.def.contact)); });
+        const std::vector<std::string> collisions =
+            column<std::string>(ms, [](const MemberRecord& m) { return std::string(enum_name(m.def.collision)); });
+        const std::vector<std::string> labels =
+            column<std::string>(ms, [&](const MemberRecord& m) { return r.params[std::size_t(m.param_set)].label; });
+        auto text = [&](const char* name, int dim, const std::vector<std::string>& values, const char* long_name) {
+            return cf::def_var(
+                f, {.name = name, .type = NC_CHAR, .dims = {dim}, .long_name = long_name, .text_length = cf::longest(values)});
+        };
+        const int vid = text("trajectory_id", dtraj, ids, "body/variant/parameter set/flow/perturbation");
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         const int vmember = var("member_id", NC_INT, {dtraj}, "", "position in the sweep's full member list");
         const int vflowi = var("flow_index", NC_INT, {dtraj}, "", "index of the flow (dimension flow)");
-        const int vflow = var("flow", NC_STRING, {dtraj}, "", "flow file replayed");
-        const int vbody = var("body", NC_STRING, {dtraj}, "", "body name");
-        const int vstart = var("start_name", NC_STRING, {dtraj}, "", "scene start point (empty: given by coordinates)");
+        const int vflow = text("flow", dtraj, flows, "flow file replayed");
+        const int vbody = text("body", dtraj, bodies, "body name");
+        const int vstart = text("start_name", dtraj, starts, "scene start point (empty: given by coordinates)");
         const int vpert =
             var("perturbation", NC_INT, {dtraj}, "", "start perturbation: 0 exact start, k > 0 the k-th perturbed start");
-        const int vvariant = var("variant", NC_STRING, {dtraj}, "", "model variant: friction + collision (CC+SC, LC+MC)");
-        const int vcontact = var("contact_model", NC_STRING, {dtraj}, "", "friction model: center (CC) or local (LC)");
-        const int vcoll = var("collision_model", NC_STRING, {dtraj}, "", "collision model: single (SC) or multi (MC)");
+        const int vvariant = text("variant", dtraj, variants, "model variant: friction + collision (CC+SC, LC+MC)");
+        const int vcontact = text("contact_model", dtraj, contacts, "friction model: center (CC) or local (LC)");
+        const int vcoll = text("collision_model", dtraj, collisions, "collision model: single (SC) or multi (MC)");
         const int vset = var("param_set", NC_INT, {dtraj}, "", "index of the parameter set (dimension param_set)");
-        const int vlabel = var("param_label", NC_STRING, {dtraj}, "", "label of the parameter set");
+        const int vlabel = text("param_label", dtraj, labels, "label of the parameter set");
         const std::vector<int> vcoef = def_setting_vars(f, debris::body_coefficient_settings(), {dtraj});
         const std::vector<int> vshape = def_setting_vars(f, debris::body_shape_settings(), {dtraj});
         const std::vector<int> vmodel = def_setting_vars(f, debris::body_model_settings(), {dtraj});
@@ -98,17 +119,19 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int vnu = var("unresolved_collisions", NC_INT, {dtraj}, "", "steps whose collision passes left an overlap");
         const int vns = var("axis_shift_steps", NC_INT, {dtraj}, "", "steps rotated about the contact centroid");
 
-        const int vflowpath = var("flow_path", NC_STRING, {dflow}, "", "flow files of the sweep, in order");
-        const int vbodyname = var("body_name", NC_STRING, {dbody}, "", "bodies of the sweep, in order");
-        const int vvarname = var("variant_name", NC_STRING, {dvar}, "", "model variants of the sweep, in order");
-        const ParameterSetVariables set_vars = define_parameter_set_variables(f, dset);
+        const int vflowpath = text("flow_path", dflow, r.flows, "flow files of the sweep, in order");
+        const int vbodyname = text("body_name", dbody, r.bodies, "bodies of the sweep, in order");
+        const int vvarname = text("variant_name", dvar, r.variants, "model variants of the sweep, in order");
+        const ParameterSetVariables set_vars = define_parameter_set_variables(f, dset, r.params);
 
         cf::put_conventions(f, "trajectory");
+        cf::put_kind(f, "sweep");
         f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep trajectories"));
         f.put_att(NC_GLOBAL, "source", std::string("flotsam sweep: rigid boxes replayed through stored shallow-water flows"));
         f.put_att(NC_GLOBAL, "spec_file", r.spec_file);
         f.put_att(NC_GLOBAL, "spec_sha256", r.spec_sha256);
         f.put_att(NC_GLOBAL, "scene_file", r.scene_file);
+        if (!r.scene_buildings_sha256.empty()) f.put_att(NC_GLOBAL, "scene_buildings_sha256", r.scene_buildings_sha256);
         if (!r.ground_file.empty()) f.put_att(NC_GLOBAL, "ground_file", r.ground_file);
         f.put_att(NC_GLOBAL, "design", r.design);
         f.put_att(NC_GLOBAL, "member_count", r.member_count);
@@ -122,21 +145,18 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.enddef();
 
         f.put(track_vars.time, r.time);
-        const auto& ms = r.members;
-        std::vector<std::string> ids;
-        for (const auto& m : ms) ids.push_back(trajectory_label(r, m));
         f.put(vid, ids);
         f.put(vmember, column<int>(ms, &MemberRecord::id));
         f.put(vflowi, column<int>(ms, &MemberRecord::flow));
-        f.put(vflow, column<std::string>(ms, [&](const MemberRecord& m) { return r.flows[std::size_t(m.flow)]; }));
-        f.put(vbody, column<std::string>(ms, &MemberRecord::body_name));
-        f.put(vstart, column<std::string>(ms, &MemberRecord::start_name));
+        f.put(vflow, flows);
+        f.put(vbody, bodies);
+        f.put(vstart, starts);
         f.put(vpert, column<int>(ms, &MemberRecord::perturbation));
-        f.put(vvariant, column<std::string>(ms, &MemberRecord::variant_name));
-        f.put(vcontact, column<std::string>(ms, [](const MemberRecord& m) { return enum_name(m.def.contact); }));
-        f.put(vcoll, column<std::string>(ms, [](const MemberRecord& m) { return enum_name(m.def.collision); }));
+        f.put(vvariant, variants);
+        f.put(vcontact, contacts);
+        f.put(vcoll, collisions);
         f.put(vset, column<int>(ms, &MemberRecord::param_set));
-        f.put(vlabel, column<std::string>(ms, [&](const MemberRecord& m) { return r.params[std::size_t(m.param_set)].label; }));
+        f.put(vlabel, labels);
         const auto def_of = [](const MemberRecord& m) -> const debris::BodyDef& { return m.def; };
         put_setting_vars(f, vcoef, debris::body_coefficient_settings(), ms, def_of);
         put_setting_vars(f, vshape, debris::body_shape_settings(), ms, def_of);
@@ -163,6 +183,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
 
 SweepResult read_sweep_file(const std::string& path) {
     nc::File f = nc::File::open_read(path);
+    cf::require_kind(f, {"sweep"});
     for (const char* v : {"member_id", "flow_path", "param_set_label", "variant"})
         if (!f.has_var(v)) fail(path, std::string("variable '") + v + "'", "missing: not a file written by `flotsam sweep`");
     SweepResult r;
@@ -180,6 +201,8 @@ SweepResult read_sweep_file(const std::string& path) {
     r.spec_file = text("spec_file");
     r.spec_sha256 = text("spec_sha256");
     r.scene_file = text("scene_file");
+    r.scene_buildings_sha256 = f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or("");
+    r.path = path;
     r.ground_file = f.att_text(NC_GLOBAL, "ground_file").value_or("");
     r.design = text("design");
     r.member_count = int(number("member_count", Range::count(0, 2e9)));
@@ -194,7 +217,7 @@ SweepResult read_sweep_file(const std::string& path) {
     // a named error, never a read past its end.
     auto column_var = [&](const std::string& name, const std::string& dim) {
         const int v = f.var(name);
-        const auto dims = f.dim_names(v);
+        const auto dims = f.value_dims(v);  // a string column's: without its string length
         if (dims != std::vector<std::string>{dim})
             fail(path, "variable '" + name + "'", "must be one-dimensional on dimension '" + dim + "'");
         return v;
@@ -252,7 +275,16 @@ SweepResult read_sweep_file(const std::string& path) {
     const int vx = track_var("x"), vy = track_var("y"), vyaw = track_var("yaw"), vu = track_var("u"), vv = track_var("v"),
               vom = track_var("omega"), vst = track_var("status");
     std::vector<double> statusd(nt);
+    std::set<int> seen;
     for (std::size_t b = 0; b < nm; ++b) {
+        // Members are named by their place in the sweep's member list: each once, inside it.
+        if (id[b] < 0 || id[b] >= r.member_count)
+            fail(path, "variable 'member_id'",
+                 "trajectory " + std::to_string(b) + " has member_id " + std::to_string(id[b]) + ", outside [0, " +
+                     std::to_string(r.member_count) + ") (member_count)");
+        if (!seen.insert(id[b]).second)
+            fail(path, "variable 'member_id'",
+                 "member_id " + std::to_string(id[b]) + " is given twice (trajectory " + std::to_string(b) + " and an earlier one)");
         MemberRecord m;
         m.id = id[b];
         m.flow = flow[b];
@@ -296,7 +328,14 @@ SweepResult read_sweep_file(const std::string& path) {
                         fail(path, "trajectory " + std::to_string(b) + ", time index " + std::to_string(k),
                              "a track value is not finite (or is a fill value)");
         }
-        for (double s : statusd) t.status.push_back(std::int8_t(s));
+        for (std::size_t k = 0; k < statusd.size(); ++k) {
+            // Five flag bits (formats/trajectory_file.hpp); a byte beyond them is no status.
+            if (!(statusd[k] >= 0 && statusd[k] <= 31))
+                fail(path, "variable 'status'",
+                     "trajectory " + std::to_string(b) + ", time index " + std::to_string(k) + ": " + number_text(statusd[k]) +
+                         " is not a combination of the flags 1, 2, 4, 8, 16 (released moving grounded colliding pivoting)");
+            t.status.push_back(std::int8_t(statusd[k]));
+        }
         r.members.push_back(std::move(m));
     }
     return r;
@@ -314,7 +353,7 @@ SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vecto
         if (p.spec_sha256 != out.spec_sha256) fail(name, "spec_sha256", "comes from another spec than " + paths[0]);
         if (p.member_count != out.member_count || p.time != out.time || p.flows != out.flows || p.bodies != out.bodies ||
             p.variants != out.variants || p.params.size() != out.params.size() || p.scene_file != out.scene_file ||
-            p.ground_file != out.ground_file)
+            p.ground_file != out.ground_file || p.scene_buildings_sha256 != out.scene_buildings_sha256)
             fail(name, "sweep tables", "differ from those of " + paths[0] + " (not shards of one sweep)");
         for (const auto& m : p.members)
             if (!by_id.emplace(m.id, &m).second) fail(name, "member " + std::to_string(m.id), "also in another part");

@@ -40,6 +40,8 @@ struct SweepResult {
     debris::WorldDef world;        // step and flow replay settings (threads: not recorded)
     std::vector<double> time;      // output times [s]
     cf::GridMapping crs;           // the flows' CRS; empty: local metres
+    std::string scene_buildings_sha256;  // the flows' scene (formats/scene.hpp); empty: not recorded
+    std::string path;               // the file it was read from, for messages ("": not read from a file)
     // This part.
     Shard shard;                        // {0, 1}: the whole sweep
     std::vector<MemberRecord> members;  // by increasing id
@@ -51,7 +53,7 @@ struct ParameterSetVariables {
     int label, is_control;
     std::vector<int> value;  // in the order of design_parameters()
 };
-ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim);
+ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim, const std::vector<ParameterSet>& sets);
 void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const std::vector<ParameterSet>& sets);
 
 // Writes atomically.

@@ -255,6 +255,18 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
         }
         spec.params = one_at_a_time(control, varied, factor);
     } else if (d == Design::factorial) {
+        // Counted before a set is built: the product of the levels' counts.
+        double sets = 1;
+        std::string product;
+        for (std::size_t p = 0; p < np; ++p)
+            if (!arrays[p].empty()) {
+                sets *= double(arrays[p].size());
+                product += (product.empty() ? "" : " x ") + std::to_string(arrays[p].size()) + " (" + table[p].key + ")";
+            }
+        if (sets > 1e6)
+            toml_fail(doc, *t, "design",
+                      "a factorial of " + product + " levels is " + number_text(sets) +
+                          " parameter sets, more than 1e6 (a random or latin_hypercube design samples a large space)");
         spec.params = factorial(control, arrays);
         const bool found = std::any_of(spec.params.begin(), spec.params.end(), [](const ParameterSet& s) { return s.is_control; });
         if (include_control && !found) spec.params.insert(spec.params.begin(), {"control", control, true});

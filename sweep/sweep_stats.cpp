@@ -356,7 +356,9 @@ void pass_maps(SweepStats& s, const SweepResult& sw, const Scene& scene, const S
 }  // namespace
 
 SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsDef& def) {
-    if (sw.members.empty()) fail(sw.spec_file, "members", "the sweep holds no trajectories");
+    if (sw.members.empty())
+        fail(sw.path.empty() ? "--sweep" : sw.path, "dimension 'trajectory'",
+             "the sweep file holds no trajectories (0 members): statistics need at least one");
     if (sw.shard.count != 1)
         fail("--sweep", "shard " + std::to_string(sw.shard.index) + "/" + std::to_string(sw.shard.count),
              "a part of a sweep: merge the parts first (flotsam sweep merge)");
@@ -367,6 +369,7 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
         if (sw.params[p].is_control && s.control < 0) s.control = int(p);
     s.sections = scene.sections;
     s.crs = scene.crs;
+    s.scene_buildings_sha256 = scene_buildings_sha256(scene);
     for (const auto& r : scene.regions) s.regions.push_back(r.name);
     s.time = sw.time;
 
@@ -405,20 +408,26 @@ int def_stats_var(nc::File& f, const std::string& name, nc_type type, std::vecto
                        {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name, .fill = fill});
 }
 
+// Strings, as a character array as long as the longest of `values`.
+int def_stats_text(nc::File& f, const std::string& name, int dim, const std::vector<std::string>& values,
+                   const std::string& long_name) {
+    return cf::def_var(f, {.name = name, .type = NC_CHAR, .dims = {dim}, .long_name = long_name, .text_length = cf::longest(values)});
+}
+
 // Groups, parameter sets, sections and regions.
 PutValues define_tables(nc::File& f, const StatsDims& d, const SweepStats& s) {
-    const int vgb = def_stats_var(f, "group_body", NC_STRING, {d.group}, "", "body of the group");
-    const int vgv =
-        def_stats_var(f, "group_variant", NC_STRING, {d.group}, "", "model variant of the group (friction + collision)");
+    const int vgb = def_stats_text(f, "group_body", d.group, column<std::string>(s.groups, &SweepStats::Group::body), "body of the group");
+    const int vgv = def_stats_text(f, "group_variant", d.group, column<std::string>(s.groups, &SweepStats::Group::variant),
+                                   "model variant of the group (friction + collision)");
     const int vgm = def_stats_var(f, "group_members", NC_INT, {d.group}, "", "trajectories in the group");
-    const ParameterSetVariables set_vars = define_parameter_set_variables(f, d.param_set);
+    const ParameterSetVariables set_vars = define_parameter_set_variables(f, d.param_set, s.params);
     const int vpm =
         def_stats_var(f, "param_members", NC_INT, {d.group, d.param_set}, "", "trajectories of the group with this parameter set");
-    const int vsn = def_stats_var(f, "section_name", NC_STRING, {d.section}, "", "cross-section name");
+    const int vsn = def_stats_text(f, "section_name", d.section, column<std::string>(s.sections, &Section::name), "cross-section name");
     const int vsx = def_stats_var(f, "section_x", NC_DOUBLE, {d.section}, "m", "x of the north-south cross-section");
     const int vsy0 = def_stats_var(f, "section_y_min", NC_DOUBLE, {d.section}, "m", "south end of the cross-section");
     const int vsy1 = def_stats_var(f, "section_y_max", NC_DOUBLE, {d.section}, "m", "north end of the cross-section");
-    const int vrn = def_stats_var(f, "region_name", NC_STRING, {d.region}, "", "region name");
+    const int vrn = def_stats_text(f, "region_name", d.region, s.regions, "region name");
     return [=, &f, &s] {
         f.put(vgb, column<std::string>(s.groups, &SweepStats::Group::body));
         f.put(vgv, column<std::string>(s.groups, &SweepStats::Group::variant));
@@ -659,10 +668,12 @@ PutValues define_maps(nc::File& f, const StatsDims& d, const SweepStats& s) {
 void put_settings(nc::File& f, const SweepStats& s, const StatsDef& def, const std::string& sweep_file,
                   const std::string& scene_file, const std::string& history) {
     cf::put_conventions(f);
+    cf::put_kind(f, "stats");
     f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep statistics"));
     f.put_att(NC_GLOBAL, "source", std::string("flotsam stats"));
     f.put_att(NC_GLOBAL, "sweep_file", sweep_file);
     f.put_att(NC_GLOBAL, "scene_file", scene_file);
+    f.put_att(NC_GLOBAL, "scene_buildings_sha256", s.scene_buildings_sha256);
     f.put_att(NC_GLOBAL, "history", history);
     f.put_att(NC_GLOBAL, "yaw_window_s", def.yaw_window);
     f.put_att(NC_GLOBAL, "yaw_min_speed_m_s", def.yaw_min_speed);

@@ -46,6 +46,7 @@ struct SweepStats {
     int control = -1;  // index of the control parameter set (-1: none, R(t) undefined)
     std::vector<Section> sections;
     std::vector<std::string> regions;
+    std::string scene_buildings_sha256;  // of the scene the statistics were computed on (formats/scene.hpp)
 
     // Per member (index into SweepResult::members); NaN where undefined.
     std::vector<int> member_group, member_id, member_param_set, member_flow;

@@ -393,9 +393,16 @@ TEST(FlowReader, RejectsAFileThatIsNotAFlow) {
     s.z.assign(12, 0.0);
     write_scene(dir + "/scene.nc", s, "test");
     const std::string msg = error_of([&] { FlowReader r(dir + "/scene.nc"); });
-    EXPECT_NE(msg.find("scene.nc"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("scene.nc: is a scene"), std::string::npos) << msg;  // its flotsam_file_kind
     EXPECT_NE(msg.find("not a flow file"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("sea_floor_depth_below_sea_surface"), std::string::npos) << msg;
+    // A file of no known kind (another program's) is read, and refused for what it lacks.
+    nc::File other = nc::File::create(dir + "/other.nc");
+    const int d = other.def_dim("n", 2);
+    other.def_var("q", NC_DOUBLE, {d});
+    other.close();
+    const std::string lacking = error_of([&] { FlowReader r(dir + "/other.nc"); });
+    EXPECT_NE(lacking.find("not a flow file"), std::string::npos) << lacking;
+    EXPECT_NE(lacking.find("sea_floor_depth_below_sea_surface"), std::string::npos) << lacking;
 }
 
 // The dry tolerance is the run's: the file's dry_depth_m (as hydro writes it, text), or

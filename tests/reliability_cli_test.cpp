@@ -3,10 +3,13 @@
 // not crash, a full disk. Each test runs the built `flotsam` binary.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -583,7 +586,7 @@ TEST(ReliabilityCli, AFileThatCrashesLibhdf5IsANamedError) {
     const auto dir = test::scratch_dir("cli_corrupt");
     std::string out;
     EXPECT_EQ(test::run_cli("debris --flow " + corrupt + " --at 0.5,-1,0 --quiet --out " + dir + "/d.nc", &out), 1) << out;
-    EXPECT_NE(out.find("flow_libhdf5_segfault.nc: corrupted: libhdf5 crashed reading the file's structure"), std::string::npos)
+    EXPECT_NE(out.find("flow_libhdf5_segfault.nc: corrupted: libhdf5 crashed "), std::string::npos)
         << out;
 }
 
@@ -599,4 +602,429 @@ TEST(ReliabilityCli, ADamagedFlowFrameIsANamedErrorAndLeavesNoOutput) {
     EXPECT_NE(out.find(flow + ": variable 'h', frame 4, tile (0, 0)"), std::string::npos) << out;
     EXPECT_FALSE(fs::exists(dir + "/d.nc"));
     EXPECT_FALSE(fs::exists(dir + "/d.nc.part"));
+}
+
+// ---- no input crashes it, none is taken silently, no run is unbounded ----
+
+namespace {
+
+// Edits of a copy of a NetCDF file, as a user's other tools would make them.
+std::string copy_of(const std::string& from, const std::string& to) {
+    fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+    return to;
+}
+
+int var_id(int id, const std::string& var) {
+    int v = NC_GLOBAL;
+    if (var != "global") {
+        EXPECT_EQ(nc_inq_varid(id, var.c_str(), &v), NC_NOERR) << var;
+    }
+    return v;
+}
+
+void set_text_attribute(const std::string& path, const std::string& var, const std::string& name, const std::string& text) {
+    int id = -1;
+    ASSERT_EQ(nc_open(path.c_str(), NC_WRITE, &id), NC_NOERR);
+    ASSERT_EQ(nc_redef(id), NC_NOERR);
+    ASSERT_EQ(nc_put_att_text(id, var_id(id, var), name.c_str(), text.size(), text.c_str()), NC_NOERR);
+    ASSERT_EQ(nc_close(id), NC_NOERR);
+}
+
+std::vector<double> all_values(const std::string& path, const std::string& var) {
+    const nc::File f = nc::File::open_read(path);
+    return f.get_double(f.var(var));
+}
+
+// Every value of `var` multiplied by `factor` (for a file in other units).
+void scale_values(const std::string& path, const std::string& var, double factor) {
+    std::vector<double> v = all_values(path, var);
+    for (double& a : v) a *= factor;
+    int id = -1;
+    ASSERT_EQ(nc_open(path.c_str(), NC_WRITE, &id), NC_NOERR);
+    ASSERT_EQ(nc_put_var_double(id, var_id(id, var), v.data()), NC_NOERR);
+    ASSERT_EQ(nc_close(id), NC_NOERR);
+}
+
+void set_all(const std::string& path, const std::string& var, double value) {
+    std::vector<double> v = all_values(path, var);
+    std::fill(v.begin(), v.end(), value);
+    int id = -1;
+    ASSERT_EQ(nc_open(path.c_str(), NC_WRITE, &id), NC_NOERR);
+    ASSERT_EQ(nc_put_var_double(id, var_id(id, var), v.data()), NC_NOERR);
+    ASSERT_EQ(nc_close(id), NC_NOERR);
+}
+
+// String `index` of a character array (flotsam's strings), NUL-padded to its length.
+void set_string(const std::string& path, const std::string& var, std::size_t index, const std::string& text) {
+    int id = -1;
+    ASSERT_EQ(nc_open(path.c_str(), NC_WRITE, &id), NC_NOERR);
+    const int v = var_id(id, var);
+    int dims[2];
+    std::size_t length = 0;
+    ASSERT_EQ(nc_inq_vardimid(id, v, dims), NC_NOERR);
+    ASSERT_EQ(nc_inq_dimlen(id, dims[1], &length), NC_NOERR);
+    ASSERT_LE(text.size(), length);
+    std::string padded = text;
+    padded.resize(length, '\0');
+    const std::size_t start[2] = {index, 0}, count[2] = {1, length};
+    ASSERT_EQ(nc_put_vara_text(id, v, start, count, padded.data()), NC_NOERR);
+    ASSERT_EQ(nc_close(id), NC_NOERR);
+}
+
+struct Case {
+    std::string args, expect;
+};
+
+// Each command fails (exit 1, not a crash) with `expect` in its output, never an internal error.
+void expect_named_errors(const std::vector<Case>& cases) {
+    std::string out;
+    for (const auto& k : cases) {
+        const int rc = test::run_cli(k.args, &out);
+        EXPECT_TRUE(rc == 1 || rc == 105) << "rc " << rc << ": " << k.args << "\n" << out;  // 105: CLI11's parse errors
+        EXPECT_NE(out.find(k.expect), std::string::npos) << k.args << "\n" << out;
+        EXPECT_EQ(out.find("internal error"), std::string::npos) << out;
+    }
+}
+
+}  // namespace
+
+// Files whose bytes were changed where libhdf5 keeps variable-length strings (its global
+// heap) or metadata it frees at close: libhdf5 segfaulted reading the strings, or aborted
+// with "free(): invalid size" closing the file, in hydro, debris and stats. The probe now
+// reads every string and closes the file in a child first: a named error, saying what it
+// was reading.
+TEST(ReliabilityCli, FilesThatCrashLibhdf5OnTheirStringsOrAtCloseAreNamedErrors) {
+    const SmallCase c = small_case("cli_corrupt_strings");
+    const Outputs o = flow_and_sweep(c);
+    const std::string data = std::string(FLOTSAM_SOURCE_DIR) + "/tests/data/corrupt/";
+    const std::string scene_close = data + "scene_abort_at_close.nc", scene_strings = data + "scene_segfault_in_strings.nc",
+                      sweep_strings = data + "sweep_segfault_in_strings.nc";
+    std::string out;
+    for (const std::string& scene : {scene_close, scene_strings}) {
+        for (const std::string& cmd :
+             {"hydro --scene " + scene + " --west wall --duration 0.5 --quiet --out " + c.dir + "/h.nc",
+              "debris --flow " + o.flow + " --scene " + scene + " --start FD --quiet --out " + c.dir + "/d.nc",
+              "stats --sweep " + o.sweep + " --scene " + scene + " --out " + c.dir + "/s.nc"}) {
+            EXPECT_EQ(test::run_cli(cmd, &out), 1) << cmd << "\n" << out;
+            EXPECT_NE(out.find(scene + ": corrupted: libhdf5 "), std::string::npos) << cmd << "\n" << out;
+            EXPECT_EQ(out.find("free()"), std::string::npos) << out;  // the child's dying words are not the user's
+        }
+    }
+    EXPECT_NE(test::run_cli("hydro --scene " + scene_close + " --west wall --duration 0.5 --quiet --out " + c.dir + "/h.nc", &out),
+              0);
+    EXPECT_NE(out.find("crashed closing the file"), std::string::npos) << out;
+    EXPECT_NE(test::run_cli("stats --sweep " + sweep_strings + " --scene " + c.scene + " --out " + c.dir + "/s.nc", &out), 0);
+    EXPECT_NE(out.find(sweep_strings + ": corrupted: libhdf5 crashed reading variable '"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(c.dir + "/h.nc.part"));
+}
+
+// An output that exists and is not a regular file (a device, a FIFO, a directory) is
+// refused before any work: renaming <out>.part over /dev/null replaced the device.
+TEST(ReliabilityCli, OutputsThatAreNotRegularFilesAreRefused) {
+    const SmallCase c = small_case("cli_out_not_file");
+    const Outputs o = flow_and_sweep(c);
+    ASSERT_EQ(::mkfifo((c.dir + "/fifo.nc").c_str(), 0644), 0);
+    fs::create_directories(c.dir + "/dir.nc");
+    const std::string hydro = "hydro --scene " + c.scene + " --west wall --duration 0.5 --quiet --out ";
+    expect_named_errors({
+        {hydro + "/dev/null", "--out: /dev/null: is a character device, not a regular file"},
+        {"debris --flow " + o.flow + " --scene " + c.scene + " --start FD --quiet --out /dev/full",
+         "--out: /dev/full: is a character device"},
+        {"sweep --spec " + o.spec + " --quiet --out /dev/null", "--out: /dev/null: is a character device"},
+        {"scene generate --resolution 0.32 --out /dev/null", "--out: /dev/null: is a character device"},
+        {"stats --sweep " + o.sweep + " --out " + c.dir + "/fifo.nc", "fifo.nc: is a FIFO (named pipe), not a regular file"},
+        {hydro + c.dir + "/dir.nc", "dir.nc: is a directory, not a regular file"},
+    });
+    struct stat st {};
+    ASSERT_EQ(::stat("/dev/null", &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode));
+    EXPECT_FALSE(fs::exists("/dev/null.part"));
+}
+
+// Every run is estimated before it starts and refused past a stated bound, naming the
+// option and the estimate; streams that never end are refused as inputs; sizes that do
+// not fit name the file and variable; threads are capped at the processors.
+TEST(ReliabilityCli, RunsAreBoundedBeforeTheyStart) {
+    const SmallCase c = small_case("cli_bounded");
+    const Outputs o = flow_and_sweep(c);
+    const std::string debris = "debris --flow " + o.flow + " --scene " + c.scene + " --start FD --quiet --out " + c.dir + "/d.nc ";
+    const std::string spec = test::write_file(c.dir, "dt.toml",
+                                              "[sweep]\nscene = \"" + c.scene + "\"\ndt-max = 1e-12\n[flows]\npaths = [\"" + o.flow +
+                                                  "\"]\n[[body]]\nstart = \"FD\"\n");
+    std::string levels;
+    for (int k = 1; k <= 1000; ++k) {
+        if (k > 1) levels += ',';
+        levels += std::to_string(k);
+    }
+    const std::string factorial = test::write_file(c.dir, "factorial.toml",
+                                                   "[sweep]\nscene = \"" + c.scene + "\"\n[flows]\npaths = [\"" + o.flow +
+                                                       "\"]\n[[body]]\nstart = \"FD\"\n[parameters]\ndesign = \"factorial\"\ncd1 = [" +
+                                                       levels + "]\ncd2 = [" + levels + "]\ncm = [" + levels + "]\n");
+    // A flow whose last frame is at 1e6 s (the replay would take hours).
+    const std::string late = copy_of(o.flow, c.dir + "/late.nc");
+    fuzz::copy_with_value(o.flow, late, "time", all_values(o.flow, "time").size() - 1, 1e6);
+    // A scene declaring 2e5 x 1e5 cells (its z never written: the file is small).
+    const std::string huge = c.dir + "/huge.nc";
+    {
+        nc::File f = nc::File::create(huge);
+        const int dx = f.def_dim("x", 200000), dy = f.def_dim("y", 100000);
+        const int vx = f.def_var("x", NC_DOUBLE, {dx}), vy = f.def_var("y", NC_DOUBLE, {dy});
+        const int vz = f.def_var("z", NC_FLOAT, {dy, dx});
+        f.def_chunking(vz, {256, 256});
+        f.enddef();
+        std::vector<double> x(200000), y(100000);
+        for (std::size_t k = 0; k < x.size(); ++k) x[k] = double(k);
+        for (std::size_t k = 0; k < y.size(); ++k) y[k] = double(k);
+        f.put(vx, x);
+        f.put(vy, y);
+        f.close();
+    }
+    ASSERT_EQ(::mkfifo((c.dir + "/series_fifo.csv").c_str(), 0644), 0);
+    expect_named_errors({
+        {debris + "--dt-max 1e-12", "--dt-max: 1e-12 s over 0 to 4 s of " + o.flow + " would make 4e+12 steps of each body, more than the 1e+07"},
+        {debris + "--vertex-step-fraction 1e-12", "--vertex-step-fraction: 1e-12 (steps of "},
+        {"sweep --spec " + spec + " --quiet --out " + c.dir + "/w.nc", "dt.toml: [sweep] dt-max: 1e-12 s over 0 to 4 s"},
+        {"debris --flow " + late + " --scene " + c.scene + " --start FD --quiet --out " + c.dir + "/d.nc",
+         "--dt-max: 0.01 s over 0 to 1e+06 s of " + late + " would make 1e+08 steps of each body"},
+        {"boundary generate --froude-scale 1e4 --duration 1e6 --dt 0.001 --out-dir " + c.dir + "/bc2",
+         "--dt: 10 records of 1e+06 s every 0.001 s would make 1e+10 samples"},
+        {"boundary generate --dt 1e-12 --out-dir " + c.dir + "/bc2", "--dt: 10 records of 420 s every 1e-12 s would make 4.2e+15 samples"},
+        {"hydro --scene " + c.scene + " --west level --west-series /dev/zero --duration 1 --quiet --out " + c.dir + "/h.nc",
+         "--west-series: /dev/zero: is a character device, not a regular file"},
+        {"hydro --scene " + c.scene + " --west level --west-series " + c.dir + "/series_fifo.csv --duration 1 --quiet --out " + c.dir +
+             "/h.nc",
+         "series_fifo.csv: is a FIFO (named pipe), not a regular file"},
+        {"hydro --scene " + c.scene + " --west wall --duration 10 --max-dt 1e-9 --cfl 1 --quiet --out " + c.dir + "/h.nc",
+         "--max-dt: 10 s of " + c.scene + " over 3200 cells of 0.16 m (steps of about 1e-09 s) would make 3.2e+13 cell updates"},
+        {"hydro --scene " + huge + " --west wall --duration 1 --quiet --out " + c.dir + "/h.nc",
+         "huge.nc: variable 'z': 100000 x 200000 would make 2e+10 values"},
+        {"sweep --spec " + factorial + " --quiet --out " + c.dir + "/w.nc",
+         "factorial.toml: line 8: [parameters] key 'design': a factorial of 1000 (cd1) x 1000 (cd2) x 1000 (cm) levels is 1e+09 "
+         "parameter sets, more than 1e6"},
+    });
+    std::string out;
+    EXPECT_EQ(test::run_cli(debris + "--dt-max 1e-12", &out), 1);
+    EXPECT_NE(out.find("pass --allow-large-run to run it anyway"), std::string::npos) << out;
+    // The override: the same run starts (and is stopped here after 3 s).
+    EXPECT_EQ(test::finish_cli(test::start_cli(debris + "--dt-max 1e-12 --allow-large-run --threads 1", "timeout 3"), &out), 124)
+        << out;
+    EXPECT_EQ(out.find("would make"), std::string::npos) << out;
+    // Thousands of threads: capped at the processors (the run finishes, no .part left).
+    ASSERT_EQ(test::run_cli("hydro --scene " + c.scene + " --west wall --duration 0.5 --threads 4096 --out " + c.dir + "/t.nc", &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("--threads 4096: capped at "), std::string::npos) << out;
+    EXPECT_TRUE(fs::exists(c.dir + "/t.nc"));
+    EXPECT_FALSE(fs::exists(c.dir + "/t.nc.part"));
+}
+
+// Attributes that change what the numbers mean: lengths, depths, speeds and times in
+// other units are converted (the same run as in flotsam's own units), `positive = "down"`
+// is honoured, and a unit flotsam cannot convert is refused by name.
+TEST(ReliabilityCli, UnitsAreConvertedOrRefusedByName) {
+    const SmallCase c = small_case("cli_units");
+    const Outputs o = flow_and_sweep(c);
+    std::string out;
+    const auto debris = [&](const std::string& flow, const std::string& scene, const std::string& out_file) {
+        return "debris --flow " + flow + " --scene " + scene + " --start FD --quiet --out " + out_file;
+    };
+    const std::string ref = c.dir + "/ref.nc";
+    ASSERT_EQ(test::run_cli(debris(o.flow, c.scene, ref), &out), 0) << out;
+    const std::vector<double> ref_x = all_values(ref, "x"), ref_y = all_values(ref, "y");
+    const auto expect_same_tracks = [&](const std::string& file) {
+        const std::vector<double> x = all_values(file, "x"), y = all_values(file, "y");
+        ASSERT_EQ(x.size(), ref_x.size());
+        for (std::size_t k = 0; k < x.size(); ++k) {
+            EXPECT_NEAR(x[k], ref_x[k], 1e-4) << file << " sample " << k;
+            EXPECT_NEAR(y[k], ref_y[k], 1e-4) << file << " sample " << k;
+        }
+    };
+    // The scene in feet and kilometres, and with z counted downward: the flow's scene still.
+    const std::string feet = copy_of(c.scene, c.dir + "/feet.nc");
+    scale_values(feet, "z", 1.0 / 0.3048);
+    set_text_attribute(feet, "z", "units", "ft");
+    const std::string km = copy_of(c.scene, c.dir + "/km.nc");
+    for (const char* v : {"x", "y", "point_x", "point_y"}) scale_values(km, v, 1e-3);
+    set_text_attribute(km, "x", "units", "km");
+    set_text_attribute(km, "y", "units", "km");
+    const std::string down = copy_of(c.scene, c.dir + "/down.nc");
+    scale_values(down, "z", -1.0);
+    set_text_attribute(down, "z", "positive", "down");
+    for (const std::string& scene : {feet, km, down}) {
+        SCOPED_TRACE(scene);
+        ASSERT_EQ(test::run_cli(debris(o.flow, scene, c.dir + "/t.nc"), &out), 0) << out;
+        expect_same_tracks(c.dir + "/t.nc");
+    }
+    // The flow with time in hours, depth in cm, velocity in km/h.
+    const std::string hours = copy_of(o.flow, c.dir + "/hours.nc");
+    scale_values(hours, "time", 1.0 / 3600.0);
+    set_text_attribute(hours, "time", "units", "hours since 2000-01-01 00:00:00");
+    const std::string cm = copy_of(o.flow, c.dir + "/cm.nc");
+    scale_values(cm, "h", 100.0);
+    set_text_attribute(cm, "h", "units", "cm");
+    const std::string kmh = copy_of(o.flow, c.dir + "/kmh.nc");
+    for (const char* v : {"u", "v"}) {
+        scale_values(kmh, v, 3.6);
+        set_text_attribute(kmh, v, "units", "km h-1");
+    }
+    for (const std::string& flow : {hours, cm, kmh}) {
+        SCOPED_TRACE(flow);
+        ASSERT_EQ(test::run_cli(debris(flow, c.scene, c.dir + "/t.nc"), &out), 0) << out;
+        expect_same_tracks(c.dir + "/t.nc");
+    }
+    // Units no converter knows: refused, naming the file, the variable and the unit.
+    const std::string bananas = copy_of(o.flow, c.dir + "/bananas.nc");
+    set_text_attribute(bananas, "time", "units", "bananas");
+    const std::string furlongs = copy_of(o.flow, c.dir + "/furlongs.nc");
+    set_text_attribute(furlongs, "u", "units", "furlongs per fortnight");
+    const std::string sideways = copy_of(c.scene, c.dir + "/sideways.nc");
+    set_text_attribute(sideways, "z", "positive", "sideways");
+    const std::string fathoms = copy_of(c.scene, c.dir + "/fathoms.nc");
+    set_text_attribute(fathoms, "z", "units", "fathoms");
+    expect_named_errors({
+        {debris(bananas, c.scene, c.dir + "/t.nc"),
+         "bananas.nc: variable 'time' attribute 'units': 'bananas' is not a unit of time flotsam can convert"},
+        {debris(furlongs, c.scene, c.dir + "/t.nc"),
+         "furlongs.nc: variable 'u' attribute 'units': 'furlongs per fortnight' is not a unit of speed"},
+        {debris(o.flow, sideways, c.dir + "/t.nc"), "sideways.nc: variable 'z' attribute 'positive': 'sideways' is neither 'up' nor 'down'"},
+        {debris(o.flow, fathoms, c.dir + "/t.nc"), "fathoms.nc: variable 'z' attribute 'units': 'fathoms' is not a unit of length"},
+    });
+}
+
+// Values outside physical bounds, fill values, inconsistent tables, files of another kind
+// and absurd option values: each a named error (they were taken silently).
+TEST(ReliabilityCli, ValuesAndTablesThatMeanNothingAreRefused) {
+    const SmallCase c = small_case("cli_silent");
+    const Outputs o = flow_and_sweep(c);
+    const auto hydro = [&](const std::string& scene) {
+        return "hydro --scene " + scene + " --west wall --duration 0.5 --quiet --out " + c.dir + "/h.nc";
+    };
+    const auto stats = [&](const std::string& sweep) { return "stats --sweep " + sweep + " --out " + c.dir + "/s.nc"; };
+    const std::string zfill = copy_of(c.scene, c.dir + "/zfill.nc");
+    fuzz::copy_with_value(c.scene, zfill, "z", 100, 9.969209968386869e36);
+    const std::string z1e30 = copy_of(c.scene, c.dir + "/z1e30.nc");
+    fuzz::copy_with_value(c.scene, z1e30, "z", 100, 1e30);
+    const std::string kind = copy_of(c.scene, c.dir + "/kind.nc");
+    set_string(kind, "point_kind", 0, "bogus");
+    const std::string dup = copy_of(c.scene, c.dir + "/dup.nc");
+    set_string(dup, "point_name", 1, Scene(read_scene(c.scene)).points[0].name);
+    const std::string empty = copy_of(c.scene, c.dir + "/empty.nc");
+    set_string(empty, "point_name", 1, "");
+    const std::string section = copy_of(c.scene, c.dir + "/section.nc");
+    fuzz::copy_with_value(c.scene, section, "section_y_min", 0, 5.0);
+    const std::string all_building = copy_of(c.scene, c.dir + "/all_building.nc");
+    set_all(all_building, "building", 1.0);
+    const std::string member_twice = c.dir + "/member_twice.nc", member_negative = c.dir + "/member_negative.nc",
+                      status = c.dir + "/status.nc";
+    fuzz::copy_with_value(o.sweep, member_twice, "member_id", 1, 0);
+    fuzz::copy_with_value(o.sweep, member_negative, "member_id", 1, -3);
+    fuzz::copy_with_value(o.sweep, status, "status", 2, -1);  // 255 as a signed byte
+    const std::string dir = c.dir + "/config_dir";
+    fs::create_directories(dir);
+    expect_named_errors({
+        {hydro(zfill), "zfill.nc: variable 'z': value at flat index 100 is the fill value"},
+        {hydro(z1e30), "z1e30.nc: variable 'z': 1e+30 m at cell (i 100, j 0) is outside [-11000, 9000] m"},
+        {hydro(kind), "kind.nc: variable 'point_kind': point 0 ('WG1'): kind 'bogus' is neither 'gauge' nor 'start'"},
+        {hydro(dup), "dup.nc: variable 'point_name': 'WG1' is the name of entries 0 and 1"},
+        {hydro(empty), "empty.nc: variable 'point_name': entry 1 is an empty name"},
+        {"stats --sweep " + o.sweep + " --scene " + section + " --out " + c.dir + "/s.nc",
+         "section.nc: section 'fd_x1.8': section_y_min 5 m is not below section_y_max"},
+        {hydro(all_building), "all_building.nc: variable 'building': every cell is a building"},
+        {hydro(o.flow), "--scene " + o.flow + ": is a flow file (written by `flotsam hydro`), not a scene"},
+        {"debris --flow " + c.scene + " --at 1,-1,0 --quiet --out " + c.dir + "/d.nc", "scene.nc: is a scene"},
+        {stats(o.flow), o.flow + ": is a flow file (written by `flotsam hydro`), not a sweep file"},
+        {stats(member_twice), "member_twice.nc: variable 'member_id': member_id 0 is given twice"},
+        {stats(member_negative), "member_negative.nc: variable 'member_id': trajectory 1 has member_id -3, outside [0, 4)"},
+        {stats(status), "status.nc: variable 'status': trajectory 0, time index 2: -1 is not a combination of the flags"},
+        {stats(o.sweep) + " --yaw-bin 1e-300", "--yaw-bin: 1e-300 is outside the allowed range [0.01, 360] degree"},
+        {"boundary generate --peak 1e308 --out-dir " + c.dir + "/bc2", "--peak: 1e+308 m: x --froude-scale 1 is a level of 1e+308 m"},
+        {"boundary generate --duration 1e-300 --out-dir " + c.dir + "/bc2", "--duration: 1e-300 s: is not longer than --dt (0.1 s)"},
+        {"hydro --scene " + c.scene + " --west wall --duration 1e-300 --quiet --out " + c.dir + "/h.nc",
+         "--duration: 1e-300 s stores one frame (t = 0) only"},
+        {hydro(c.scene) + " --config " + dir, "config_dir: is a directory, not a regular file"},
+        {"hydro --scene " + c.scene + " --west wall --duration 0x10 --quiet --out " + c.dir + "/h.nc",
+         "--duration: '0x10' is not a decimal number"},
+    });
+}
+
+// Flows, scenes, statistics and trajectories given together must come from one scene:
+// grid, bed, building mask and CRS, in every command that combines them; and what export
+// writes must be a map (no all-missing depth, no arrival before the run, no NaN track).
+TEST(ReliabilityCli, FilesGivenTogetherAreCheckedAgainstEachOther) {
+    const SmallCase c = small_case("cli_together");
+    const Outputs o = flow_and_sweep(c);
+    std::string out;
+    const std::string stats = c.dir + "/stats.nc", traj = c.dir + "/traj.nc";
+    ASSERT_EQ(test::run_cli("stats --sweep " + o.sweep + " --out " + stats, &out), 0) << out;
+    ASSERT_EQ(test::run_cli("debris --flow " + o.flow + " --scene " + c.scene + " --start FD --quiet --out " + traj, &out), 0) << out;
+    // The same bed with one more building cell (cell 0, in the flume's water).
+    const std::string mask = copy_of(c.scene, c.dir + "/mask.nc");
+    fuzz::copy_with_value(c.scene, mask, "building", 0, 1);
+    // Another resolution, and another layout, with their flows.
+    const std::string coarse = c.dir + "/coarse.nc", other = c.dir + "/other.nc";
+    ASSERT_EQ(test::run_cli("scene generate --resolution 0.32 --out " + coarse, &out), 0) << out;
+    ASSERT_EQ(test::run_cli("scene generate --resolution 0.16 --seed 7 --out " + other, &out), 0) << out;
+    const std::string hydro = " --west level --west-series " + c.series + " --duration 4 --quiet" + whole_grid + " --out ";
+    ASSERT_EQ(test::run_cli("hydro --scene " + coarse + hydro + c.dir + "/coarse_flow.nc", &out), 0) << out;
+    ASSERT_EQ(test::run_cli("hydro --scene " + other + hydro + c.dir + "/other_flow.nc", &out), 0) << out;
+    const std::string nan_depth = copy_of(o.flow, c.dir + "/nan_depth.nc");
+    set_all(nan_depth, "max_depth", std::nan(""));
+    const std::string early = copy_of(o.flow, c.dir + "/early.nc");
+    fuzz::copy_with_value(o.flow, early, "arrival_time", 10, -5.0);
+    const std::string nan_x = copy_of(traj, c.dir + "/nan_x.nc");
+    fuzz::copy_with_value(traj, nan_x, "x", 3, std::nan(""));
+    const std::string transposed = c.dir + "/transposed.nc";  // drawn as garbage lines before
+    fuzz::copy_with_transposed(traj, transposed, "x");
+    const std::string flow_index = c.dir + "/flow_index.nc", one_body = c.dir + "/one_body.nc";
+    fuzz::copy_with_value(o.sweep, flow_index, "flow_index", 0, 99);
+    fuzz::copy_with_dimension(o.sweep, one_body, "body", 1);
+    const std::string gis = " --out-dir " + c.dir + "/gis";
+    expect_named_errors({
+        {"debris --flow " + o.flow + " --scene " + mask + " --start FD --quiet --out " + c.dir + "/d.nc",
+         "was not computed on scene " + mask + ": the bed is the same, but the building mask differs"},
+        {"stats --sweep " + o.sweep + " --scene " + mask + " --out " + c.dir + "/s.nc", "was run on another scene than " + mask},
+        {"export --stats " + stats + " --flow " + c.dir + "/coarse_flow.nc" + gis, "coarse_flow.nc: comes from a scene of 0.32 m cells"},
+        {"export --flow " + o.flow + " --flow " + c.dir + "/other_flow.nc" + gis,
+         "other_flow.nc: variable 'z': the bed differs from that of " + o.flow},
+        {"export --flow " + nan_depth + gis, "nan_depth.nc: variable 'max_depth': missing (NaN or a fill value) at flat index 0"},
+        {"export --flow " + early + gis, "early.nc: variable 'arrival_time': -5 at flat index 10 is outside [-1e-06, 4]"},
+        {"export --trajectories " + nan_x + gis, "nan_x.nc: variable 'x': trajectory 0, time index 3: nan is not a position"},
+        {"export --trajectories " + transposed + gis, "transposed.nc: variable 'x': must have dimensions (trajectory, time)"},
+        {"export --trajectories " + flow_index + gis, "flow_index.nc: trajectory 0: body, variant, flow or parameter set not in"},
+        {"export --trajectories " + one_body + gis, "one_body.nc: trajectory "},
+        {"export --trajectories " + traj + " --flow " + c.dir + "/other_flow.nc" + gis, "comes from another scene than"},
+    });
+    EXPECT_FALSE(fs::exists(c.dir + "/gis"));  // refused before anything was written
+}
+
+// Errors that were there but unclear now name the input and what is wrong.
+TEST(ReliabilityCli, ErrorsNameTheInputAndWhatIsWrong) {
+    const SmallCase c = small_case("cli_unclear");
+    const Outputs o = flow_and_sweep(c);
+    std::string out;
+    // A byte-order mark before the first key is not part of it.
+    const std::string bom = test::write_file(c.dir, "bom.toml", "\xEF\xBB\xBF" "duration = 0.5\nmax-dt = 0\n");
+    // A scene recommending a value its option refuses: the scene's attribute is named.
+    const std::string defaults = copy_of(c.scene, c.dir + "/defaults.nc");
+    set_text_attribute(defaults, "global", "flotsam_hydro_defaults", "max-dt = -1");
+    // A header naming time second.
+    std::ifstream in(c.series);
+    std::string line, csv = "eta,time\n";
+    std::getline(in, line);
+    while (std::getline(in, line)) csv += line + "\n";
+    const std::string swapped = test::write_file(c.dir, "swapped.csv", csv);
+    // A sweep part without trajectories (shard 0 of 8 of a 4-member sweep).
+    ASSERT_EQ(test::run_cli("sweep --spec " + o.spec + " --shard 0/8 --quiet --out " + c.dir + "/empty.nc", &out), 0) << out;
+    expect_named_errors({
+        {"hydro --scene " + c.scene + " --west wall --quiet --out " + c.dir + "/h.nc --config " + bom,
+         "bom.toml: key 'max-dt': 0 is outside the allowed range (0, inf) s"},
+        {"hydro --scene " + defaults + " --west wall --duration 0.5 --quiet --out " + c.dir + "/h.nc",
+         "defaults.nc: attribute 'flotsam_hydro_defaults', line 'max-dt = -1': -1 is outside the allowed range (0, inf) s"},
+        {"hydro --scene " + c.scene + " --west level --west-series " + swapped + " --duration 1 --quiet --out " + c.dir + "/h.nc",
+         "swapped.csv: line 1: header 'eta,time': names time in column 2"},
+        {"stats --sweep " + c.dir + "/empty.nc --out " + c.dir + "/s.nc",
+         "empty.nc: dimension 'trajectory': the sweep file holds no trajectories (0 members)"},
+    });
+    EXPECT_EQ(test::run_cli("hydro --scene " + c.scene + " --west wall --quiet --out " + c.dir + "/h.nc --config " + bom, &out), 1);
+    EXPECT_EQ(out.find("\xEF\xBB\xBF"), std::string::npos) << out;
 }

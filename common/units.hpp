@@ -1,0 +1,35 @@
+// Units of the NetCDF files flotsam reads, honoured or refused by name.
+//
+// flotsam writes metres, seconds and metres per second, and its readers compute in them.
+// A file that says other units (a scene's z in feet, x in km, a flow's time in "hours
+// since ...", h in cm, u in "km h-1") is converted where CF and UDUNITS define the unit
+// (the lengths m, cm, mm, km, ft, in, mi; the times s, min, h, d, optionally "since" a
+// reference; a speed as length per time, or knots); any other unit is refused with the
+// file, the variable and the unit. A variable without a units attribute is taken to be
+// in flotsam's own units (m, s, m s-1). A vertical coordinate with positive = "down"
+// counts downward and is negated; any positive other than "up" or "down" is refused.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "common/netcdf.hpp"
+
+namespace flotsam::units {
+
+// The factor that turns a value in `u` into metres (seconds, metres per second); none when
+// `u` is not such a unit.
+std::optional<double> length_to_metres(const std::string& u);
+std::optional<double> time_to_seconds(const std::string& u);  // "s", "hours", "hours since 2000-01-01", ...
+std::optional<double> speed_to_metres_per_second(const std::string& u);
+
+// The factor of variable `var`'s units attribute (1 when it has none); throws naming the
+// file, the variable and its units when they are not a length (time, speed).
+double length_factor(const nc::File& f, int var);
+double time_factor(const nc::File& f, int var);
+double speed_factor(const nc::File& f, int var);
+
+// +1 for a vertical coordinate whose `positive` attribute is "up" (or absent), -1 for
+// "down"; throws naming the file and variable for anything else.
+double vertical_sign(const nc::File& f, int var);
+
+}  // namespace flotsam::units
