@@ -1,4 +1,4 @@
-"""The paper's statistics of several sweeps side by side (issue 17.4): region counts at
+"""The paper's statistics of several sweeps side by side: region counts at
 the arrival time (Channel A and B) and the passage at each cross-section (how many cross,
 median position, median speed), per body and model, over all parameter sets, as
 `flotsam stats --csv DIR` writes them.
