@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Resolution judged by the debris answer (make -f Makefile.pipeline resolution-debris;
-# docs/accuracy.md, "Resolution by the debris answer").
+# docs/studies/resolution_by_debris.md).
 #
 # The real layout's ten 1 cm flows are the reference. Each grid of RESOLUTION_GRIDS is
 # swept with the bodies on the 1 cm ground (the pipeline's default) and on the flows' own
