@@ -1,5 +1,5 @@
 // Finite numbers in range, or a named error: the one check every numeric option,
-// settings key and spec value goes through (issue 18). A check is data — a name, a value
+// settings key and spec value goes through. A check is data — a name, a value
 // and a Range — so a table of parameters can drive it:
 //
 //     check_range("--cfl", s.cfl, Range::open_closed(0, 0.5));

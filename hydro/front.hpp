@@ -1,9 +1,10 @@
-// The front treatment of the finite-volume solver (issue 14): the wet fraction of the
-// cells a dry-bed front is moving into, and the invariant correction after each step.
-// Why and how: front_kernels.hpp and docs/hydro.md, "Wet/dry fronts". The solver calls
-// it at three points of a step: find_tips() before each stage (the fused sweep then
-// gives each tip's faces the wedge's state and shuts its dry face), advance() after each
-// stage, correct_invariants() after the step.
+// The tracked fronts of the finite-volume solver (`--fronts tracked`, with `--time-stepping
+// heun`): the wet fraction of the cells a dry-bed front is moving into, and the invariant
+// correction after each step. Why and how: front_kernels.hpp and docs/hydro.md, "Wet/dry fronts".
+// The solver calls it at these points of a step: fix() and find_tips() before each stage
+// (the fused sweep then gives each tip's faces the wedge's state and shuts its dry face),
+// grow() and fix_row()/fix_done() as the stage writes its state, correct_invariants()
+// after the step.
 //
 // Arrays are the solver's padded layout (two ghost layers, row-major, x fastest).
 #pragma once

@@ -1,4 +1,4 @@
-// Point-wise kernels of the front treatment (issue 14; docs/hydro.md, "Wet/dry fronts").
+// Point-wise kernels of the tracked fronts (docs/hydro.md, "Wet/dry fronts").
 // The loops that drive them are in front.cpp.
 //
 // Why a cell average loses a dry-bed front: in Ritter's fan the Riemann invariant

@@ -31,8 +31,8 @@
 //      cell above the higher ground, the classic codes' wet/dry rule ("the level of the
 //      wet side above the higher ground") used on every face. Upwinding the depth is
 //      what damps the mass equation: a variant that stepped M itself with the mean
-//      depth, TUNAMI's form, was tried while writing this and left oscillations of half
-//      the jump behind the wet dam break's bore and a stalled dry front.
+//      depth, TUNAMI's form, leaves oscillations of half the jump behind the wet dam
+//      break's bore and a stalled dry front.
 //   3. outflow limiter: a cell whose outgoing discharges would take more water than it
 //      holds has them (and their velocities) scaled down to take exactly what it holds.
 //      Classic codes clamp h at 0 after the fact, which creates water; this keeps

@@ -8,7 +8,7 @@
 // Storage: h, hu, hv, z with two ghost layers on every side, row-major, x fastest:
 // the interior cell (i, j) sits at (j + 2) * (nx + 4) + (i + 2).
 //
-// Speed (docs/hydro.md, "Performance notes"): a stage sweeps the rows once, keeping the
+// Speed (docs/hydro.md, "Cost"): a stage sweeps the rows once, keeping the
 // primitive values, slopes and y-face fluxes of the few rows in flight in per-thread
 // row buffers, and updates each row as soon as its rates are known; cells whose whole
 // stencil is exactly zero (dry land the water has not reached) are skipped, which

@@ -1,4 +1,4 @@
-// Finite or a named error: the checks a hydro run makes on its own state (issue 18).
+// Finite or a named error: the checks a hydro run makes on its own state.
 //
 // Before every stored frame and every checkpoint the whole state is scanned; the first
 // cell whose depth or velocity is not finite, whose depth is negative or absurdly deep,

@@ -1,8 +1,8 @@
 // The row kernels of the finite-volume stage (solver.cpp drives them): each computes one
 // quantity along one grid row, from row pointers at padded column 0, over the interior
 // columns it is given. They are templates on the arithmetic type only so that a
-// benchmark (bench/precision_bench.cpp) can time the same code in float32 (issue 17,
-// lever 3); the solver instantiates them in double.
+// benchmark (bench/precision_bench.cpp) can time the same code in float32; the
+// solver instantiates them in double.
 #pragma once
 #include <algorithm>
 #include <cstddef>

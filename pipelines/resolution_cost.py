@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Flows of the same records at several grids against the finest (issue 17.4's hydro
-chart): the error at the points debris cares about (pipelines.flow_error: WG2, the depth
+"""Flows of the same records at several grids against the finest (the flows' table of
+docs/studies/resolution_by_debris.md): the error at the points debris cares about (pipelines.flow_error: WG2, the depth
 and the draft time at the FD and LD starts) against what a flow of each grid costs.
 
     python3 -m pipelines.resolution_cost SCENE "1 cm=DIR[:LOG]" "2 cm=DIR[:LOG]" ... [--csv OUT.csv] [--png OUT.png]

@@ -1,4 +1,4 @@
-"""Resolution judged by the debris answer (issue 17.4): two sweeps of the same spec over
+"""Resolution judged by the debris answer: two sweeps of the same spec over
 flows of the same records at two grid resolutions, compared by what a user reads off them.
 
     python3 -m pipelines.resolution_debris --ref runs/sweep-real-0.02.nc --test runs/sweep-real-0.04.nc

@@ -1,4 +1,4 @@
-"""The paper's statistics of several sweeps side by side (issue 17.4): region counts at
+"""The paper's statistics of several sweeps side by side: region counts at
 the arrival time (Channel A and B) and the passage at each cross-section (how many cross,
 median position, median speed), per body and model, over all parameter sets, as
 `flotsam stats --csv DIR` writes them.
@@ -18,7 +18,7 @@ a fixed seed, so the same output every time). An interval that excludes 0 is a
 difference the records' own spread does not explain.
 
 That interval does not hold the tracks' chaos: the same records with the flow barely
-changed can move a count or a median beyond it (docs/accuracy.md, "How much of that is
+changed can move a count or a median beyond it (docs/studies/resolution_by_debris.md, "How much of that is
 chaos?"). --floor LABEL=DIR (repeatable) names stats of such perturbed copies of the
 reference (`python3 -m pipelines.subsample_flow IN.nc 1 OUT.nc --keep-bits N` on its
 flows, then the same sweep and stats). A "chaos floor" column then gives, per statistic,

@@ -4,7 +4,7 @@
 Usage: python3 -m pipelines.speed_ratio --flotsam BUILD/flotsam --dem DEM.nc --runs DIR
            [--baseline COMMIT] [--setting NAME=RES:SECONDS ...] [--csv FILE]
 
-Builds `flotsam` at COMMIT (default: the end of the first wave, c05fa73) in a git
+Builds `flotsam` at COMMIT (default: FIRST_WAVE, a fixed reference build) in a git
 worktree under DIR (once; ccache is used where installed), imports the DEM at each
 setting's resolution with each binary, and runs the two flows side by side, one thread
 each, so that both see the same machine: the real layout with the benchmark's pump

@@ -14,7 +14,7 @@ Written to OUT.part and renamed.
 --keep-bits N stores the (time, y, x) fields (h, u, v) with netCDF-C's BitRound
 quantisation: each value keeps N significant bits of its mantissa (1 <= N <= 23), so it
 moves by at most 2^-(N+1) of itself; zero stays zero, a depth keeps its sign, and a wet
-cell stays wet. K = 1 keeps every frame. Two uses (docs/accuracy.md, "How much of that is
+cell stays wet. K = 1 keeps every frame. Two uses (docs/studies/resolution_by_debris.md, "How much of that is
 chaos?"): a perturbation of known size, to measure how far the debris answer moves when
 the flow barely changes; and smaller files that inflate faster (the low bits become
 zeros).

@@ -1,0 +1,79 @@
+# Kainan at the prototype scale: GIS in, the same physics x250, GIS out (docs/gis.md).
+#
+# The shared DEM x250 as a GeoTIFF in UTM zone 53N (EPSG:32653), the flume's x = y = 0 at
+# E 518000, N 3780000 (34.16 N, 135.195 E), its values in a vertical datum 0.9 m below
+# still water (gdal_translate -scale maps 0..1 m to 0.9..250.9 m: z x 250 + 0.9); building
+# footprints derived from its roofs (the flume's building rule x250, gdal_polygonize) and
+# read back as a vector file; Froude-scaled WG1 records; flows, the sweep of
+# sweep/examples/kainan_full_scale.toml, statistics, GeoTIFF maps and the chart. The data
+# is made at run time under runs/kainan-full/, never committed.
+
+##@ Full scale (docs/gis.md)
+## FULL_RES     grid of the full-scale scene [m] (10)
+## FULL_COUNT   full-scale flows (4)
+FULL          ?= $(RUNS)/kainan-full
+FULL_RES      ?= 10
+FULL_COUNT    ?= 4
+FULL_DATUM    := 0.9
+FULL_ULLR     := 514908.75 3779998.75 520001.25 3778998.75
+FULL_DURATION := 6640
+FULL_FEATURES := data/examples/kainan_full_scale.toml
+FULL_SPEC     := sweep/examples/kainan_full_scale.toml
+FULL_FLOWS    := $(foreach r,$(shell seq -f '%02g' 0 $$(( $(FULL_COUNT) - 1 ))),$(FULL)/flows/flow_r$(r).nc)
+FULL_BCS      := $(patsubst $(FULL)/flows/flow_r%.nc,$(FULL)/bc/wg1_r%.csv,$(FULL_FLOWS))
+
+.PHONY: real-scale-demo real-scale-scene real-scale-flows real-scale-maps
+
+$(FULL)/kainan_dsm.tif: $(REAL_DEM) | tool
+	@mkdir -p $(FULL)
+	gdal_translate -q -of GTiff -ot Float32 -a_srs EPSG:32653 -a_ullr $(FULL_ULLR) -scale 0 1 0.9 250.9 -a_nodata none \
+	  -co COMPRESS=DEFLATE -co PREDICTOR=3 -co TILED=YES NETCDF:"$(REAL_DEM)":z $@
+
+$(FULL)/buildings.gpkg: $(FULL)/kainan_dsm.tif data/examples/kainan_full_scale_buildings.toml
+	$(FLOTSAM) scene import --dem $< --still-water-level $(FULL_DATUM) \
+	  --features data/examples/kainan_full_scale_buildings.toml --resolution 2.5 --out $(FULL)/roofs.nc
+	gdal_translate -q -a_nodata 0 NETCDF:"$(FULL)/roofs.nc":building $(FULL)/roofs.tif
+	rm -f $@ && gdal_polygonize.py -q $(FULL)/roofs.tif -f GPKG $@ buildings
+	rm -f $(FULL)/roofs.nc $(FULL)/roofs.tif
+
+$(FULL)/scene.nc: $(FULL)/kainan_dsm.tif $(FULL)/buildings.gpkg $(FULL_FEATURES)
+	$(FLOTSAM) scene import --dem $< --still-water-level $(FULL_DATUM) --features $(FULL_FEATURES) \
+	  --buildings $(FULL)/buildings.gpkg --resolution $(FULL_RES) --out $@
+
+$(FULL_BCS) &: | tool
+	$(FLOTSAM) boundary generate --out-dir $(FULL)/bc --count $(FULL_COUNT) --seed $(SEED) --duration 420 \
+	  --froude-scale 250
+
+# The scene recommends its max-dt, dry depth, frame and gauge intervals, output window,
+# nesting interface and arrival depth ([hydro] in $(FULL_FEATURES)).
+$(FULL)/flows/flow_r%.nc: $(FULL)/bc/wg1_r%.csv $(FULL)/scene.nc | tool
+	$(FLOTSAM) hydro --scene $(FULL)/scene.nc --west level --west-series $< --realisation $$((10#$*)) \
+	  --duration $(FULL_DURATION) --threads $(THREADS) --label "full-scale r$*" --out $@
+
+$(FULL)/sweep.nc: $(FULL_FLOWS) $(FULL_SPEC) | tool
+	$(FLOTSAM) sweep --spec $(FULL_SPEC) --scene $(FULL)/scene.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) \
+	  --threads $(JOBS) --out $@
+
+# Region counts at the flume's 300 s and yaw over its 30 s, x sqrt(250).
+$(FULL)/stats.nc: $(FULL)/sweep.nc
+	$(FLOTSAM) stats --sweep $< --scene $(FULL)/scene.nc --arrival-time 4743 --yaw-window 474 --out $@
+
+## real-scale-scene  the GeoTIFF, the footprints and the full-scale scene
+real-scale-scene: $(FULL)/scene.nc
+## real-scale-flows  the full-scale flows
+real-scale-flows: $(FULL_FLOWS)
+## real-scale-maps   sweep, statistics, Cloud-Optimised GeoTIFF maps, GeoPackage tracks, chart
+real-scale-maps: $(FULL)/stats.nc
+	$(FLOTSAM) export --stats $(FULL)/stats.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) --trajectories $(FULL)/sweep.nc \
+	  --out-dir $(FULL)/gis
+	gdalinfo $(FULL)/gis/pass_probability_all.tif | grep -E "^(Size|Origin|Pixel Size)|LAYOUT|ID\[\"EPSG\",32653\]\]$$"
+	$(PYTHON) -m pipelines.charts_full_scale --scene $(FULL)/scene.nc --stats $(FULL)/stats.nc --sweep $(FULL)/sweep.nc \
+	  --flows $(FULL_FLOWS) --out $(FULL)/kainan_full_scale.png
+
+## real-scale-demo   install what is missing, then all of the above (runs/kainan-full/)
+real-scale-demo: setup
+	@start=$$(date +%s); \
+	$(MAKE) -f Makefile.pipeline real-scale-scene $(FULL_BCS) && \
+	$(MAKE) -f Makefile.pipeline -j$(JOBS) real-scale-flows && \
+	$(MAKE) -f Makefile.pipeline real-scale-maps && \
+	echo "real-scale-demo: done in $$(( $$(date +%s) - start )) s: GeoTIFFs in $(FULL)/gis, chart $(FULL)/kainan_full_scale.png"
