@@ -17,6 +17,11 @@ namespace flotsam::debris {
 // of a 1 cm cell). A micrometre of overlap is not an unresolved collision.
 inline constexpr double unresolved_overlap_cells = 1e-3;  // [-]
 
+// The move out of overlaps keeps out of the blocked cells within this many cells of the
+// body too, so that it does not push the body from one wall into another (a move out is
+// the size of an overlap, a fraction of the quarter cell a corner moves in a step) [-].
+inline constexpr double clearing_margin_cells = 0.25;
+
 struct CollisionOutcome {
     bool touched = false;     // some contact was found
     bool unresolved = false;  // MC: the pass bound was reached with an overlap deeper than the tolerance left
@@ -43,10 +48,11 @@ struct StepMove {
 //   single: the deepest contact only, one impulse, then a move out by its depth.
 //   multi:  up to max_passes of {detect all; for each contact, deepest first, the impulse
 //           (only where the contact approaches); the pose advanced again from the start of
-//           the step with the corrected velocities}; a pass in which no contact approaches
-//           but an overlap is left (one the step began with) moves the body out of each
-//           contact by its depth, shared between translation and rotation as an impulse
-//           is (mass-weighted), so a body wedged across a gap turns out of it.
+//           the step with the corrected velocities; where an overlap is left (one the step
+//           began with, a turning body's arc against the straight re-advance, two contacts
+//           whose impulses undo each other in a wedge), the least move out of all of them
+//           at once: the smallest M |Δx|² + I Δθ² that clears every contact to first
+//           order, so a body wedged across a gap turns and slides out of it}.
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
                                     double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
                                     const Box& footprint, std::vector<ObstacleContact>& scratch);
