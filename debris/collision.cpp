@@ -16,16 +16,14 @@ constexpr double separation_slop = 1e-9;
 
 Box pose(const BodyState& s, const BodyParams& b) { return Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width); }
 
-// The impulse at one contact (zero unless it approaches); whether it was applied.
-bool apply_impulse(const ObstacleContact& c, const BodyParams& b, double mass, double inertia, BodyState& s) {
+// The impulse at one contact (zero unless it approaches).
+void apply_impulse(const ObstacleContact& c, const BodyParams& b, double mass, double inertia, BodyState& s) {
     const Vec2 r = c.point - Vec2{s.x, s.y};
     const Vec2 vp = Vec2{s.vx, s.vy} + spin(s.omega, r);
     const double j = contact_impulse(dot(vp, c.normal), b.def.restitution, mass, inertia, r, c.normal);
-    if (!(j > 0.0)) return false;
     s.vx += j / mass * c.normal.x;
     s.vy += j / mass * c.normal.y;
     s.omega += j * cross(r, c.normal) / inertia;
-    return true;
 }
 
 double deepest(const std::vector<ObstacleContact>& cs) {
@@ -46,8 +44,9 @@ void hand_pivot_to_centre(BodyState& s) {
     s.pivot_ax = s.pivot_ay = 0.0;
 }
 
-// The least move out of every contact at once (see `clearing_move` in the header's
-// comment): the contacts' rows in the inertia-scaled coordinates u = (√M Δx, √M Δy, √I Δθ).
+// The least move out of every contact at once (`clearing_move` below): the contacts'
+// rows in the inertia-scaled coordinates u = (√M Δx, √M Δy, √I Δθ), where that move is
+// the shortest u.
 struct ClearingRow {
     double a[3];  // (n / √M, (r × n) / √I)
     double b;     // depth to clear [m]
