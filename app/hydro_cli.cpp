@@ -30,7 +30,8 @@ struct HydroOptions {
     std::string level_mode_all;  // --level-mode: every side at once (a side's own option wins)
     std::string scheme = "fv";
     std::string friction = "implicit";
-    std::string fronts = "tracked";
+    std::string fronts = "plain";
+    std::string stepping = "split";
     int threads = 0;
 };
 
@@ -55,6 +56,7 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     o.run.scheme = parse_enum<Scheme>(o.scheme, "--scheme");
     o.run.finite_volume.friction = parse_enum<Friction>(o.friction, "--friction");
     o.run.finite_volume.fronts = parse_enum<FrontTreatment>(o.fronts, "--fronts");
+    o.run.finite_volume.stepping = parse_enum<TimeStepping>(o.stepping, "--time-stepping");
     s.west.kind = parse_enum<BoundaryKind>(o.west, "--west");
     s.east.kind = parse_enum<BoundaryKind>(o.east, "--east");
     s.south.kind = parse_enum<BoundaryKind>(o.south, "--south");
@@ -84,7 +86,8 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     o.run.config_text = result_settings(sub->config_to_str(true, false));
     // SIGTERM (a batch system's notice before it kills the job, Slurm's at its time limit
     // or on preemption), SIGINT (Ctrl-C) and SIGHUP (the terminal gone) stop the run at
-    // its next frame with a checkpoint there. A second one kills at once (SA_RESETHAND).
+    // its next frame with a checkpoint there, or at once when that frame is more than a
+    // second away (hydro/run.hpp). A second one kills at once (SA_RESETHAND).
     // Set before the output's lock is taken: a signal sent to the lock's holder is caught.
     struct sigaction stop{};
     stop.sa_handler = [](int sig) { request_stop(sig); };
@@ -118,11 +121,16 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
                          ? (", " + std::to_string(r.positivity_redos) + " steps redone at cfl 0.45 for positive depths").c_str()
                          : "");
     }
+    if (r.stop_signal != 0 && r.checkpoint_time >= 0.0)
+        fail(o.run.out_file, "",
+             "interrupted (" + stop_name + ") at t = " + number_text(r.simulated) + " s; the run up to t = " +
+                 number_text(r.checkpoint_time) + " s is kept in " + checkpoint_path(o.run.out_file) + " and " + o.run.out_file +
+                 ".part: continue it with the same command and --restart");
     if (r.stop_signal != 0)
         fail(o.run.out_file, "",
-             "interrupted (" + stop_name + ") at t = " + number_text(r.simulated) + " s; the run so far is kept in " +
-                 checkpoint_path(o.run.out_file) + " and " + o.run.out_file +
-                 ".part: continue it with the same command and --restart");
+             "interrupted (" + stop_name + ") at t = " + number_text(r.simulated) +
+                 " s, before its first checkpoint (--checkpoint-interval); its frames so far are in " + o.run.out_file +
+                 ".part, and the run starts afresh when given again");
 }
 
 }  // namespace
@@ -187,8 +195,9 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->check(CLI::IsMember({1, 2}))
         ->capture_default_str();
     sub->add_option("--cfl", fv.cfl,
-                    "Finite volumes: Courant number dt*max(a_x/dx + a_y/dy), at most 1; above 0.5 a step that would make a depth "
-                    "negative is redone at 0.45")
+                    "Finite volumes: Courant number, dt*max(a_x/dx, a_y/dy) for the split step and dt*max(a_x/dx + a_y/dy) "
+                    "for Heun's (a = |u| + sqrt(g h)), at most 1; above 0.5 a step that would make a depth negative is redone "
+                    "at 0.45")
         ->capture_default_str()
         ->check(in_range(Range::positive().up_to(1.0)));
     sub->add_option("--max-dt", s.max_dt, "Upper bound on the time step [s]")
@@ -205,8 +214,12 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
                     "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
         ->capture_default_str();
     sub->add_option("--fronts", o->fronts,
-                    "Finite volumes: dry-bed fronts 'tracked' (a wet fraction and the invariant correction, docs/hydro.md) or "
-                    "'plain' cell averages (for comparison; they lag)")
+                    "Finite volumes: dry-bed fronts 'plain' (cell averages) or 'tracked' (a wet fraction and an invariant "
+                    "correction; with --time-stepping heun only; it fails Thacker's bowl and the parabola, docs/hydro.md)")
+        ->capture_default_str();
+    sub->add_option("--time-stepping", o->stepping,
+                    "Finite volumes: 'split' (an x and a y sweep of MUSCL-Hancock per step, their order alternating; the step "
+                    "limited by each direction's own speed) or 'heun' (unsplit MUSCL with Heun's method)")
         ->capture_default_str();
     sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
                   "Stability study only: accept --cfl above 1, step above 0.5 without the positivity redo, and let the leap-frog "

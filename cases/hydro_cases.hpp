@@ -196,6 +196,12 @@ struct Thacker {
     double level(double x, double y, double t) const {
         return eta * h0 / (a * a) * (2.0 * x * std::cos(omega() * t) + 2.0 * y * std::sin(omega() * t) - eta);
     }
+    double period() const { return 2.0 * std::acos(-1.0) / omega(); }  // [s]
+    // level - bed = h0 (1 - |(x, y) - c(t)|^2 / a^2), c(t) = eta (cos, sin)(omega t): a disc
+    // of water of radius a whose centre circles the bowl's at distance eta; 0 outside it.
+    double depth(double x, double y, double t) const { return std::max(0.0, level(x, y, t) - bed(x, y)); }
+    double x_velocity(double t) const { return -eta * omega() * std::sin(omega() * t); }  // where wet [m/s]
+    double y_velocity(double t) const { return eta * omega() * std::cos(omega() * t); }
 };
 inline Scene thacker_planar(int n, const Thacker& th = Thacker{}) {
     Scene s = flat_scene(n, n, 4.0 / n, -2.0, 0.0);

@@ -11,13 +11,14 @@ namespace flotsam::hydro {
 struct PhysicsDef {
     double gravity = 9.81;  // [m s^-2]
     // The one dry tolerance: below it velocities are desingularised (swe_kernels.hpp,
-    // inverse_depth) and the reconstruction is first order; a front's tip starts in a dry
-    // cell only where the water behind stands this much above its ground (front.hpp); the
-    // leap-frog's faces do not open. 1e-9 m, a millionth of a millimetre: the tracked
-    // fronts carry their thinnest water at its speed only above it (at 1e-5 m Ritter's
-    // 5 mm front lags 4.7 cells at 400 cells, 1.7 at 1e-9), and it stays far above
-    // round-off on depths of order 1 m.
-    double dry_depth = 1e-9;           // [m]
+    // inverse_depth) and the reconstruction is first order; the leap-frog's faces do not
+    // open (and the tracked fronts start a tip only where the water stands this far above
+    // a dry cell). 1e-6 m, a thousandth of a millimetre, for scenes whose water is
+    // centimetres to a metre deep: thinner films, left on the ground a receding shore
+    // gave up, otherwise race down slopes at many times the flow's speed and set the step
+    // (Thacker's bowl: docs/studies/wetdry_suite.md), and no depth a user reads is
+    // near it. Scale it with the scene (a scene at 250 times the size: 2.5e-4 m).
+    double dry_depth = 1e-6;           // [m]
     double default_manning_n = 0.013;  // [s m^-1/3] where the scene has no manning_n
     BoundaryDef west, east, south, north;
     PumpDef pump;  // the west side's, when it is a pump

@@ -294,6 +294,11 @@ void write_checkpoint(const std::string& path, S& s, const Summary& sum, const C
     out.commit();
 }
 
+double read_checkpoint_time(const std::string& path) {
+    const nc::File f = nc::File::open_read(path);
+    return f.att_double(NC_GLOBAL, "time").value_or(-1.0);
+}
+
 std::string read_checkpoint_key(const std::string& path) {
     const nc::File f = nc::File::open_read(path);
     const auto key = f.att_text(NC_GLOBAL, "restart_key");
@@ -481,8 +486,15 @@ void save_checkpoint(S& solver, const PhysicsDef& def, RunOutput& o, double t, l
     write_checkpoint(o.checkpoint, solver, o.sum, o.state);
 }
 
-// Set by request_stop (a signal handler): the run stops at its next frame.
+// Set by request_stop (a signal handler): the run stops at its next frame when that is
+// near, else at once (step_to_end).
 volatile std::sig_atomic_t stop_signal = 0;
+
+// After a signal, the longest the run goes on to reach its next frame [s of wall time]:
+// there it writes a checkpoint, and --restart continues it; a frame further off (a slow
+// or stalled step) is not waited for, and the run stops at once with its last
+// checkpoint, if any, and its partial output as they are.
+constexpr double stop_wait_wall = 1.0;
 
 // Steps to the last frame, storing frames, gauges, maxima and checkpoints on the way.
 // Returns the step count since the start of the run (restarts included), negated when
@@ -494,11 +506,17 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
                                  : 1e300;
     long steps = o.state.steps;
     auto before = o.gauges.read(solver);
+    StepWatch watch;
+    using Clock = std::chrono::steady_clock;
+    auto last_step_end = Clock::now();
+    double wall_per_step = 0.0;  // [s] a running mean of the last steps' wall time
     while (o.state.next_frame < o.times.size()) {
         const double t0 = solver.time();
         const double target = o.times[o.state.next_frame];
         double dt = solver.stable_dt();
         check_step(solver, solver.grid(), run.out_file, t0, dt, o.state.volume_start);
+        if (watch.stalled(dt)) fail_stalled(run.out_file, t0, dt, watch, fastest_cell(solver, solver.grid(), def.gravity));
+        if (stop_signal != 0 && (target - t0) / dt * wall_per_step > stop_wait_wall) return -steps;
         // A step that would stop within a millionth of itself short of the frame goes to
         // it (a fixed step that divides the interval lands there despite round-off in t).
         const bool reaches = t0 + dt >= target - 1e-6 * dt;
@@ -536,6 +554,9 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
                 next_checkpoint = (std::floor(t1 / run.checkpoint_interval + 1e-9) + 1.0) * run.checkpoint_interval;
             if (stop) return -steps;
         }
+        const auto now = Clock::now();
+        wall_per_step = 0.9 * wall_per_step + 0.1 * std::chrono::duration<double>(now - last_step_end).count();
+        last_step_end = now;
         progress.update(t1, dt, steps);
     }
     return steps;
@@ -578,6 +599,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     if (!res.completed) {
         o.writer->close();
         o.file.keep_partial();
+        if (std::filesystem::exists(o.checkpoint)) res.checkpoint_time = read_checkpoint_time(o.checkpoint);
         return res;
     }
     o.gauges.flush(*o.writer);

@@ -74,6 +74,7 @@ struct RunDef {
 struct RunResult {
     bool completed = false;  // false when stopped by stop_after or request_stop
     int stop_signal = 0;     // the signal request_stop was given, where it stopped the run
+    double checkpoint_time = -1.0;  // [s] of the checkpoint an interrupted run left; < 0: none
     long steps = 0;                               // taken by this run (since its checkpoint, with --restart)
     double started = 0.0;                         // simulated time it began at: 0, or its checkpoint's [s]
     double simulated = 0.0;                       // simulated time it ended at [s]
@@ -93,7 +94,9 @@ struct RunResult {
 RunResult run_hydro(const RunDef& run, const PhysicsDef& physics);
 
 // Asks a run under way to stop at its next stored frame and write a checkpoint there, as
-// stop_after does, so that --restart continues it to the bytes of an uninterrupted run.
+// stop_after does, so that --restart continues it to the bytes of an uninterrupted run;
+// when that frame is more than about a second of wall time away, the run stops at once,
+// keeping the checkpoint it last wrote (if any) and its partial output.
 // Async-signal-safe: the hydro command calls it from its SIGTERM, SIGINT and SIGHUP
 // handler (a batch system's notice before it kills a job). `signal` is reported back in
 // RunResult::stop_signal.

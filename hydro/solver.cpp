@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "hydro/split_rows.hpp"
 #include "hydro/swe_kernels.hpp"
 #include "hydro/swe_rows.hpp"
 
@@ -35,6 +36,10 @@ Solver::Solver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef&
         fail("", "--cfl",
              "must be in (0, 1] (the scheme's linear stability limit is 1; above 0.5 steps are checked for positivity)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
+    if (fv.stepping == TimeStepping::split && fv.fronts == FrontTreatment::tracked)
+        fail("", "--fronts", "tracked fronts are written for --time-stepping heun; the split step has plain fronts");
+    if (fv.stepping == TimeStepping::split && fv.friction == Friction::explicit_)
+        fail("", "--friction", "explicit friction (the stability study's) is written for --time-stepping heun");
     stride_ = std::size_t(grid_.nx + 2 * kGhost);
     rows_ = std::size_t(grid_.ny + 2 * kGhost);
     const std::size_t n = stride_ * rows_;
@@ -120,7 +125,9 @@ double Solver::volume() const {
 }
 
 std::string Solver::description() const {
-    return std::string("finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
+    return std::string(fv_.stepping == TimeStepping::split
+                           ? "finite volumes, MUSCL-Hancock in alternating x and y sweeps + hydrostatic reconstruction + HLL, "
+                           : "finite volumes, MUSCL + hydrostatic reconstruction + HLL, Heun, ") +
            (fv_.friction == Friction::implicit ? "implicit Manning" : "explicit Manning (stability study only)") +
            (fv_.fronts == FrontTreatment::tracked ? ", tracked fronts" : ", plain fronts");
 }
@@ -150,13 +157,24 @@ double Solver::stable_dt() const {
             const double* hu = hu_.data() + row;
             const double* hv = hv_.data() + row;
             double a = 0.0;
+            if (fv_.stepping == TimeStepping::split) {
 #pragma omp simd reduction(max : a)
-            for (int i = 0; i < grid_.nx; ++i) a = std::max(a, wave_rate(h[i], hu[i], hv[i], g, dry, idx, idy));
+                for (int i = 0; i < grid_.nx; ++i) a = std::max(a, split::directional_wave_rate(h[i], hu[i], hv[i], g, dry, idx, idy));
+            } else {
+#pragma omp simd reduction(max : a)
+                for (int i = 0; i < grid_.nx; ++i) a = std::max(a, wave_rate(h[i], hu[i], hv[i], g, dry, idx, idy));
+            }
             amax = std::max(amax, a);
         }
         max_wave_rate_ = amax;
     }
     return max_wave_rate_ > 0.0 ? std::min(def_.max_dt, fv_.cfl / max_wave_rate_) : def_.max_dt;
+}
+
+double Solver::cell_rate(double h, double hu, double hv) const {
+    const double g = def_.gravity, dry = def_.dry_depth, idx = 1.0 / grid_.dx, idy = 1.0 / grid_.dy;
+    return fv_.stepping == TimeStepping::split ? split::directional_wave_rate(h, hu, hv, g, dry, idx, idy)
+                                               : wave_rate(h, hu, hv, g, dry, idx, idy);
 }
 
 SideForcing Solver::side_forcing(Side s, double t) {
@@ -290,13 +308,26 @@ void clear_outside(double* row, ColumnRange was, ColumnRange now) {
 
 void Solver::find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu,
                                  const std::vector<double>& hv, bool pumping) {
+    find_active_columns(which == Stage::corrector ? bound1_ : bound_, which == Stage::predictor && state_changed_outside_, h, hu, hv,
+                        pumping);
+    if (which == Stage::predictor) base_nonzero_ = state_nonzero_;
+    // The corrector also averages with the base state, which may be nonzero where U1 is not.
+    if (which == Stage::corrector)
+        for (int j = 0; j < grid_.ny; ++j) {
+            ColumnRange& a = active_[std::size_t(j)];
+            const ColumnRange before = a;
+            a = hull(a, base_nonzero_[std::size_t(j)]);
+            stats_.cell_stages_dry -= double(std::max(0, a.end - a.begin) - std::max(0, before.end - before.begin));
+        }
+}
+
+void Solver::find_active_columns(const std::vector<ColumnRange>& bound, bool whole_rows, const std::vector<double>& h,
+                                 const std::vector<double>& hu, const std::vector<double>& hv, bool pumping) {
     const int nx = grid_.nx, ny = grid_.ny;
-    // Where the input may be nonzero: what the last stage computed (whole rows when the
-    // state was changed outside step()); ghost rows and columns always. Serial: each
-    // scan stops at the first nonzero cell from either end, so it reads few cells more
-    // than the dry ones within the bound; a parallel region would cost more.
-    const std::vector<ColumnRange>& bound = which == Stage::corrector ? bound1_ : bound_;
-    const bool whole_rows = which == Stage::predictor && state_changed_outside_;
+    // Where the input may be nonzero: `bound`, what the last stage computed (whole rows
+    // when the state was changed outside step()); ghost rows and columns always. Serial:
+    // each scan stops at the first nonzero cell from either end, so it reads few cells
+    // more than the dry ones within the bound; a parallel region would cost more.
     for (int j = -kGhost; j < ny + kGhost; ++j) {
         const std::size_t row = std::size_t(j + kGhost) * stride_ + kGhost;  // column i at row + i
         auto at_column = [&](int i) { return std::size_t(std::ptrdiff_t(row) + i); };
@@ -319,7 +350,6 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
             if (depth_nonzero(i)) depth = hull(depth, {i, i + 1});
         depth_nonzero_[std::size_t(j + kGhost)] = depth;
     }
-    if (which == Stage::predictor) base_nonzero_ = state_nonzero_;
     for (int j = 0; j < ny; ++j) {
         ColumnRange a{0, nx};
         if (fv_.skip_dry_land) {
@@ -327,8 +357,6 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
             for (int k = j - 2; k <= j + 2; ++k) a = hull(a, depth_nonzero_[std::size_t(k + kGhost)]);
             a = hull(clip(widen(a, 2), 0, nx), state_nonzero_[std::size_t(j)]);
         }
-        // The corrector also averages with the base state, which may be nonzero where U1 is not.
-        if (which == Stage::corrector) a = hull(a, base_nonzero_[std::size_t(j)]);
         if (pumping)
             for (std::size_t k = pump_row_start_[std::size_t(j)]; k < pump_row_start_[std::size_t(j) + 1]; ++k) {
                 const int i = int(pump_cells_[k] % stride_) - kGhost;
@@ -529,14 +557,14 @@ double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& cl
         fail("", "nesting", "a side depth change of the wrong side or size");
     const int i = side == Side::west ? 0 : grid_.nx - 1;
     const std::ptrdiff_t inward = side == Side::west ? 1 : -1;
-    const double g = def_.gravity, dry = def_.dry_depth, idx = 1.0 / grid_.dx, idy = 1.0 / grid_.dy;
+    const double dry = def_.dry_depth;
     const bool fronts = fv_.fronts == FrontTreatment::tracked;
     bool inside_water = true;  // every cell changed and its neighbour inward wet all over, and wet after
     double made = 0.0;
     bool rate_lost = false;  // a changed cell set the known rate and now has a lower one
     for (int j = 0; j < grid_.ny; ++j) {
         const std::size_t c = at(i, j);
-        const double rate_before = wave_rate(h_[c], hu_[c], hv_[c], g, dry, idx, idy);
+        const double rate_before = cell_rate(h_[c], hu_[c], hv_[c]);
         h_[c] += dh[std::size_t(j)];
         if (h_[c] < 0.0) {
             made -= h_[c] * grid_.dx * grid_.dy;
@@ -547,7 +575,7 @@ double Solver::add_side_depth(Side side, const std::vector<double>& dh, long& cl
         // The rate known from the last step stays the state's largest if it covers the
         // changed cells and none of them set it (so that a restart, which computes it
         // afresh, takes the same steps).
-        const double rate = wave_rate(h_[c], hu_[c], hv_[c], g, dry, idx, idy);
+        const double rate = cell_rate(h_[c], hu_[c], hv_[c]);
         rate_lost = rate_lost || (rate_before == max_wave_rate_ && rate < rate_before);
         if (max_wave_rate_ >= 0.0) max_wave_rate_ = std::max(max_wave_rate_, rate);
         if (dh[std::size_t(j)] != 0.0)
@@ -607,7 +635,7 @@ void Solver::step(double dt) {
     step_once(dt);
     if (stats_.negative_depth_fixes == fixes_before) return;
     // Back to U^n, which step_once left in h2_ (second order; first order copies).
-    if (fv_.order == 2) {
+    if (fv_.order == 2 || fv_.stepping == TimeStepping::split) {
         h_.swap(h2_);
         hu_.swap(hu2_);
         hv_.swap(hv2_);
@@ -618,6 +646,7 @@ void Solver::step(double dt) {
         hv_ = hv2_;
     }
     alpha_.swap(alpha2_);
+    if (fv_.stepping == TimeStepping::split) sweep_order_[0] = 1.0 - sweep_order_[0];  // the discarded step's toggle
     west_transfer_.swap(saved_west_transfer_);
     east_transfer_.swap(saved_east_transfer_);
     stats_.negative_depth_fixes = fixes_before;
@@ -632,6 +661,13 @@ void Solver::step(double dt) {
 }
 
 void Solver::step_once(double dt) {
+    if (fv_.stepping == TimeStepping::split) {
+        split_step(dt);
+        state_changed_outside_ = false;
+        time_ += dt;
+        ++stats_.steps;
+        return;
+    }
     // Boundary mass transfer with the stepper's weights: Heun's U^{n+1} = U^n + dt/2 (L(U^n) + L(U^1)).
     if (fv_.order == 1) {
         stage(Stage::predictor, dt, time_);
@@ -679,6 +715,146 @@ void Solver::step_once(double dt) {
     state_changed_outside_ = false;
     time_ += dt;
     ++stats_.steps;
+}
+
+// ---- The split step (split_rows.hpp) ----
+//
+// An x sweep and a y sweep, their order alternating from step to step; each sweep is
+// one pass over the rows (the x sweep row by row, the y sweep with the ring buffers of
+// the fused stage above), from h_ through h1_ into h2_, which then becomes the state
+// (h2_ keeps U^n for a step redone for positivity). The second sweep applies the
+// friction of the whole step. Ghosts are filled before each sweep at the half step.
+void Solver::split_step(double dt) {
+    const bool x_first = sweep_order_[0] == 0.0;
+    const double t_half = time_ + 0.5 * dt;
+    sweep(x_first ? Axis::x : Axis::y, false, dt, t_half, h_, hu_, hv_, bound_, state_changed_outside_, h1_, hu1_, hv1_, bound1_);
+    sweep(x_first ? Axis::y : Axis::x, true, dt, t_half, h1_, hu1_, hv1_, bound1_, false, h2_, hu2_, hv2_, bound2_);
+    h_.swap(h2_);
+    hu_.swap(hu2_);
+    hv_.swap(hv2_);
+    bound_.swap(bound2_);
+    if (state_changed_outside_) std::fill(bound2_.begin(), bound2_.end(), ColumnRange{0, grid_.nx});
+    sweep_order_[0] = x_first ? 1.0 : 0.0;
+}
+
+void Solver::sweep(Axis axis, bool last, double dt, double t, std::vector<double>& h, std::vector<double>& hu,
+                   std::vector<double>& hv, const std::vector<ColumnRange>& in_bound, bool whole_rows, std::vector<double>& h_out,
+                   std::vector<double>& hu_out, std::vector<double>& hv_out, std::vector<ColumnRange>& out_bound) {
+    fill_ghosts(h, hu, hv, t);
+    const bool x_sweep = axis == Axis::x;
+    // The pump's source goes with the x sweep (a depth [m] added after its update).
+    const double pump_depth = x_sweep ? dt * forcing_.pump_rate(t) : 0.0;
+    const bool pumping = pump_depth != 0.0;
+    find_active_columns(in_bound, whole_rows, h, hu, hv, pumping);
+    const int nx = grid_.nx, ny = grid_.ny;
+    const Sweep<double> s{
+        def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
+    auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
+    auto row = [&](const std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
+    auto row_out = [&](std::vector<double>& a, int j) { return a.data() + std::size_t(j + kGhost) * stride_; };
+    if (work_.size() < std::size_t(omp_get_max_threads())) work_.resize(std::size_t(omp_get_max_threads()));
+    cumulative_columns_.assign(std::size_t(ny) + 1, 0.0);
+    for (int j = 0; j < ny; ++j)
+        cumulative_columns_[std::size_t(j) + 1] =
+            cumulative_columns_[std::size_t(j)] + 1.0 + std::max(0, active(j).end - active(j).begin);
+    const double friction_dt = last ? dt : 0.0;
+    const double hdt_y = 0.5 * dt / grid_.dy;
+    long fixes = 0;
+    double worst = 0.0, amax = 0.0;
+#pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
+    {
+        flush_subnormals();
+        const int nt = omp_get_num_threads(), tid = omp_get_thread_num();
+        std::vector<double>& mem = work_[std::size_t(tid)];
+        if (mem.size() < split::Buffers<double>::kRows * stride_) mem.assign(split::Buffers<double>::kRows * stride_, 0.0);
+        const split::Buffers<double> w(mem.data(), stride_);
+        auto first_row = [&](int k) {
+            const double share = cumulative_columns_.back() * k / nt;
+            return int(std::lower_bound(cumulative_columns_.begin(), cumulative_columns_.end(), share) -
+                       cumulative_columns_.begin());
+        };
+        const int j0 = first_row(tid), j1 = tid + 1 == nt ? ny : first_row(tid + 1);
+        // The output is exactly zero outside the columns computed now.
+        auto clear_row = [&](int j, ColumnRange cols) {
+            for (std::vector<double>* a : {&h_out, &hu_out, &hv_out}) clear_outside(row_out(*a, j), out_bound[std::size_t(j)], cols);
+        };
+        auto add_pump = [&](int j) {
+            for (std::size_t k = pump_row_start_[std::size_t(j)]; pumping && k < pump_row_start_[std::size_t(j) + 1]; ++k)
+                h_out[pump_cells_[k]] += pump_depth;
+        };
+        if (x_sweep) {
+            for (int j = j0; j < j1; ++j) {
+                const ColumnRange cols = active(j);
+                clear_row(j, cols);
+                west_face_mass_[std::size_t(j)] = east_face_mass_[std::size_t(j)] = 0.0;
+                if (cols.empty()) continue;
+                auto run = [&]<bool kFriction, bool kRate>() {
+                    return split::x_row<double, kFriction, kRate>(s, cols, dt, friction_dt, row(h, j), row(hu, j), row(hv, j),
+                                                                  row(z_, j), row(g_n2_, j), w, row_out(h_out, j),
+                                                                  row_out(hu_out, j), row_out(hv_out, j), fixes, worst, amax);
+                };
+                const auto [west_mass, east_mass] = last ? run.template operator()<true, true>() : run.template operator()<false, false>();
+                west_face_mass_[std::size_t(j)] = west_mass;
+                east_face_mass_[std::size_t(j)] = east_mass;
+                add_pump(j);
+            }
+        } else {
+            // Row j's update needs the primitives of rows j-2 .. j+2, the slopes and
+            // predictor of rows j-1 .. j+1 and the faces below rows j and j+1, over its
+            // columns; each ring row is computed over the columns its users need.
+            auto primitives = [&](int j) {
+                ColumnRange c = widen(active(j), 2);
+                for (int k = j - 2; k <= j + 2; ++k) c = hull(c, active(k));
+                c = clip(c, -kGhost, nx + kGhost);
+                split::y_primitives_row(s, c.begin + kGhost, c.end + kGhost, row(h, j), row(hu, j), row(hv, j), row(z_, j), w,
+                                        j + kGhost);
+            };
+            auto slopes = [&](int j) {
+                const ColumnRange c = hull(hull(active(j - 1), active(j)), active(j + 1));
+                split::y_slopes_row(s, c.begin + kGhost, c.end + kGhost, hdt_y, row(h, j - 1), row(h, j), row(h, j + 1), w,
+                                    j + kGhost);
+            };
+            auto faces = [&](int j) {
+                const ColumnRange c = hull(active(j - 1), active(j));
+                split::y_faces_row(s, c.begin + kGhost, c.end + kGhost, row(h, j - 1), row(h, j), w, j + kGhost);
+            };
+            if (j0 < j1) {
+                for (int j = j0 - 2; j < j0 + 2; ++j) primitives(j);
+                for (int j = j0 - 1; j < j0 + 1; ++j) slopes(j);
+                faces(j0);
+            }
+            for (int j = j0; j < j1; ++j) {
+                primitives(j + 2);
+                slopes(j + 1);
+                faces(j + 1);
+                const ColumnRange cols = active(j);
+                clear_row(j, cols);
+                if (cols.empty()) continue;
+                if (last)
+                    split::y_update_row<double, true, true>(s, cols, dt, friction_dt, row(h, j), row(hu, j), row(hv, j),
+                                                            row(g_n2_, j), w, j + kGhost, row_out(h_out, j), row_out(hu_out, j),
+                                                            row_out(hv_out, j), fixes, worst, amax);
+                else
+                    split::y_update_row<double, false, false>(s, cols, dt, friction_dt, row(h, j), row(hu, j), row(hv, j),
+                                                              row(g_n2_, j), w, j + kGhost, row_out(h_out, j), row_out(hu_out, j),
+                                                              row_out(hv_out, j), fixes, worst, amax);
+            }
+        }
+    }
+    if (x_sweep && track_transfer_)
+        for (std::size_t j = 0; j < west_transfer_.size(); ++j) {
+            west_transfer_[j] += dt * west_face_mass_[j];
+            east_transfer_[j] += dt * east_face_mass_[j];
+        }
+    stats_.negative_depth_fixes += fixes;
+    stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
+    out_bound = active_;
+    if (last) {
+        // The pump cells' rate after the source (the update's rate saw them before it).
+        for (std::size_t p : pump_cells_)
+            if (pumping) amax = std::max(amax, cell_rate(h_out[p], hu_out[p], hv_out[p]));
+        max_wave_rate_ = amax;
+    }
 }
 
 }  // namespace flotsam::hydro

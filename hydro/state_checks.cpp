@@ -1,5 +1,7 @@
 #include "hydro/state_checks.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "common/error.hpp"
@@ -35,6 +37,38 @@ void fail_bad_state(const std::string& out_file, double t, const BadCell& c, dou
          std::string("the run stopped: ") + buf +
              "; no flow file was written. Check the boundary series, --manning-n and the step settings "
              "(--cfl, --max-dt, --courant)");
+}
+
+bool StepWatch::stalled(double dt) {
+    if (!(dt > 0.0)) return false;  // check_step names it
+    const int bin = std::clamp(int(std::floor((std::log10(dt) + 15.0) * 100.0)), 0, kBins - 1);
+    const bool below = count_ > collapse_steps && dt < collapse_ratio * median();
+    ++bins_[std::size_t(bin)];
+    ++count_;
+    below_ = below ? below_ + 1 : 0;
+    return below_ > collapse_steps;
+}
+
+double StepWatch::median() const {
+    long seen = 0;
+    for (int b = 0; b < kBins; ++b) {
+        seen += bins_[std::size_t(b)];
+        if (2 * seen >= count_) return std::pow(10.0, (b + 0.5) / 100.0 - 15.0);
+    }
+    return 0.0;
+}
+
+void fail_stalled(const std::string& out_file, double t, double dt, const StepWatch& watch, const FastestCell& c) {
+    char buf[640];
+    std::snprintf(buf, sizeof buf,
+                  "at t = %.6g s the time step collapsed to %.3g s, below %g of the run's median step (%.3g s) for %d steps. "
+                  "The fastest water sets it: cell (i %d, j %d) at x = %.6g m, y = %.6g m, depth %.3g m, speed %.3g m/s, bed "
+                  "%.6g m (CFL rate %.3g 1/s)",
+                  t, dt, collapse_ratio, watch.median(), watch.steps_below(), c.i, c.j, c.x, c.y, c.depth, c.speed, c.bed, c.rate);
+    fail(out_file, "",
+         std::string("the run stopped: ") + buf +
+             "; no flow file was written. A film racing over dry ground or a wave trapped in a few cells does this: check the "
+             "scene's ground and the boundary series there, or run with a larger --dry-depth");
 }
 
 void check_step(const std::string& out_file, double t, double dt) {

@@ -10,6 +10,10 @@ For each flow, against the reference (typically the finest run), over their comm
   LD_depth_rms_m     the same at the LD start
   FD_draft_err_s     difference of the time the depth first exceeds the draft at FD
   LD_draft_err_s     the same at LD
+  arrival_mae_s      mean |difference| of the arrival-time map (depth above the draft) over the
+                     cells both reach, each flow cell against the reference cell holding its centre
+  arrival_only       share of the cells reached by one of the two only (of those either reaches)
+  max_depth_mae_m    mean |difference| of the maximum depth over the cells either wets
 Grids may differ: values are taken at the cell holding each point. Prints CSV.
 """
 import sys
@@ -68,6 +72,33 @@ def print_csv(rows):
     return keys
 
 
+def seconds_of(a):
+    v = a.values
+    if np.issubdtype(v.dtype, np.timedelta64):
+        v = v / np.timedelta64(1, "s")
+    return np.asarray(v, dtype=float)
+
+
+def on_reference_grid(field, ref):
+    """A (y, x) field of one flow at the reference's cell centres (nearest cell)."""
+    return field.sel(x=ref.x, y=ref.y, method="nearest")
+
+
+def map_errors(ref, ds):
+    out = {}
+    a_f = seconds_of(on_reference_grid(ds.arrival_time, ref))
+    a_r = seconds_of(ref.arrival_time)
+    reached_f, reached_r = np.isfinite(a_f), np.isfinite(a_r)
+    both, either = reached_f & reached_r, reached_f | reached_r
+    out["arrival_mae_s"] = float(np.mean(np.abs(a_f[both] - a_r[both]))) if both.any() else float("nan")
+    out["arrival_only"] = float((either & ~both).sum() / max(either.sum(), 1))
+    d_f = np.nan_to_num(on_reference_grid(ds.max_depth, ref).values.astype(float))
+    d_r = np.nan_to_num(ref.max_depth.values.astype(float))
+    wet = (d_f > 0) | (d_r > 0)
+    out["max_depth_mae_m"] = float(np.mean(np.abs(d_f[wet] - d_r[wet]))) if wet.any() else float("nan")
+    return out
+
+
 def errors(scene, ref_path, ref, path):
     ds = xr.open_dataset(path)
     out = {}
@@ -85,6 +116,7 @@ def errors(scene, ref_path, ref, path):
         keep = t_f <= min(t_f[-1], t_r[-1]) + 1e-9
         out[f"{p}_depth_rms_m"] = float(np.sqrt(np.mean((h_f[keep] - np.interp(t_f[keep], t_r, h_r)) ** 2)))
         out[f"{p}_draft_err_s"] = arrival(ds, x, y) - arrival(ref, x, y)
+    out.update(map_errors(ref, ds))
     return out
 
 

@@ -166,9 +166,9 @@ TEST(Nesting, BadInterfaceIsRefusedWithTheOptionNamed) {
 namespace {
 
 // Water at rest, h_coarse deep west of x = 1 m and h_fine deep east of it, 1 cm cells,
-// nested x4 at x = 1 m: the coarse grid's step is cfl dx_c / (2 sqrt(g h_coarse)), the
-// fine grid's cfl dx_f / (2 sqrt(g h_fine)) (square cells: a/dx + a/dy = 2 c / dx), at
-// the default cfl.
+// nested x4 at x = 1 m: the coarse grid's step is cfl dx_c / sqrt(g h_coarse), the fine
+// grid's cfl dx_f / sqrt(g h_fine) (the split step: max(a/dx, a/dy) = c / dx on square
+// cells), at the default cfl.
 double nested_step(double h_coarse, double h_fine, double& coarse, double& fine) {
     Scene s;
     s.grid = Grid{200, 8, 0.005, 0.005, 0.01, 0.01};
@@ -178,8 +178,8 @@ double nested_step(double h_coarse, double h_fine, double& coarse, double& fine)
     NestedSolver solver(s, test::closed_def(), {}, NestDef{1.0, 4});
     const double g = default_physics_def().gravity;
     const double cfl = FiniteVolumeDef{}.cfl;
-    coarse = cfl * 0.04 / (2.0 * std::sqrt(g * h_coarse));
-    fine = cfl * 0.01 / (2.0 * std::sqrt(g * h_fine));
+    coarse = cfl * 0.04 / std::sqrt(g * h_coarse);
+    fine = cfl * 0.01 / std::sqrt(g * h_fine);
     return solver.stable_dt();
 }
 
@@ -286,7 +286,11 @@ TEST(Nesting, ATimeInterfaceKeepsRestVolumeAndTheWaveAtFewerUpdates) {
                 one.cell_updates());
     EXPECT_LT(std::abs(parts.volume() - v0) / v0, 1e-12);
     EXPECT_EQ(parts.reflux_clamps(), 0);
-    EXPECT_LT(std::abs(peak_parts - peak_one) / peak_one, 0.005);
+    // The side that steps first holds the other's cells at the step's start for its whole
+    // step, an error of first order in its step at the interface: the wave's peak on the
+    // shelf comes out 1.8 % above one fine grid's (0.27 % with Heun's steps, which are half
+    // as long), the nesting itself 0.7 % below the uniform grid's.
+    EXPECT_LT(std::abs(peak_parts - peak_one) / peak_one, 0.025);
     // The wave crosses the interface as a steep front (20 mm over four cells at 3.5 s);
     // where it does, the side that steps first sees the other's cells as they were at the
     // step's start, and the levels beside the interface move by up to 1.5 mm. That is an

@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cases/hydro_cases.hpp"
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/sha256.hpp"
 #include "formats/flow_file.hpp"
 #include "hydro/run.hpp"
+#include "hydro/state_checks.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
@@ -426,4 +428,57 @@ TEST(HydroRun, ResolutionCostTableComparesRecordsAndTakesCostsFromTheLog) {
                          "+0.00 (+0.00 … +0.00) | 0.00 (0.00 … 0.00) | – |"),
               std::string::npos)
         << table;
+}
+
+// The stall watch: a step 1000 times below the run's median for more than 20 steps in a
+// row stops the run; a step that changes tenfold, or dips for a few steps, does not.
+TEST(StepWatch, ACollapsedStepStopsTheRunAndOrdinaryChangesDoNot) {
+    StepWatch ordinary;
+    for (int n = 0; n < 500; ++n) EXPECT_FALSE(ordinary.stalled(n < 250 ? 1e-3 : 1e-4));  // a wave arrives: 10x
+    for (int n = 0; n < collapse_steps; ++n) EXPECT_FALSE(ordinary.stalled(1e-9));        // a dip of 20 steps
+    EXPECT_FALSE(ordinary.stalled(1e-3));
+    EXPECT_NEAR(ordinary.median(), 1e-4, 0.03e-4);  // 270 of 521 steps at most 1e-4 s; bins of 2.3 %
+
+    StepWatch sudden;
+    for (int n = 0; n < 100; ++n) EXPECT_FALSE(sudden.stalled(1e-3));
+    for (int n = 0; n < collapse_steps; ++n) EXPECT_FALSE(sudden.stalled(0.9e-6));
+    EXPECT_TRUE(sudden.stalled(0.9e-6));  // the 21st step in a row below 1e-6
+
+    // A slow decline, 2 % a step (the tracked fronts on Thacker's bowl): the median of the
+    // whole run lags it. After 100 level steps and k > 100 declining ones the median is the
+    // decline's ((k - 100)/2)-th step, so 0.98^k < 1e-3 · 0.98^((k - 100)/2) once
+    // k > 2 ln(1e-3)/ln(0.98) - 100 = 584; then 20 steps more: stopped near n = 705.
+    StepWatch slow;
+    int n = 0;
+    for (; n < 100; ++n) ASSERT_FALSE(slow.stalled(1e-3));
+    double dt = 1e-3;
+    while (!slow.stalled(dt) && n < 5000) dt *= 0.98, ++n;
+    EXPECT_NEAR(n, 705, 5);
+    EXPECT_LT(dt, 1e-3 * slow.median());
+}
+
+// A run whose step collapses stops with a named error: the time, the cell setting the
+// step and what is there, and no flow file. Here a level record whose units went wrong
+// floods a 0.1 mm sheet of water with 50 m at t = 1050 s: the step, 25.8 s in the sheet
+// (cfl dx / sqrt(g h), 1 m cells), falls more than a thousandfold in the bore that runs
+// in (measured: to 8e-4 s, the bore 1.4 km deep at 900 m/s by then), and the run stops
+// 21 steps later instead of creeping on.
+TEST(HydroCli, AStalledRunStopsWithTheCellThatSetTheStep) {
+    const std::string dir = test::scratch_dir("hydro_stall");
+    Scene s = test::flat_scene(100, 4, 1.0, 0.0, -1e-4);
+    s.title = "a sheet of water";
+    write_scene(dir + "/sheet.nc", s, "test");
+    write_file(dir, "level.csv", "time,level\n0,0\n1050,0\n1060,50\n2000,50\n");
+    std::string out;
+    const int rc = test::run_cli("hydro --scene " + dir + "/sheet.nc --west level --west-series " + dir +
+                                     "/level.csv --max-dt 100 --duration 1100 --output-interval 1100 --nest-ratio 1 --quiet --out " +
+                                     dir + "/flow.nc",
+                                 &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("the time step collapsed to"), std::string::npos) << out;
+    EXPECT_NE(out.find("The fastest water sets it: cell (i "), std::string::npos) << out;
+    EXPECT_NE(out.find(" m/s, bed -0.0001 m"), std::string::npos) << out;
+    EXPECT_NE(out.find("no flow file was written"), std::string::npos) << out;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/flow.nc"));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/flow.nc.part"));
 }

@@ -154,47 +154,55 @@ TEST(Solver, SkippingDryLandChangesNoBit) {
                     differing += std::memcmp(a->data(), b->data(), a->size() * sizeof(double)) != 0;
         }
         EXPECT_EQ(differing, 0) << what;
-        EXPECT_GT(skipping.stats().cell_stages_dry / skipping.stats().cell_stages, 0.2) << what;  // skipping happened
+        EXPECT_GT(skipping.stats().cell_stages_dry / skipping.stats().cell_stages, 0.1) << what;  // skipping happened (17 %)
         EXPECT_EQ(computing.stats().cell_stages_dry, 0.0) << what;
     }
     omp_set_num_threads(omp_get_num_procs());
 }
 
 // A checkpoint (or any write through the state accessors) has the next step rescan whole
-// rows and rebuild the wet fraction from h with fresh ghosts; the step must give the bits
-// it gives untouched. Here a flood runs over dry land along the south and north walls, so
-// front cells sit beside the ghost rows: before the fix their wet fraction was made
-// against the ghosts the output buffer kept from its last use, and a touched run's bits
-// parted from an untouched one's within some hundred steps (a checkpoint mid-run gave
-// depths up to 1 mm apart later on).
+// rows (and, with the tracked fronts, rebuild the wet fraction from h with fresh ghosts);
+// the step must give the bits it gives untouched. Here a flood runs over dry land along
+// the south and north walls, so front cells sit beside the ghost rows: with the tracked
+// fronts their wet fraction was once made against the ghosts the output buffer kept from
+// its last use, and a touched run's bits parted from an untouched one's within some
+// hundred steps (a checkpoint mid-run gave depths up to 1 mm apart later on).
 TEST(Solver, ATouchedStateStepsToTheSameBits) {
     Scene s = city_basin(80, 50, 7);
     s.eta0.assign(s.grid.size(), -1.0);  // dry
     for (int j = 0; j < s.grid.ny; ++j)
         for (int i = 0; i < 20; ++i) s.eta0[s.grid.index(i, j)] = 0.08;
-    PhysicsDef d = closed_def();
-    d.default_manning_n = 0.013;
-    Solver untouched(s, d), touched(s, d);
-    ASSERT_EQ(untouched.finite_volume_def().fronts, FrontTreatment::tracked);
-    int differing = 0, first = -1, front_cells_on_edges = 0;
-    for (int n = 1; n <= 600 && differing == 0; ++n) {
-        const double dt = untouched.stable_dt();
-        touched.state_arrays();  // what writing a checkpoint does
-        untouched.step(dt);
-        touched.step(dt);
-        const Solver &u = untouched, &t = touched;  // const: reading must not touch them
-        for (auto [a, b] : {std::pair{&u.depth_data(), &t.depth_data()},
-                            {&u.x_discharge_data(), &t.x_discharge_data()},
-                            {&u.y_discharge_data(), &t.y_discharge_data()}})
-            differing += std::memcmp(a->data(), b->data(), a->size() * sizeof(double)) != 0;
-        for (int j = 0; j < s.grid.ny; ++j)
-            for (int i = 0; i < s.grid.nx; ++i) differing += u.wet_fraction(i, j) != t.wet_fraction(i, j);
-        if (differing) first = n;
-        for (int i = 0; i < s.grid.nx; ++i)  // the case at stake: fronts in the edge rows
-            for (int j : {0, s.grid.ny - 1}) front_cells_on_edges += u.wet_fraction(i, j) > 0.0 && u.wet_fraction(i, j) < 1.0;
+    FiniteVolumeDef tracked;
+    tracked.stepping = TimeStepping::heun;
+    tracked.fronts = FrontTreatment::tracked;
+    for (const FiniteVolumeDef& fv : {FiniteVolumeDef{}, tracked}) {
+        const bool fronts = fv.fronts == FrontTreatment::tracked;
+        PhysicsDef d = closed_def();
+        d.default_manning_n = 0.013;
+        if (fronts) d.dry_depth = 1e-9;
+        Solver untouched(s, d, fv), touched(s, d, fv);
+        int differing = 0, first = -1, front_cells_on_edges = 0;
+        for (int n = 1; n <= 600 && differing == 0; ++n) {
+            const double dt = untouched.stable_dt();
+            touched.state_arrays();  // what writing a checkpoint does
+            untouched.step(dt);
+            touched.step(dt);
+            const Solver &u = untouched, &t = touched;  // const: reading must not touch them
+            for (auto [a, b] : {std::pair{&u.depth_data(), &t.depth_data()},
+                                {&u.x_discharge_data(), &t.x_discharge_data()},
+                                {&u.y_discharge_data(), &t.y_discharge_data()}})
+                differing += std::memcmp(a->data(), b->data(), a->size() * sizeof(double)) != 0;
+            if (!fronts) continue;
+            for (int j = 0; j < s.grid.ny; ++j)
+                for (int i = 0; i < s.grid.nx; ++i) differing += u.wet_fraction(i, j) != t.wet_fraction(i, j);
+            if (differing) first = n;
+            for (int i = 0; i < s.grid.nx; ++i)  // the case at stake: fronts in the edge rows
+                for (int j : {0, s.grid.ny - 1})
+                    front_cells_on_edges += u.wet_fraction(i, j) > 0.0 && u.wet_fraction(i, j) < 1.0;
+        }
+        EXPECT_EQ(differing, 0) << (fronts ? "tracked" : "default") << ", first at step " << first;
+        if (fronts) EXPECT_GT(front_cells_on_edges, 100);
     }
-    EXPECT_EQ(differing, 0) << "first at step " << first;
-    EXPECT_GT(front_cells_on_edges, 100);
 }
 
 TEST(Solver, WetDamBreakConvergesToStoker) {

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -203,10 +204,11 @@ TEST(ReliabilityCli, SecondWriterStopsAtOnceAndTheFirstFinishesIntact) {
 TEST(ReliabilityCli, ASignalStopsTheRunAtAFrameAndRestartGivesTheSameBytes) {
     const SmallCase c = small_case("cli_signal");
     std::string out;
-    // 10 000 steps of 1 ms (a few seconds): the run is surely under way when signalled.
+    // 10 000 steps of 1 ms (a few seconds): the run is surely under way when signalled,
+    // and its next frame is 100 steps away at most (well within the second it waits).
     const auto args = [&](const std::string& f) {
         return "hydro --scene " + c.scene + " --west level --west-series " + c.series +
-               " --duration 10 --output-interval 0.5 --max-dt 0.001 --label sig --out " + f;
+               " --duration 10 --output-interval 0.1 --max-dt 0.001 --label sig --out " + f;
     };
     const std::string ref = c.dir + "/ref.nc";
     ASSERT_EQ(test::run_cli(args(ref) + " --threads 1 --quiet", &out), 0) << out;
@@ -237,6 +239,33 @@ TEST(ReliabilityCli, ASignalStopsTheRunAtAFrameAndRestartGivesTheSameBytes) {
         EXPECT_EQ(sha256_file(f), sha256_file(ref));
         EXPECT_FALSE(fs::exists(f + ".checkpoint.nc"));
     }
+}
+
+// A signal while the next frame is far off (a slow or stalled run): the run stops within
+// a second or two, not at that frame. Here the only frame after t = 0 is at the end, some
+// 10^6 steps away (minutes); stopped before its first checkpoint, it says so and keeps
+// its partial output, and the same command starts afresh.
+TEST(ReliabilityCli, ASignalFarFromTheNextFrameStopsTheRunAtOnce) {
+    const SmallCase c = small_case("cli_signal_far");
+    std::string out;
+    const std::string f = c.dir + "/far.nc";
+    const std::string args = "hydro --scene " + c.scene + " --west level --west-series " + c.series +
+                             " --west-series-end transmissive --duration 1000 --output-interval 1000 --max-dt 0.001 "
+                             "--threads 1 --label far --out " + f;
+    FILE* run = test::start_cli(args);
+    const pid_t holder = lock_holder(f, 20.0);
+    ASSERT_GT(holder, 0);
+    ::usleep(500000);  // under way: its steps measured
+    const auto sent = std::chrono::steady_clock::now();
+    ASSERT_EQ(::kill(holder, SIGTERM), 0);
+    EXPECT_EQ(test::finish_cli(run, &out), 1) << out;
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+    EXPECT_LT(waited, 20.0);  // the frame at t = 1000 s is minutes away
+    EXPECT_NE(out.find(f + ": interrupted (SIGTERM) at t = "), std::string::npos) << out;
+    EXPECT_NE(out.find("before its first checkpoint"), std::string::npos) << out;
+    EXPECT_TRUE(fs::exists(f + ".part"));
+    EXPECT_FALSE(fs::exists(f + ".checkpoint.nc"));
+    EXPECT_FALSE(fs::exists(f));
 }
 
 // Every command that writes an output takes its lock: with the lock held here (as a run
