@@ -145,6 +145,7 @@ TEST(DebrisCollision, WedgedAcrossAGapNarrowerThanItsWidthEndsEachStepWithoutOve
     const auto dir = test::scratch_dir("coll_gap");
     const double heading = 9.0, width = 0.25 * std::sin(heading * M_PI / 180.0) + 0.10 * std::cos(heading * M_PI / 180.0);
     EXPECT_NEAR(width, 0.1379, 1e-4);
+    ASSERT_EQ(default_world_def().step.max_collision_passes, 10);  // the paper's 5-10 passes: at most 10 per step
     for (const double cell : {0.01, 0.04}) {
         const int n = int(std::ceil(width / cell)) - 1;  // cells across the gap
         const double gap = n * cell;
