@@ -191,7 +191,7 @@ const std::vector<std::string>& scene_hydro_options() {
 
 ImportFeatures kainan_import_features() {
     ImportFeatures f;
-    f.features = kainan_features();
+    f.features = kainan_features(KainanLayout::measured);
     f.manning = kainan_manning();
     f.hydro_defaults = kainan_hydro_defaults();
     return f;

@@ -57,7 +57,7 @@ struct ImportFeatures {
 // scale only (docs/scene.md, "Full scale").
 const std::vector<std::string>& scene_hydro_options();
 
-// The Kainan defaults: kainan_features(), kainan_manning(), kainan_hydro_defaults() and the
+// The Kainan defaults: kainan_features(KainanLayout::measured), kainan_manning(), kainan_hydro_defaults() and the
 // default building rule.
 ImportFeatures kainan_import_features();
 

@@ -4,7 +4,48 @@
 
 namespace flotsam {
 
-SceneFeatures kainan_features() {
+namespace {
+
+using Line = std::vector<std::array<double, 2>>;
+
+// The band within `half_width` of a polyline, as one polygon: the line offset to its left
+// and back along its right, the offsets of neighbouring segments meeting at their mitre
+// (the line's turns are gentle, so the polygon is simple) [m].
+std::vector<std::array<double, 2>> band_around(const Line& line, double half_width) {
+    const std::size_t n = line.size();
+    std::vector<std::array<double, 2>> left(n), right(n);
+    const auto unit_normal = [&](std::size_t k) {  // of segment k → k + 1, to its left
+        const double dx = line[k + 1][0] - line[k][0], dy = line[k + 1][1] - line[k][1], l = std::hypot(dx, dy);
+        return std::array<double, 2>{-dy / l, dx / l};
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto a = unit_normal(k == 0 ? 0 : k - 1), b = unit_normal(k + 1 < n ? k : k - 1);
+        // The mitre, the point on both neighbouring offset lines: along a + b, at
+        // half_width / ((a + b) · a) of it.
+        const double cx = a[0] + b[0], cy = a[1] + b[1], scale = half_width / (cx * a[0] + cy * a[1]);
+        left[k] = {line[k][0] + scale * cx, line[k][1] + scale * cy};
+        right[k] = {line[k][0] - scale * cx, line[k][1] - scale * cy};
+    }
+    std::vector<std::array<double, 2>> polygon(left);
+    polygon.insert(polygon.end(), right.rbegin(), right.rend());
+    return polygon;
+}
+
+// The channels of the measured layout (the DEM `flotsam scene import` reads,
+// ../shared/data/city-topography-from-figure.nc), their lines through the lowest ground of
+// the 1 cm import on cross-sections 5 cm apart (docs/scene.md, "Regions"): Channel A from
+// the basin's north-east arm north along x ≈ 4.4 m, then east-south-east from (4.75, −1.35);
+// Channel B the trench from the basin's south-east corner to (4.70, −3.34).
+const Line measured_channel_a = {{4.00, -1.90}, {4.40, -1.86}, {4.45, -1.52}, {4.58, -1.40}, {4.78, -1.35},
+                                 {4.90, -1.38}, {5.30, -1.63}, {5.45, -1.74}, {5.65, -1.74}};
+const Line measured_channel_b = {{3.75, -2.975}, {4.70, -3.34}};
+// Each region holds the channel and its banks within this distance of its line, the width
+// the regions of the generated scene have [m].
+constexpr double channel_half_width = 0.10;
+
+}  // namespace
+
+SceneFeatures kainan_features(KainanLayout layout) {
     SceneFeatures f;
     // FD lies along the north quay (heading 0: long axis east-west, the basin's axis);
     // LD lies along the east-west street it stands on (heading 0 as well).
@@ -28,6 +69,10 @@ SceneFeatures kainan_features() {
         {"station_area", {{4.90, -1.45}, {5.80, -1.45}, {5.80, -0.95}, {4.90, -0.95}}},
         {"basin", {{0.90, -2.05}, {3.75, -2.05}, {3.75, -2.97}, {3.20, -2.97}, {3.00, -2.65}, {0.90, -2.65}}},
     };
+    if (layout == KainanLayout::measured) {
+        f.regions[0].polygon = band_around(measured_channel_a, channel_half_width);
+        f.regions[1].polygon = band_around(measured_channel_b, channel_half_width);
+    }
     return f;
 }
 

@@ -3,6 +3,7 @@
 // generated analogue and an import of the real layout, so statistics refer to the same
 // places in either scene.
 #pragma once
+#include <array>
 #include <vector>
 
 #include "common/grid.hpp"
@@ -24,8 +25,14 @@ inline constexpr double kainan_x_max_edge = 8.005;
 inline constexpr double kainan_y_min_edge = -4.005;
 inline constexpr double kainan_y_max_edge = -0.005;
 
+// Which Kainan scene the features are for: the generated analogue (its channels are those
+// of data/scene_generator.cpp) or an import of the measured layout, whose channels lie
+// elsewhere (Channel B some 0.3 m further south): each scene's `channel_a` and `channel_b`
+// regions lie on its own channels.
+enum class KainanLayout { generated, measured };
+
 // WG1, WG2, the FD and LD starts, the FD/LD/channel sections and the four regions.
-SceneFeatures kainan_features();
+SceneFeatures kainan_features(KainanLayout layout);
 
 // The flume's roughness (SCENE.md): n = 0.025 seaward of x = -0.66 m (the flume's
 // mortar), 0.013 on the city model.

@@ -217,7 +217,7 @@ GeneratedScene generate_scene(const SceneGenDef& def) {
                 }
     }
     s.manning_n = manning_field(g, kainan_manning());
-    apply_features(s, kainan_features());
+    apply_features(s, kainan_features(KainanLayout::generated));
     s.hydro_defaults = kainan_hydro_defaults();
     s.synthetic = true;
     s.title = "SYNTHETIC analogue of the 1/250 Kainan port-city flume (not the measured model)";

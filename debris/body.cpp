@@ -40,6 +40,12 @@ const Settings<BodyDef>& body_model_settings() {
          {},
          choice_of<&BodyDef::added_mass>()},
         {"axis-shift", "", "local contact pivots about the contact centroid (paper Eqs. 6-10)", {}, &BodyDef::axis_shift},
+        {"pivot-rate",
+         "",
+         "the axis shift's rotation rate from step to step: carried (the yaw equation about the contact), restarted from rest "
+         "each step, or braked by the friction's moment (not in the paper)",
+         {},
+         choice_of<&BodyDef::pivot_rate>()},
         {"added-yaw-inertia",
          "",
          "yaw inertia with the added mass's share, rho Ca Vs (L^2 + B^2)/12 (false: the paper's m (L^2 + B^2)/12, Eq. 2)",
@@ -49,6 +55,11 @@ const Settings<BodyDef>& body_model_settings() {
          &BodyDef::samples_per_face},
         {"step-tolerance", "1", "ground above the bottom by more than this x draft blocks", Range::closed(0.0, 10.0),
          &BodyDef::step_tolerance},
+        {"blocking-ground",
+         "",
+         "ground that blocks where it rises above the bottom by more than the step: land (above still water), any, or none",
+         {},
+         choice_of<&BodyDef::blocking_ground>()},
     };
     return table;
 }

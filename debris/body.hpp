@@ -7,6 +7,7 @@
 
 #include "common/enum_names.hpp"
 #include "common/settings.hpp"
+#include "debris/obstacles.hpp"
 #include "formats/trajectory_file.hpp"
 
 namespace flotsam::debris {
@@ -38,6 +39,18 @@ inline constexpr EnumNames<AddedMass, 2> added_mass_names{
     "added-mass treatment", {{{AddedMass::implicit, "implicit"}, {AddedMass::explicit_, "explicit"}}}};
 constexpr const auto& enum_names(AddedMass) { return added_mass_names; }
 
+// How the rate of the rotation about the contact centroid (the axis shift, paper Eqs.
+// 6-10) goes from one step to the next while Eq. 6 holds (docs/debris.md, "Axis shift"):
+// `carried`, the yaw equation about the contact, I_sub dω_p/dt = T_sub, integrated from
+// the last step's rate; `restarted`, from rest every step (Δθ_sub = Δt² T_sub / I_sub);
+// `braked`, carried and slowed every step by the friction's moment about the centroid,
+// which the paper's T' leaves out (kept for comparison).
+enum class PivotRate { carried, restarted, braked };
+inline constexpr EnumNames<PivotRate, 3> pivot_rate_names{
+    "pivot rate",
+    {{{PivotRate::carried, "carried"}, {PivotRate::restarted, "restarted"}, {PivotRate::braked, "braked"}}}};
+constexpr const auto& enum_names(PivotRate) { return pivot_rate_names; }
+
 // The most drag sample points along one face (the range of BodyDef::samples_per_face).
 inline constexpr int max_samples_per_face = 16;
 
@@ -60,6 +73,8 @@ struct BodyDef {
     AddedMass added_mass = AddedMass::implicit;
     bool added_yaw_inertia = false;  // yaw inertia I + ρ C_a V_s (L² + B²)/12 instead of Eq. 2's I (an extension) [-]
     bool axis_shift = true;          // LC only: rotate about the contact centroid (paper Eqs. 6-10)
+    PivotRate pivot_rate = PivotRate::carried;  // LC only: the axis shift's rate from step to step
+    BlockingGround blocking_ground = BlockingGround::land;  // ground that can block (docs/debris.md, "Ground and obstacles")
     int samples_per_face = 4;        // drag sample points along each side face, 1 to max_samples_per_face [-]
     double step_tolerance =
         0.2;  // a cell the body moves into blocks where its ground rises above the body's bottom by more than this × draft (docs/debris.md, "Ground and obstacles") [-]
@@ -73,7 +88,8 @@ BodyDef default_body_def();  // the paper's control case, LC + MC
 // designs vary, and the variant is [variants].
 const Settings<BodyDef>& body_shape_settings();        // length, width, height, specific-gravity
 const Settings<BodyDef>& body_coefficient_settings();  // cd1, cd2, cm, mu, restitution
-const Settings<BodyDef>& body_model_settings();        // added-mass, axis-shift, samples-per-face, step-tolerance
+const Settings<BodyDef>& body_model_settings();  // added-mass, axis-shift, pivot-rate, added-yaw-inertia, samples-per-face,
+                                                 // step-tolerance, blocking-ground
 const Settings<BodyDef>& body_variant_settings();      // contact, collision
 
 // Derived once from a BodyDef.
@@ -112,7 +128,7 @@ BodyState initial_state(const BodyDef& def, double time);
 struct BodyStats {
     long steps = 0;
     long collisions = 0;                // steps with at least one obstacle contact
-    long unresolved = 0;                // MC: steps that hit the pass bound with contact left
+    long unresolved = 0;                // MC: steps that end with an overlap deeper than the tolerance (debris/collision.hpp)
     long axis_shifts = 0;               // steps rotated about the contact centroid
     double max_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
 };

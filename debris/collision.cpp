@@ -1,6 +1,8 @@
 #include "debris/collision.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "debris/kernels.hpp"
 
@@ -14,6 +16,7 @@ constexpr double separation_slop = 1e-9;
 
 Box pose(const BodyState& s, const BodyParams& b) { return Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width); }
 
+// The impulse at one contact (zero unless it approaches).
 void apply_impulse(const ObstacleContact& c, const BodyParams& b, double mass, double inertia, BodyState& s) {
     const Vec2 r = c.point - Vec2{s.x, s.y};
     const Vec2 vp = Vec2{s.vx, s.vy} + spin(s.omega, r);
@@ -29,17 +32,163 @@ double deepest(const std::vector<ObstacleContact>& cs) {
     return d;
 }
 
+// The axis shift's rotation about x_sub as the centre's velocity and yaw rate.
+void hand_pivot_to_centre(BodyState& s) {
+    if (s.pivot_rate == 0.0) return;
+    const Vec2 arm{-s.pivot_ax, -s.pivot_ay};  // the centre relative to the axis
+    const Vec2 v = spin(s.pivot_rate, arm);
+    s.vx += v.x;
+    s.vy += v.y;
+    s.omega += s.pivot_rate;
+    s.pivot_rate = 0.0;
+    s.pivot_ax = s.pivot_ay = 0.0;
+}
+
+// The least move out of every contact at once (`clearing_move` below): the contacts'
+// rows in the inertia-scaled coordinates u = (√M Δx, √M Δy, √I Δθ), where that move is
+// the shortest u.
+struct ClearingRow {
+    double a[3];  // (n / √M, (r × n) / √I)
+    double b;     // depth to clear [m]
+};
+
+// Solves the k × k system G λ = b (k ≤ 3) by Gaussian elimination with partial
+// pivoting; false where G is (nearly) singular: the rows are dependent.
+bool solve_small(int k, double G[3][3], double b[3], double lambda[3]) {
+    for (int c = 0; c < k; ++c) {
+        int p = c;
+        for (int r = c + 1; r < k; ++r)
+            if (std::fabs(G[r][c]) > std::fabs(G[p][c])) p = r;
+        if (!(std::fabs(G[p][c]) > 1e-12 * (std::fabs(G[0][0]) + std::fabs(G[k - 1][k - 1])))) return false;
+        std::swap(G[p], G[c]);
+        std::swap(b[p], b[c]);
+        for (int r = c + 1; r < k; ++r) {
+            const double f = G[r][c] / G[c][c];
+            for (int q = c; q < k; ++q) G[r][q] -= f * G[c][q];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int c = k - 1; c >= 0; --c) {
+        double v = b[c];
+        for (int q = c + 1; q < k; ++q) v -= G[c][q] * lambda[q];
+        lambda[c] = v / G[c][c];
+    }
+    return true;
+}
+
+// The shortest u with a_i · u ≥ b_i for every row: the nearest point to the origin of a
+// polyhedron in three dimensions, where at most three constraints are active. Every set
+// of one to three of the first `n_try` rows is tried as the active set (u = Σ λ_k a_k,
+// a_k · u = b_k on the set, λ ≥ 0), kept where it meets every row; the shortest kept is
+// the optimum whenever its active set lies among the rows tried. False where no set does.
+bool shortest_clearing(const std::vector<ClearingRow>& rows, std::size_t n_try, double u[3]) {
+    const double tol = 1e-12;
+    double best = -1.0;
+    int set[3];
+    const auto try_set = [&](int k) {
+        double G[3][3], b[3], lambda[3] = {0, 0, 0};
+        for (int i = 0; i < k; ++i) {
+            b[i] = rows[set[i]].b;
+            for (int j = 0; j < k; ++j) {
+                const ClearingRow &ri = rows[set[i]], &rj = rows[set[j]];
+                G[i][j] = ri.a[0] * rj.a[0] + ri.a[1] * rj.a[1] + ri.a[2] * rj.a[2];
+            }
+        }
+        if (!solve_small(k, G, b, lambda)) return;
+        double v[3] = {0, 0, 0};
+        for (int i = 0; i < k; ++i) {
+            if (lambda[i] < 0.0) return;
+            for (int d = 0; d < 3; ++d) v[d] += lambda[i] * rows[set[i]].a[d];
+        }
+        const double len = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if (best >= 0.0 && len >= best) return;
+        for (const ClearingRow& r : rows)
+            if (r.a[0] * v[0] + r.a[1] * v[1] + r.a[2] * v[2] < r.b - tol * std::fabs(r.b)) return;
+        best = len;
+        for (int d = 0; d < 3; ++d) u[d] = v[d];
+    };
+    const int n = int(n_try);
+    for (set[0] = 0; set[0] < n; ++set[0]) {
+        try_set(1);
+        for (set[1] = set[0] + 1; set[1] < n; ++set[1]) {
+            try_set(2);
+            for (set[2] = set[1] + 1; set[2] < n; ++set[2]) try_set(3);
+        }
+    }
+    return best >= 0.0;
+}
+
+// The move that takes the body out of every contact (sorted deepest first) to first
+// order, with the least M |Δx|² + I Δθ²: translation and rotation shared as impulses
+// share them. Where the rows tried admit none (more contacts than the linearisation can
+// clear together), out of each contact in turn by what is left of its depth.
+SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 centre, double mass, double inertia) {
+    constexpr std::size_t max_tried = 6;  // the deepest distinct contacts tried as active sets: at most 41 solves
+    const double sm = std::sqrt(mass), si = std::sqrt(inertia);
+    std::vector<ClearingRow> rows;
+    rows.reserve(contacts.size());
+    std::size_t tried = 0;
+    for (const ObstacleContact& c : contacts) {
+        const Vec2 r = c.point - centre;
+        // b: the depth to clear, or (negative) the gap the move may close [m].
+        const ClearingRow row{{c.normal.x / sm, c.normal.y / sm, cross(r, c.normal) / si}, c.depth + separation_slop};
+        // Tried as an active set only where its direction differs from those of the deeper
+        // rows tried (the cells of one straight wall give nearly the same row).
+        bool distinct = tried < max_tried;
+        for (std::size_t k = 0; distinct && k < tried; ++k) {
+            const ClearingRow& q = rows[k];
+            const double dot3 = row.a[0] * q.a[0] + row.a[1] * q.a[1] + row.a[2] * q.a[2];
+            const double n1 = row.a[0] * row.a[0] + row.a[1] * row.a[1] + row.a[2] * row.a[2];
+            const double n2 = q.a[0] * q.a[0] + q.a[1] * q.a[1] + q.a[2] * q.a[2];
+            if (dot3 > 0.9999 * std::sqrt(n1 * n2)) distinct = false;
+        }
+        if (distinct) {
+            rows.insert(rows.begin() + std::ptrdiff_t(tried), row);
+            ++tried;
+        } else {
+            rows.push_back(row);
+        }
+    }
+    double u[3];
+    if (shortest_clearing(rows, tried, u)) return {Vec2{u[0] / sm, u[1] / sm}, u[2] / si};
+    SeparatingMove total;
+    for (const ObstacleContact& c : contacts) {
+        const Vec2 r = c.point - centre;
+        const double left = c.depth - (dot(total.shift, c.normal) + total.turn * cross(r, c.normal));
+        if (!(left > 0.0)) continue;
+        const SeparatingMove m = separating_move(left + separation_slop, mass, inertia, r, c.normal);
+        total.shift += m.shift;
+        total.turn += m.turn;
+    }
+    return total;
+}
+
 }  // namespace
 
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
-                                    double inertia, double bottom, int max_passes, BodyState& state, const Box& footprint,
-                                    std::vector<ObstacleContact>& contacts) {
+                                    double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
+                                    const Box& footprint, std::vector<ObstacleContact>& contacts) {
+    const BlockingGround rule = body.def.blocking_ground;
+    const auto detect = [&](const Box& box) {
+        contacts.clear();
+        obstacles.find_contacts(box, bottom, body.step_height, contacts, 1e-10, rule);
+    };
+    // The contacts of `box` and those within `margin` of it (depth > −margin): the body
+    // widened by the margin, its depths less the margin.
+    const double margin = clearing_margin_cells * std::min(obstacles.grid().dx, obstacles.grid().dy);
+    const auto detect_near = [&](const Box& box) {
+        contacts.clear();
+        Box wide = box;
+        wide.half_length += margin;
+        wide.half_width += margin;
+        obstacles.find_contacts(wide, bottom, body.step_height, contacts, 1e-10, rule);
+        for (auto& c : contacts) c.depth -= margin;
+    };
     CollisionOutcome out;
-    contacts.clear();
-    obstacles.find_contacts(footprint, bottom, body.step_height, contacts);
+    detect(footprint);
     if (contacts.empty()) return out;
     out.touched = true;
-    state.pivot_rate = 0.0;
+    hand_pivot_to_centre(state);
     auto by_depth = [](const ObstacleContact& a, const ObstacleContact& b) { return a.depth > b.depth; };
 
     if (model == CollisionModel::single) {
@@ -47,30 +196,43 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
         apply_impulse(c, body, mass, inertia, state);
         state.x += (c.depth + separation_slop) * c.normal.x;
         state.y += (c.depth + separation_slop) * c.normal.y;
-        contacts.clear();
-        obstacles.find_contacts(pose(state, body), bottom, body.step_height, contacts);
+        detect(pose(state, body));
         out.residual = deepest(contacts);
         return out;
     }
 
-    for (int pass = 0; pass < max_passes && !contacts.empty(); ++pass) {
+    // The pose the step reached and the velocities it reached it with: the pose is that
+    // one plus the step's share of what the impulses changed (Euler: x^n + Δt V, the
+    // corrected V; the axis shift's turn, done before, stays), plus the moves out.
+    const BodyState reached = state;
+    Vec2 moved_out;
+    double turned_out = 0.0;
+    const double w = move.new_weight * move.dt;
+    const auto place = [&] {
+        state.x = reached.x + w * (state.vx - reached.vx) + moved_out.x;
+        state.y = reached.y + w * (state.vy - reached.vy) + moved_out.y;
+        state.theta = reached.theta + w * (state.omega - reached.omega) + turned_out;
+        detect(pose(state, body));
+    };
+    for (; out.passes < max_passes && !contacts.empty(); ++out.passes) {
         std::sort(contacts.begin(), contacts.end(), by_depth);
-        Vec2 moved;  // correction applied so far in this pass
-        for (const auto& c : contacts) {
-            apply_impulse(c, body, mass, inertia, state);
-            const double left = c.depth - dot(moved, c.normal);
-            if (left > 0.0) {
-                const Vec2 shift = (left + separation_slop) * c.normal;
-                state.x += shift.x;
-                state.y += shift.y;
-                moved += shift;
-            }
-        }
-        contacts.clear();
-        obstacles.find_contacts(pose(state, body), bottom, body.step_height, contacts);
+        for (const auto& c : contacts) apply_impulse(c, body, mass, inertia, state);
+        place();  // advanced again from the start of the step with the corrected momentum
+        if (contacts.empty()) break;
+        // What that leaves (an overlap the step began with, a turning body's arc against
+        // the straight re-advance, contacts whose impulses undo each other in a wedge):
+        // the least move out of all of it at once, translation and rotation, that also
+        // keeps out of the obstacles within the margin (so that it does not push the body
+        // from one wall into the other).
+        detect_near(pose(state, body));
+        std::sort(contacts.begin(), contacts.end(), by_depth);
+        const SeparatingMove m = clearing_move(contacts, Vec2{state.x, state.y}, mass, inertia);
+        moved_out += m.shift;
+        turned_out += m.turn;
+        place();
     }
     out.residual = deepest(contacts);
-    out.unresolved = !contacts.empty();
+    out.unresolved = out.residual > move.tolerance;
     return out;
 }
 

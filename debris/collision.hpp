@@ -7,21 +7,54 @@
 
 namespace flotsam::debris {
 
+// A step ends with its collisions unresolved where an overlap deeper than this many
+// cells (of the obstacle grid) is left. Contact detection is exact to round-off (some
+// 1e-15 m), so anything deeper than round-off is an overlap; but an overlap of 1e-3 of a
+// cell is 250 times below the quarter cell a corner may move in one step (the step limit
+// that keeps bodies out of one-cell walls), it is seen again and pushed out at the next
+// step, and it is the size of the second-order error of re-advancing a turning body along
+// a straight step (r (ω Δt)² / 2: 6e-6 m for the paper's box at 1 rad/s and 10 ms, 6e-4
+// of a 1 cm cell). A micrometre of overlap is not an unresolved collision.
+inline constexpr double unresolved_overlap_cells = 1e-3;  // [-]
+
+// The move out of overlaps keeps out of the blocked cells within this many cells of the
+// body too, so that it does not push the body from one wall into another (a move out is
+// the size of an overlap, a fraction of the quarter cell a corner moves in a step) [-].
+inline constexpr double clearing_margin_cells = 0.25;
+
 struct CollisionOutcome {
     bool touched = false;     // some contact was found
-    bool unresolved = false;  // MC: the pass bound was reached with contact left
+    bool unresolved = false;  // MC: the pass bound was reached with an overlap deeper than the tolerance left
     double residual = 0.0;    // deepest overlap left afterwards [m]
+    int passes = 0;           // MC: detection passes that found contact [-]
+};
+
+// How the step being corrected moved the body: the collision advances the position and
+// heading again from the start of the step with the corrected velocities, as the step
+// did (paper §3.3, step 3: "correct the position based on the corrected momentum", with
+// the motion's own time step).
+struct StepMove {
+    double dt = 0.0;           // the step [s]
+    double new_weight = 1.0;   // share of the end-of-step velocity in the move: 1 (Euler), ½ (Heun) [-]
+    double tolerance = 0.0;    // overlap left that still counts as resolved [m]
 };
 
 // Resolves overlaps of the body (state; `footprint` its pose, Box::make of it: made once
 // a step, sincos included, by the caller) with blocked cells. mass and inertia are
 // the body's effective ones (added mass included where it is implicit), so an impulse
-// changes the same momentum the dynamics integrates.
-//   single: the deepest contact only, one impulse and one correction.
-//   multi:  up to max_passes of {detect all; for each contact, deepest first: impulse,
-//           then move out by what is left of its depth}, until none is left.
+// changes the same momentum the dynamics integrates. A rotation about the contact
+// centroid (the axis shift) is part of that momentum: it is handed to the centre's
+// velocity and yaw rate first (V + ω_p ẑ × (x_g − x_sub), ω + ω_p).
+//   single: the deepest contact only, one impulse, then a move out by its depth.
+//   multi:  up to max_passes of {detect all; for each contact, deepest first, the impulse
+//           (only where the contact approaches); the pose advanced again from the start of
+//           the step with the corrected velocities; where an overlap is left (one the step
+//           began with, a turning body's arc against the straight re-advance, two contacts
+//           whose impulses undo each other in a wedge), the least move out of all of them
+//           at once: the smallest M |Δx|² + I Δθ² that clears every contact to first
+//           order, so a body wedged across a gap turns and slides out of it}.
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
-                                    double inertia, double bottom, int max_passes, BodyState& state, const Box& footprint,
-                                    std::vector<ObstacleContact>& scratch);
+                                    double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
+                                    const Box& footprint, std::vector<ObstacleContact>& scratch);
 
 }  // namespace flotsam::debris

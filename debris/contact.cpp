@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "debris/kernels.hpp"
+
 namespace flotsam::debris {
 
 namespace {
@@ -104,23 +106,25 @@ AxisShift axis_shift(const BodyParams& b, const BodyState& s, const std::vector<
         area += p.area;
     }
     r_sub = (1.0 / area) * r_sub;
-    const Vec2 arm = -1.0 * r_sub;                                   // centre relative to the axis
-    const double torque_sub = load.torque + cross(arm, load.force);  // flow force moved to the axis
+    const Vec2 arm = -1.0 * r_sub;                                           // centre relative to the axis
+    const double torque_sub = torque_about(load.torque, load.force, arm);  // T_sub: no friction term (Eq. 6's T')
     const double torque_now = (s.flags & flag_pivoting) ? torque_sub : load.torque;
     if (!(norm(arm) > 1e-9 && s.omega * omega_after <= 0.0 && s.torque_prev * torque_now >= 0.0 && norm(load.force) <= capacity))
         return a;
     a.shifted = true;
     a.torque_ref = torque_sub;
-    const double inertia_sub = eff.inertia + eff.mass * dot(arm, arm);  // parallel axis
-    double friction_torque = 0.0;
-    for (const auto& p : patches) friction_torque += p.capacity * norm(p.r - r_sub);
-    double w = s.pivot_rate + dt / inertia_sub * torque_sub;
-    const double brake = dt / inertia_sub * friction_torque;  // never reverses the pivot
-    w = std::fabs(w) <= brake ? 0.0 : w - std::copysign(brake, w);
+    const double inertia_sub = parallel_axis_inertia(eff.inertia, eff.mass, arm);
+    double w = pivot_rate_step(b.def.pivot_rate == PivotRate::restarted ? 0.0 : s.pivot_rate, torque_sub, inertia_sub, dt);
+    if (b.def.pivot_rate == PivotRate::braked) {
+        double friction_torque = 0.0;
+        for (const auto& p : patches) friction_torque += p.capacity * norm(p.r - r_sub);
+        const double brake = dt / inertia_sub * friction_torque;  // never reverses the pivot
+        w = std::fabs(w) <= brake ? 0.0 : w - std::copysign(brake, w);
+    }
     a.pivot_rate = w;
     a.turn = w * dt;
-    a.shift = r_sub + rotate(arm, a.turn);  // x_g* − x_g^n = (x_sub − x_g^n) + R (x_g^n − x_sub)
-    a.pivot_arm = rotate(r_sub, a.turn);    // the axis stays put; seen from the moved centre
+    a.shift = pivot_shift(arm, a.turn);   // Eqs. 7-9: x_g* − x_g^n
+    a.pivot_arm = rotate(r_sub, a.turn);  // the axis stays put; seen from the moved centre
     return a;
 }
 

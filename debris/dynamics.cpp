@@ -121,20 +121,24 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
 }
 
 // Collisions with the obstacles at the committed pose (SC or MC, debris/collision.hpp).
-// Ground blocks only where it rises more than the step height above the bottom where the
-// body rested at the start of the step (MODEL.md, "Vertical position"): at η_c − d
-// afloat, on the highest ground under its footprint (`start`) where that is higher. So
-// the ground under the footprint is never a wall. Where no ground within reach is above
-// η_c − d + step, the resting height cannot change the outcome and is not computed.
+// Ground blocks only where ground that can block (BlockingGround) rises more than the
+// step height above the bottom where the body rested at the start of the step (MODEL.md,
+// "Vertical position"): at η_c − d afloat, on the highest ground under its footprint
+// (`start`) where that is higher. So the ground under the footprint is never a wall.
+// Where no such ground within reach is above η_c − d + step, the resting height cannot
+// change the outcome and is not computed.
 void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start, const Box& pose,
-             StepScratch& scratch) {
+             double dt, StepScratch& scratch) {
     const double afloat = ctx.obstacles.ground(start.now.centre.x, start.now.centre.y) + start.centre.depth - b.draft;
     double bottom = afloat;
-    if (ctx.obstacles.ground_above(pose, afloat + b.step_height))
+    if (ctx.obstacles.ground_above(pose, afloat + b.step_height, b.def.blocking_ground))
         bottom = std::max(afloat, ctx.obstacles.highest_ground(start.box, footprint_overlap));
     const Inertia& eff = start.eff;
+    const Grid& g = ctx.obstacles.grid();
+    const StepMove move{dt, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0,
+                        unresolved_overlap_cells * std::min(g.dx, g.dy)};
     const CollisionOutcome hit = resolve_collisions(ctx.obstacles, b, b.def.collision, eff.mass, eff.inertia, bottom,
-                                                    ctx.def.max_collision_passes, s, pose, scratch.contacts);
+                                                    ctx.def.max_collision_passes, move, s, pose, scratch.contacts);
     if (!hit.touched) return;
     s.flags |= flag_colliding;
     ++stats.collisions;
@@ -165,7 +169,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;
     Box pose;
     const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt, pose);
-    collide(ctx, b, s, stats, st, pose, scratch);
+    collide(ctx, b, s, stats, st, pose, dt, scratch);
     s.centre_vx = (s.x - x0) / dt;
     s.centre_vy = (s.y - y0) / dt;
     s.time = t + dt;

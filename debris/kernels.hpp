@@ -60,6 +60,25 @@ inline double friction_capacity(double mu, double area_fraction, double mass, do
     return load > 0.0 ? mu * area_fraction * load : 0.0;
 }
 
+// The axis shift (paper Eqs. 7-10), about the contact-area centroid x_sub. arm: the
+// centre relative to it, x_g − x_sub [m].
+//
+// Flow torque about x_sub from the force F and the torque T' about the centre (the flow
+// force acts where it acts; only the lever changes): T_sub = T' + (x_g − x_sub) × F [N m].
+inline double torque_about(double torque_centre, Vec2 force, Vec2 arm) { return torque_centre + cross(arm, force); }
+// Yaw inertia about x_sub by the parallel-axis theorem, I_sub = I + M |x_g − x_sub|²: I
+// the yaw inertia in use, M the translation's inertia (the added mass included, as the
+// centre's motion on its arc carries it) [kg m²].
+inline double parallel_axis_inertia(double inertia, double mass, Vec2 arm) { return inertia + mass * dot(arm, arm); }
+// One step of I_sub dω_p/dt = T_sub, semi-implicit as the yaw about the centre: the rate at
+// the end of the step from `rate` at its start [rad/s].
+inline double pivot_rate_step(double rate, double torque_sub, double inertia_sub, double dt) {
+    return rate + dt / inertia_sub * torque_sub;
+}
+// The centre's move by a turn Δθ_sub about x_sub (Eqs. 7-9):
+// Δx_sub = x_g* − x_g^n = x_sub + R(Δθ_sub)(x_g^n − x_sub) − x_g^n = R arm − arm [m].
+inline Vec2 pivot_shift(Vec2 arm, double turn) { return rotate(arm, turn) - arm; }
+
 // Normal impulse against a fixed obstacle at a contact with normal n (into the body) and
 // lever arm r from the centre: j = −(1 + e) v_n / (1/M + (r × n)² / I). Zero unless the
 // contact point approaches the obstacle (v_n < 0), so a resting or separating contact
@@ -68,6 +87,21 @@ inline double contact_impulse(double v_normal, double restitution, double mass, 
     if (v_normal >= 0.0) return 0.0;
     const double rn = cross(r, n);
     return -(1.0 + restitution) * v_normal / (1.0 / mass + rn * rn / inertia);
+}
+
+// The move that takes a contact point out of an obstacle by `depth` along n (into the
+// body), shared between translation and rotation as an impulse would be: a pseudo-impulse
+// p = depth / (1/M + (r × n)² / I) moves the centre by p n / M and turns the body by
+// p (r × n) / I, which to first order moves the point by exactly `depth` along n. A body
+// held by two opposite contacts it cannot slide out of turns out of them instead.
+struct SeparatingMove {
+    Vec2 shift;         // [m]
+    double turn = 0.0;  // [rad]
+};
+inline SeparatingMove separating_move(double depth, double mass, double inertia, Vec2 r, Vec2 n) {
+    const double rn = cross(r, n);
+    const double p = depth / (1.0 / mass + rn * rn / inertia);
+    return {(p / mass) * n, p * rn / inertia};
 }
 
 }  // namespace flotsam::debris

@@ -8,15 +8,25 @@
 namespace flotsam::debris {
 
 ObstacleMap::ObstacleMap(const Grid& grid, std::vector<float> bed, std::vector<std::uint8_t> building)
-    : grid_(grid), bed_(std::move(bed)), open_ground_(bed_), wall_top_(bed_) {
+    : grid_(grid), bed_(std::move(bed)), open_ground_(bed_) {
     constexpr float inf = std::numeric_limits<float>::infinity();
-    for (std::size_t c = 0; c < building.size(); ++c)
-        if (building[c]) {
-            open_ground_[c] = -inf;
-            wall_top_[c] = inf;
+    const auto is_building = [&](std::size_t c) { return c < building.size() && building[c]; };
+    for (std::size_t c = 0; c < bed_.size(); ++c)
+        if (is_building(c)) open_ground_[c] = -inf;
+    for (const BlockingGround rule : {BlockingGround::land, BlockingGround::any, BlockingGround::none}) {
+        Walls& w = walls_[std::size_t(rule)];
+        w.open_top.resize(bed_.size());
+        for (std::size_t c = 0; c < bed_.size(); ++c) {
+            // Land: ground above still water (z = 0 in every scene and flow file).
+            const bool can_block = rule == BlockingGround::any || (rule == BlockingGround::land && bed_[c] > 0.0f);
+            w.open_top[c] = !is_building(c) && can_block ? bed_[c] : -inf;
         }
-    open_ground_blocks_ = BlockMax(grid_, open_ground_);
-    wall_top_blocks_ = BlockMax(grid_, wall_top_);
+        w.top = w.open_top;
+        for (std::size_t c = 0; c < bed_.size(); ++c)
+            if (is_building(c)) w.top[c] = inf;
+        wall_top_blocks_[std::size_t(rule)] = BlockMax(grid_, w.top);
+        open_top_blocks_[std::size_t(rule)] = BlockMax(grid_, w.open_top);
+    }
 }
 
 ObstacleMap::BlockMax::BlockMax(const Grid& grid, const std::vector<float>& cells)
@@ -38,9 +48,9 @@ float ObstacleMap::BlockMax::bound(int i0, int i1, int j0, int j1) const {
     return m;
 }
 
-bool ObstacleMap::blocked(int i, int j, double bottom, double step_height) const {
+bool ObstacleMap::blocked(int i, int j, double bottom, double step_height, BlockingGround rule) const {
     if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return true;
-    return double(wall_top_[grid_.index(i, j)]) > bottom + step_height;
+    return double(walls(rule).top[grid_.index(i, j)]) > bottom + step_height;
 }
 
 namespace {
@@ -154,25 +164,27 @@ double ObstacleMap::highest_ground(const Box& box, double min_overlap) const {
     return top;
 }
 
-bool ObstacleMap::ground_above(const Box& box, double level) const {
+bool ObstacleMap::ground_above(const Box& box, double level, BlockingGround rule) const {
     const CellRange r = cells_touching(box, 1);
     const int i0 = std::max(r.i0, 0), i1 = std::min(r.i1, grid_.nx - 1);
     const int j0 = std::max(r.j0, 0), j1 = std::min(r.j1, grid_.ny - 1);
-    if (i0 > i1 || j0 > j1 || !(double(open_ground_blocks_.bound(i0, i1, j0, j1)) > level)) return false;
+    if (i0 > i1 || j0 > j1 || !(double(open_top_blocks_[std::size_t(rule)].bound(i0, i1, j0, j1)) > level)) return false;
+    const std::vector<float>& open_top = walls(rule).open_top;
     for (int j = j0; j <= j1; ++j)
-        if (i0 <= i1 && double(row_max(open_ground_.data() + grid_.index(0, j), i0, i1)) > level) return true;
+        if (i0 <= i1 && double(row_max(open_top.data() + grid_.index(0, j), i0, i1)) > level) return true;
     return false;
 }
 
 void ObstacleMap::find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
-                                double min_depth) const {
+                                double min_depth, BlockingGround rule) const {
+    const std::vector<float>& wall_top = walls(rule).top;
     const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
     const CellRange r = cells_touching(box, 0);
     const auto corners = box.corners();
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const bool inside_x = r.i0 >= 0 && r.i1 < grid_.nx;
     // Nothing within the grid that rises above the bottom's reach: no contact at all.
-    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_.bound(r.i0, r.i1, r.j0, r.j1)) > bottom + step_height))
+    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_[std::size_t(rule)].bound(r.i0, r.i1, r.j0, r.j1)) > bottom + step_height))
         return;
     // A cell that the body misses by more than this cannot overlap it whatever the
     // round-off (some 1e-15 m) of the separating-axis test [m].
@@ -182,7 +194,7 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
         // A row inside the grid with nothing above the bottom's reach under the whole
         // bounding box holds no contact: ruled out before the body's part in it is found.
         if (inside_x && j >= 0 && j < grid_.ny &&
-            !(double(row_max(wall_top_.data() + grid_.index(0, j), r.i0, r.i1)) > bottom + step_height))
+            !(double(row_max(wall_top.data() + grid_.index(0, j), r.i0, r.i1)) > bottom + step_height))
             continue;
         // Only the row's cells that meet the body's part within the row's band (widened by
         // `clear`) can overlap it: the cells beside it are not tested.
@@ -193,10 +205,10 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
         const int i1 = std::min(r.i1, int(std::floor((part.x1 + clear - grid_.x0) / grid_.dx + 0.5)));
         // A row inside the grid with nothing above the bottom's reach holds no contact.
         if (i0 > i1 || (i0 >= 0 && i1 < grid_.nx && j >= 0 && j < grid_.ny &&
-                        !(double(row_max(wall_top_.data() + grid_.index(0, j), i0, i1)) > bottom + step_height)))
+                        !(double(row_max(wall_top.data() + grid_.index(0, j), i0, i1)) > bottom + step_height)))
             continue;
         for (int i = i0; i <= i1; ++i) {
-            if (!blocked(i, j, bottom, step_height)) continue;
+            if (!blocked(i, j, bottom, step_height, rule)) continue;
             const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
             const Penetration pen = penetration(box, c, hx, hy);
             if (!pen.overlap()) continue;
@@ -211,10 +223,10 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
                     best.normal = n;
                 }
             };
-            if (!blocked(i + 1, j, bottom, step_height)) consider({1, 0}, pen.px);
-            if (!blocked(i - 1, j, bottom, step_height)) consider({-1, 0}, pen.mx);
-            if (!blocked(i, j + 1, bottom, step_height)) consider({0, 1}, pen.py);
-            if (!blocked(i, j - 1, bottom, step_height)) consider({0, -1}, pen.my);
+            if (!blocked(i + 1, j, bottom, step_height, rule)) consider({1, 0}, pen.px);
+            if (!blocked(i - 1, j, bottom, step_height, rule)) consider({-1, 0}, pen.mx);
+            if (!blocked(i, j + 1, bottom, step_height, rule)) consider({0, 1}, pen.py);
+            if (!blocked(i, j - 1, bottom, step_height, rule)) consider({0, -1}, pen.my);
             const Vec2 rel = box.centre - c;
             for (int k = 0; k < 2; ++k) {
                 const double side = dot(rel, axes[k]);

@@ -1,22 +1,37 @@
 // Obstacles: grid cells the body cannot enter, treated as axis-aligned squares.
 //
 // The ground under the body is contact (friction, the axis shift), never an obstacle
-// (MODEL.md, "Obstacles"; docs/debris.md). A cell blocks where the scene marks a
-// building, outside the grid (the flume walls), and where its ground rises above the
-// body's bottom by more than the step height: a step on the body's way that it cannot
-// ride onto. The bottom is where the body rests (MODEL.md, "Vertical position"): at
-// η − d afloat, on the highest ground under its footprint where that is higher, so no
-// cell under the footprint is ever above it. Overlap of the body with a blocked cell is
-// found by the separating-axis test (oriented box against an axis-aligned square), which
-// also gives the push-out normal and penetration depth.
+// (MODEL.md, "Obstacles"; docs/debris.md, "Ground and obstacles"). A cell blocks where
+// the scene marks a building, outside the grid (the flume walls), and where ground that
+// can block (BlockingGround) rises above the body's bottom by more than the step height:
+// a step on the body's way that it cannot ride onto. The bottom is where the body rests
+// (MODEL.md, "Vertical position"): at η − d afloat, on the highest ground under its
+// footprint where that is higher, so no cell under the footprint is ever above it.
+// Overlap of the body with a blocked cell is found by the separating-axis test (oriented
+// box against an axis-aligned square), which also gives the push-out normal and
+// penetration depth.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
+#include "common/enum_names.hpp"
 #include "common/grid.hpp"
 #include "debris/box.hpp"
 
 namespace flotsam::debris {
+
+// Which ground can block a body (docs/debris.md, "Ground and obstacles"): `land`, the
+// ground above still water (z > 0: quays, banks above the waterline, streets), so the
+// seabed is contact wherever the body goes and the shoreline keeps it in the water until
+// the water over the land is deep enough (the paper's "non-contact condition with the
+// shoreline"); `any`, every ground cell, seabed included; `none`, no ground (buildings
+// and the flume walls only).
+enum class BlockingGround { land, any, none };
+inline constexpr EnumNames<BlockingGround, 3> blocking_ground_names{
+    "blocking ground",
+    {{{BlockingGround::land, "land"}, {BlockingGround::any, "any"}, {BlockingGround::none, "none"}}}};
+constexpr const auto& enum_names(BlockingGround) { return blocking_ground_names; }
 
 struct ObstacleContact {
     Vec2 normal;         // unit, from the obstacle into the body (the direction that separates) [-]
@@ -33,19 +48,19 @@ public:
     const Grid& grid() const { return grid_; }
     // Ground elevation of the cell holding (x, y) [m] (clamped to the grid).
     double ground(double x, double y) const { return double(bed_[grid_.index(grid_.cell_i(x), grid_.cell_j(y))]); }
-    bool blocked(int i, int j, double bottom, double step_height) const;
+    bool blocked(int i, int j, double bottom, double step_height, BlockingGround rule = BlockingGround::any) const;
 
     // Highest ground [m] of the cells under `box`, buildings left out (no body rests on a
     // roof; buildings are walls): the cells it reaches into by more than `min_overlap` [m]
     // along every separating axis. −inf where it covers none.
     double highest_ground(const Box& box, double min_overlap) const;
     // Whether a cell that `box` could reach within a step (its bounding box widened by one
-    // cell), buildings left out, has ground above `level` [m].
-    bool ground_above(const Box& box, double level) const;
+    // cell), buildings left out, has ground that can block under `rule` above `level` [m].
+    bool ground_above(const Box& box, double level, BlockingGround rule = BlockingGround::any) const;
 
     // Appends every overlap of `box` with a blocked cell deeper than `min_depth`.
     void find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
-                       double min_depth = 1e-10) const;
+                       double min_depth = 1e-10, BlockingGround rule = BlockingGround::any) const;
 
 private:
     // Cell index range [i0, i1] x [j0, j1] of the cells that the bounding box of `box`,
@@ -57,11 +72,18 @@ private:
 
     Grid grid_;
     std::vector<float> bed_;
-    // The two questions the scans ask of a cell, one number each so that a row is one
-    // vectorised max: its ground where no building stands (−inf under a building), and
-    // the top of what blocks there (+inf under a building, else the ground) [m].
+    // The questions the scans ask of a cell, one number each so that a row is one
+    // vectorised max: its ground where no building stands (−inf under a building: the
+    // resting height), and per BlockingGround rule the top of what blocks there (+inf
+    // under a building, the ground where it can block, −inf where nothing does) and the
+    // same without the buildings (−inf there: ground_above) [m].
     std::vector<float> open_ground_;
-    std::vector<float> wall_top_;
+    struct Walls {
+        std::vector<float> top;
+        std::vector<float> open_top;
+    };
+    std::array<Walls, 3> walls_;  // indexed by BlockingGround
+    const Walls& walls(BlockingGround rule) const { return walls_[std::size_t(rule)]; }
 
     // The largest value of each block of block_cells × block_cells cells of a per-cell
     // field, so that a scan can rule out a whole range of cells at once: a body away from
@@ -76,8 +98,7 @@ private:
         // few more around them: never below the range's own largest value.
         float bound(int i0, int i1, int j0, int j1) const;
     };
-    BlockMax open_ground_blocks_;
-    BlockMax wall_top_blocks_;
+    std::array<BlockMax, 3> wall_top_blocks_, open_top_blocks_;  // indexed by BlockingGround
 };
 
 }  // namespace flotsam::debris

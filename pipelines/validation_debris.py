@@ -17,7 +17,9 @@ set (the control by default: the paper's ten debris runs, one per flow):
     positions, linear between samples);
   - passage position and speed at each section (Figs. 14 and 15);
   - R(t) of each other parameter set against the control (Fig. 17): the mean and the
-    largest |R| over the times where it is defined.
+    largest |R| over the times where it is defined;
+  - with --sweep, the steps whose collisions were left unresolved (an overlap deeper than
+    the tolerance after the pass bound), in this set and in all sets.
 """
 import argparse
 import csv
@@ -78,11 +80,14 @@ def main(argv):
     distance = read(os.path.join(args.csv_dir, "distance.csv"))
     groups = list(dict.fromkeys((m["body"], m["variant"]) for m in members))
     positions = {}
+    unresolved = {}  # member -> steps left unresolved
     if args.sweep:
         import numpy as np
         import xarray as xr
         with xr.open_dataset(args.sweep, decode_times=False) as d:
             t = d["time"].values - d["time"].values[0]
+            if "unresolved_collisions" in d:
+                unresolved = {str(int(m)): int(n) for m, n in zip(d["member_id"].values, d["unresolved_collisions"].values)}
             for k, member in enumerate(d["member_id"].values):
                 x = d["x"].values[k]
                 reached = np.nonzero(x >= args.reach_x)[0]
@@ -114,6 +119,12 @@ def main(argv):
                   (f"  ({where[0]:.2f}, {where[1]:.2f}) m, x >= {args.reach_x:g} m at {where[2]:.0f} s" if where else ""))
         if positions:
             print(f"  first time at x >= {args.reach_x:g} m: {spread([positions[m['member']][2] for m in rows], ' s', 0)}")
+        if unresolved:
+            def tally(members_):
+                n = [unresolved.get(m["member"], 0) for m in members_]
+                return f"{sum(1 for k in n if k)} of {len(n)} runs, {sum(n)} steps (most {max(n) if n else 0})"
+            every = [m for m in members if (m["body"], m["variant"]) == (body, variant)]
+            print(f"  unresolved collision steps: {tally(rows)}; all sets: {tally(every)}")
         counts = [r for r in regions if (r["body"], r["variant"], r["param_label"]) == (body, variant, args.set)]
         print("  at 300 s: " + ", ".join(f"{r['region']} {r['count']}/{r['members']}" for r in counts))
         for s in sections:

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "cases/debris_flows.hpp"
 #include "debris/contact.hpp"
@@ -291,8 +292,9 @@ TEST(DebrisBody, CentreContactNeverDampsYawLocalContactDoes) {
 // A floating body (5 mm under it) with one corner on a ridge (3 mm under the draft there)
 // in a weak current across its long side. With local contact the ridge friction holds
 // the corner, and the axis shift turns the body about the contact: the held corner
-// barely moves while the centre swings along an arc. Centre contact sees the centre
-// afloat, so the body drifts off whole.
+// barely moves while the centre swings along an arc (looked at over the first 8 s, about
+// 37°: the turn goes on, and the part of the bottom over the ridge, so the axis, moves
+// with it). Centre contact sees the centre afloat, so the body drifts off whole.
 TEST(DebrisBody, PivotsAboutCornerHeldOnRidgeWithLocalContact) {
     const auto dir = test::scratch_dir("body_pivot");
     const double U = 0.04, level = 0.0;
@@ -315,7 +317,7 @@ TEST(DebrisBody, PivotsAboutCornerHeldOnRidgeWithLocalContact) {
         const BodyState s0 = w.states()[0];
         const Vec2 held0 = (s0.flags & flag_pivoting) ? Vec2{s0.x + s0.pivot_ax, s0.y + s0.pivot_ay} : Vec2{0.107, 0.03};
         const Vec2 held_body = rotate(held0 - Vec2{s0.x, s0.y}, -s0.theta);
-        w.advance_to(20.0);
+        w.advance_to(8.0);
         const BodyState& s = w.states()[0];
         const Vec2 centre{s.x, s.y};
         held_move = norm(centre + rotate(held_body, s.theta) - held0);
@@ -332,12 +334,129 @@ TEST(DebrisBody, PivotsAboutCornerHeldOnRidgeWithLocalContact) {
 
     run(ContactModel::center, true, held, centre, turn, radius);
     EXPECT_GT(held, 0.5 * centre);  // drifts off whole
-    EXPECT_GT(centre, 0.1);
+    EXPECT_GT(centre, 0.05);
 
     // Local friction without the axis shift holds the body still: the turn comes from the shift.
     run(ContactModel::local, false, held, centre, turn, radius);
     EXPECT_LT(std::fabs(turn), 0.01);
     EXPECT_LT(centre, 1e-3);
+}
+
+// A body at rest (heading 0, centre at the origin) with 40 % of its footprint over 2.0 cm
+// of water (a strip 1 cm ≤ y ≤ 5 cm along its north side, ground at −2 cm) and the rest
+// over 3.0 cm (ground at −3 cm), level 0, on 1 cm cells, in a current of 0.1 m/s along its
+// long axis (+x, across its 10 cm ends). By hand:
+//  * friction capacity (Eq. 5; only the strip's cells are shallower than the 2.5 cm
+//    draft): 0.4 μ (m − ρ L B h) g = 0.4 × 0.4 × (0.625 − 0.5) × 9.81 = 0.1962 N;
+//  * flow force: drag on the two ends, ½ ρ (Cd1 + Cd2) U² (B/4) Σ s_p over the four
+//    samples of an end at y = 3.75, 1.25, −1.25, −3.75 cm, wetted heights min(d, h(p)) =
+//    2.0, 2.25 (h bilinear between the cell rows at 0.5 and 1.5 cm), 2.5, 2.5 cm:
+//    600 × 0.025 × 0.0925 × 0.01 = 0.013875 N along +x; its torque about the centre,
+//    T' = −Σ y_p F_p = 3.281e-5 N m (the deeper south half takes more drag);
+//  * contact centroid x_sub = (0, 3 cm): T_sub = T' + (x_g − x_sub) × F =
+//    3.281e-5 + 0.03 × 0.013875 = 4.491e-4 N m; I_sub = I + M |x_g − x_sub|² with
+//    I = m (L² + B²)/12 = 3.776e-3 kg m² and M = m + ρ C_a L B d = 1.25 kg (the centre is
+//    in 3 cm of water): 4.901e-3 kg m²; T_sub / I_sub = 0.09163 rad/s².
+// Eq. 6 holds at once (at rest, |F| ≤ |F_frc|), so the body turns counter-clockwise about
+// the strip, its centre on an arc of 3 cm about x_sub (east, downstream, at first).
+TEST(DebrisBody, AxisShiftTurnsAboutTheContactCentroidWithHandValues) {
+    const auto dir = test::scratch_dir("body_axis_shift");
+    const double U = 0.1;
+    auto bed = [](double, double y) { return (y > 0.01 && y < 0.05) ? -0.02 : -0.03; };
+    const auto path = test::write_flow(dir + "/strip.nc", fine, {0.0, 5.0}, bed, [&](double x, double y, double) {
+        return test::FlowState{float(-bed(x, y)), float(U), 0.0f};
+    });
+    const BodyDef def = body_at(0.0, 0.0, 0.0, ContactModel::local);
+    const BodyParams p = make_body_params(def, rho);
+    {
+        FlowReader flow(path);
+        flow.prepare(0.0);
+        FootprintCache footprint;
+        std::vector<ContactPatch> patches;
+        contact_patches(flow, flow.grid(), p, Box::make({0.0, 0.0}, 0.0, def.length, def.width), flow.depth(0.0, 0.0, 0.0), 0.0,
+                        rho, g, footprint, patches);
+        double capacity = 0.0, area = 0.0;
+        Vec2 centroid;
+        for (const auto& q : patches) {
+            capacity += q.capacity;
+            area += q.area;
+            centroid += q.area * q.r;
+        }
+        centroid = (1.0 / area) * centroid;
+        EXPECT_NEAR(area / p.plan_area, 0.4, 1e-9);
+        EXPECT_NEAR(capacity, 0.1962, 0.001962);
+        EXPECT_NEAR(centroid.x, 0.0, 1e-9);
+        EXPECT_NEAR(centroid.y, 0.03, 1e-9);
+    }
+    const FluidLoad load = load_at_rest(path, def, 0.0, 0.0);
+    EXPECT_NEAR(load.force.x, 0.013875, 0.00013875);
+    EXPECT_NEAR(load.force.y, 0.0, 1e-12);
+    EXPECT_NEAR(load.torque, 3.281e-5, 3.281e-7);
+    const double M = 1.25, I_sub = p.inertia + M * 0.03 * 0.03, T_sub = load.torque + 0.03 * load.force.x;
+    EXPECT_NEAR(I_sub, 4.901e-3, 4.901e-5);
+    EXPECT_NEAR(T_sub / I_sub, 0.09163, 0.0009163);
+
+    World w(path, {});
+    w.add_body(def);
+    w.advance_to(0.01);  // one step of dt_max
+    const BodyState s0 = w.states()[0];
+    ASSERT_TRUE(s0.flags & flag_pivoting);
+    EXPECT_NEAR(s0.pivot_rate / 0.01, 0.09163, 0.0009163);  // the initial angular acceleration about the contact
+    EXPECT_EQ(s0.vx, 0.0);                                    // held by friction
+    const Vec2 axis{s0.x + s0.pivot_ax, s0.y + s0.pivot_ay};
+    EXPECT_NEAR(axis.x, 0.0, 1e-9);
+    EXPECT_NEAR(axis.y, 0.03, 1e-9);
+    w.advance_to(1.0);
+    const BodyState& s = w.states()[0];
+    const Vec2 centre{s.x, s.y};
+    std::printf("after 1 s: turned %.4f rad (1/2 a t^2 = %.4f), centre (%.2f, %.2f) mm, %.3f cm from the first axis\n", s.theta,
+                0.5 * 0.09163, 1e3 * s.x, 1e3 * s.y, 100 * norm(centre - axis));
+    EXPECT_GT(s.theta, 0.0);  // counter-clockwise
+    // Constant T_sub would give ½ (T_sub / I_sub) t² = 0.0458 rad; the drag on the turning
+    // ends (about 1 cm/s at 0.09 rad/s) takes some of it.
+    EXPECT_NEAR(s.theta, 0.0458, 0.1 * 0.0458);
+    EXPECT_GT(s.x, 0.0);                                      // the centre swings east, downstream
+    EXPECT_NEAR(norm(centre - axis), 0.03, 0.01 * 0.03);      // on an arc about the contact centroid
+    EXPECT_NEAR(s.x, 0.03 * std::sin(s.theta), 0.05 * 0.03 * std::sin(s.theta));
+    EXPECT_EQ(w.stats()[0].collisions, 0);
+}
+
+// Floating in water that turns as a solid body, u = −Ω y, v = Ω x (Ω = 0.5 rad/s, 10 cm
+// deep), a body at rest at the centre of the rotation spins up to Ω by the drag on its
+// faces (face velocities include ω ẑ × r). At a sample p on a face, the normal relative
+// velocity is (Ω − ω) t_p, t_p its distance along the face from the face's middle, so the
+// torque is K (Ω − ω)|Ω − ω| with K = ½ ρ d Σ Cd_p ℓ_p |t_p|³ over the 4 samples of each
+// face (two of each face take Cd1, two Cd2): long faces ℓ = 6.25 cm, t = 3.125, 9.375 cm;
+// ends ℓ = 2.5 cm, t = 1.25, 3.75 cm:
+//   K = 12.5 × (2 × 1.2 × 0.0625 × (0.03125³ + 0.09375³) + 2 × 1.2 × 0.025 × (0.0125³ + 0.0375³))
+//     = 1.6432e-3 N m s².
+// I dδ/dt = −K δ|δ| for δ = Ω − ω gives δ = Ω / (1 + t/τ), τ = I / (K Ω) = 4.596 s: half
+// the lag is left at τ, a quarter at 3τ. No net force (the field is odd about the centre,
+// and Du/Dt = −Ω² x is zero there), so the body stays put.
+TEST(DebrisBody, SpinsUpToSolidBodyRotationOfTheWater) {
+    const auto dir = test::scratch_dir("body_vortex");
+    const double Omega = 0.5, depth = 0.1;
+    std::vector<double> times;
+    for (int k = 0; k <= 15; ++k) times.push_back(k);
+    const auto path = test::write_flow(
+        dir + "/vortex.nc", fine, times, [](double, double) { return -0.1; },
+        [&](double x, double y, double) {
+            return test::FlowState{float(depth), float(-Omega * y), float(Omega * x)};
+        });
+    const BodyParams p = make_body_params(default_body_def(), rho);
+    const double K = 0.5 * rho * p.draft *
+                     (2 * 1.2 * 0.0625 * (std::pow(0.03125, 3) + std::pow(0.09375, 3)) +
+                      2 * 1.2 * 0.025 * (std::pow(0.0125, 3) + std::pow(0.0375, 3)));
+    EXPECT_NEAR(K, 1.6432e-3, 1e-7);
+    const double tau = p.inertia / (K * Omega);
+    EXPECT_NEAR(tau, 4.596, 0.005);
+    World w(path, {});
+    w.add_body(body_at(0.0, 0.0, 0.0, ContactModel::local));
+    w.advance_to(tau);
+    EXPECT_NEAR((Omega - w.states()[0].omega) / Omega, 0.5, 0.005);
+    w.advance_to(3 * tau);
+    EXPECT_NEAR((Omega - w.states()[0].omega) / Omega, 0.25, 0.0025);
+    EXPECT_LT(std::hypot(w.states()[0].x, w.states()[0].y), 1e-9);
 }
 
 // The integrators' order on the relaxation above: with w = U/(1 + t/τ) the centre moves

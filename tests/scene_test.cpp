@@ -117,6 +117,52 @@ TEST(ImportScene, RealLayoutKeepsMeanAndStarts) {
     }
 }
 
+// The measured layout's channel regions lie on its channels: on cross-sections 5 cm apart
+// the lowest ground of the 1 cm import (Channel B's trench, z a few mm below still water
+// between banks at +5 to +10 mm; Channel A's north leg) lies inside `channel_b` and
+// `channel_a`. The generated scene's polygons (its own channels) miss Channel B by
+// some 0.3 m, which is why an import has its own.
+TEST(ImportScene, RealLayoutChannelRegionsHoldTheChannelsLowestGround) {
+    const std::string real = test::shared_data("city-topography-from-figure.nc");
+    if (real.empty()) GTEST_SKIP() << "shared data not present";
+    const Scene s = import_scene({real, "", 0.01});
+    const Scene generated = generate_scene(SceneGenDef{}).scene;
+    auto region = [](const Scene& sc, const std::string& name) -> const Region& {
+        for (const Region& r : sc.regions)
+            if (r.name == name) return r;
+        ADD_FAILURE() << "no region " << name;
+        return sc.regions.front();
+    };
+    // The lowest ground along x = const within [y0, y1], or along y = const within [x0, x1].
+    auto lowest_in_column = [&](double x, double y0, double y1) {
+        double best = 1e9, at_y = 0.0;
+        for (double y = y0; y <= y1; y += 0.01)
+            if (const double z = at(s, s.z, x, y); z < best) best = z, at_y = y;
+        return at_y;
+    };
+    auto lowest_in_row = [&](double y, double x0, double x1) {
+        double best = 1e9, at_x = 0.0;
+        for (double x = x0; x <= x1; x += 0.01)
+            if (const double z = at(s, s.z, x, y); z < best) best = z, at_x = x;
+        return at_x;
+    };
+    int generated_misses = 0;
+    for (double x = 3.80; x <= 4.60; x += 0.05) {
+        const double y = lowest_in_column(x, -3.5, -2.85);
+        EXPECT_TRUE(region(s, "channel_b").contains(x, y)) << x << ", " << y;
+        generated_misses += region(generated, "channel_b").contains(x, y) ? 0 : 1;
+    }
+    EXPECT_GT(generated_misses, 10);
+    for (double y = -1.76; y <= -1.48; y += 0.04) {
+        const double x = lowest_in_row(y, 4.30, 4.60);
+        EXPECT_TRUE(region(s, "channel_a").contains(x, y)) << x << ", " << y;
+    }
+    for (double x = 4.90; x <= 5.45; x += 0.05) {
+        const double y = lowest_in_column(x, -1.85, -1.30);
+        EXPECT_TRUE(region(s, "channel_a").contains(x, y)) << x << ", " << y;
+    }
+}
+
 TEST(ImportScene, AsciiGridRoundTripAndCoarsening) {
     const auto dir = test::scratch_dir("asc");
     // 4 columns x 2 rows, rows north to south; cell 0.5 m, lower-left corner (10, 20).
