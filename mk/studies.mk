@@ -1,6 +1,6 @@
 # Studies: runs on the real layout whose CSVs and charts the docs show.
 
-.PHONY: accuracy-hydro accuracy-debris resolution-debris stability-hydro
+.PHONY: accuracy-hydro accuracy-debris resolution-debris stability-hydro hydro-levers
 
 ##@ Studies (docs/accuracy.md, docs/studies/)
 # Flows at 8, 4 and 2 cm, some on one uniform grid, against the 1 cm flow on the flows'
@@ -49,3 +49,9 @@ resolution-debris: build
 stability-hydro: build
 	$(BUILD)/hydro_stability --csv docs/data/hydro_stability.csv
 	$(PYTHON) -m pipelines.charts_stability docs/data/hydro_stability.csv docs/img/hydro_stability.png
+
+# The speed levers (time stepping, fronts, dry tolerance, Courant number) at 2 cm over
+# 0-150 s against the 1 cm flow: processor time, gauge, arrival and debris errors.
+## hydro-levers       each hydro speed lever's cost and error: runs/levers/*.csv
+hydro-levers: build
+	pipelines/hydro_levers.sh $(FLOTSAM) $(REAL_DEM) $(RUNS) $(wildcard $(RUNS)/speed-ratio/flow-0.02-baseline.nc)
