@@ -23,6 +23,8 @@ import statistics
 import subprocess
 import sys
 
+from pipelines.validation_debris import number
+
 DEFAULT_CASES = ["carried:land:0.02", "carried:land:0.01", "restarted:land:0.02", "restarted:land:0.01",
                  "braked:land:0.02", "carried:any:0.02", "carried:none:0.02"]
 
@@ -40,14 +42,6 @@ start = "FD"
 [variants]
 names = ["CC+SC", "LC+MC"]
 """
-
-
-def number(text):
-    try:
-        v = float(text)
-    except (TypeError, ValueError):
-        return math.nan
-    return v if math.isfinite(v) and abs(v) < 1e30 else math.nan
 
 
 def spread(values, fmt, unit):

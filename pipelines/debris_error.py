@@ -26,7 +26,9 @@ def at(ds, name, k, t):
 
 def largest_turn(ds, k, t_end):
     _, times = at(ds, "yaw", k, 0.0)
-    yaw = np.degrees(ds.yaw.values[k][times <= t_end])
+    yaw = ds.yaw.values[k][times <= t_end]
+    if not str(ds.yaw.attrs.get("units", "")).startswith("degree"):
+        yaw = np.degrees(yaw)
     return float(np.max(np.abs(yaw - yaw[0])))
 
 

@@ -38,7 +38,11 @@ PYTHONPATH=. "$python" -m pipelines.flow_error "$out/real-0.01.nc" "$out/referen
 # the 1 cm ground, through each flow and through the reference.
 at=$(for x in 1.27 1.32 1.37 1.42 1.47; do for y in -2.25 -2.20 -2.15 -2.10 -2.05; do echo "--at $x,$y,0"; done; done)
 "$flotsam" debris --flow "$out/reference-1cm.nc" --scene "$out/real-0.01.nc" $at --quiet --out "$out/reference-1cm.traj.nc"
-trajs=""
+# The chaos floor: the same boxes started 1 mm further east, in the reference flow.
+shifted=$(for x in 1.271 1.321 1.371 1.421 1.471; do for y in -2.25 -2.20 -2.15 -2.10 -2.05; do echo "--at $x,$y,0"; done; done)
+"$flotsam" debris --flow "$out/reference-1cm.nc" --scene "$out/real-0.01.nc" $shifted --quiet \
+  --out "$out/reference-1cm-shift1mm.traj.nc"
+trajs="$out/reference-1cm-shift1mm.traj.nc"
 for f in $flows; do
   t="$out/$(basename "$f" .nc).traj.nc"
   "$flotsam" debris --flow "$f" --scene "$out/real-0.02.nc" --ground "$out/real-0.01.nc" $at --quiet --out "$t"
