@@ -17,6 +17,10 @@ namespace flotsam {
 
 namespace {
 
+// The options kept for the studies and tests that compare the default with what it
+// replaced (docs/studies/); listed apart in --help.
+const char* const kStudyGroup = "Study options (comparisons with the default; docs/studies/)";
+
 constexpr const char* kSideNames[4] = {"west", "east", "south", "north"};
 
 struct HydroOptions {
@@ -196,7 +200,7 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
                     "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1")
         ->capture_default_str()
         ->check(in_range(Range::positive().up_to(10.0)));
-    sub->add_option("--order", fv.order, "1: first order; 2: MUSCL + Heun (default)")
+    sub->add_option("--order", fv.order, "1: first order; 2: second order (limited slopes, MUSCL)")
         ->check(CLI::IsMember({1, 2}))
         ->capture_default_str();
     sub->add_option("--cfl", fv.cfl,
@@ -217,23 +221,27 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->check(in_range(Range::positive("m").up_to(1.0)));
     sub->add_option("--friction", o->friction,
                     "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->group(kStudyGroup);
     sub->add_option("--fronts", o->fronts,
                     "Finite volumes: dry-bed fronts 'plain' (cell averages) or 'tracked' (a wet fraction and an invariant "
-                    "correction; with --time-stepping heun only; it fails Thacker's bowl and the parabola, docs/hydro.md)")
-        ->capture_default_str();
+                    "correction; with --time-stepping heun only; it fails Thacker's bowl and the parabola, docs/studies/wetdry_suite.md)")
+        ->capture_default_str()
+        ->group(kStudyGroup);
     sub->add_option("--time-stepping", o->stepping,
                     "Finite volumes: 'split' (an x and a y sweep of MUSCL-Hancock per step, their order alternating; the step "
                     "limited by each direction's own speed) or 'heun' (unsplit MUSCL with Heun's method)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->group(kStudyGroup);
     sub->add_flag("--study-past-stability-limit", s.study_past_stability_limit,
                   "Stability study only: accept --cfl above 1, step above 0.5 without the positivity redo, and let the leap-frog "
-                  "run past Courant number 1 (to see the failure)");
+                  "run past Courant number 1 (to see the failure)")
+        ->group(kStudyGroup);
     sub->add_option("--nest-ratio", r.nest.ratio,
                     "Grids of this many times the scene's spacing, west to east between the --nest-x interfaces, sub-cycled: "
                     "'4' is a coarse grid west of the interface and the scene's own east of it, '4,1,2' adds one twice as "
                     "coarse east of a second interface, '4,1,1' splits the scene's grid in two parts with steps of their own "
-                    "(1: one uniform grid; docs/accuracy.md, docs/hydro.md lever 6)")
+                    "(1: one uniform grid; docs/accuracy.md, docs/studies/hydro_speed_levers.md)")
         ->capture_default_str()
         ->delimiter(',')
         ->check(in_range(Range::count(1, 16)));
