@@ -239,15 +239,17 @@ std::string scene_buildings_sha256(const Scene& s) {
     return sha256_hex(bytes);
 }
 
-void write_scene(const std::string& path, const Scene& s, const std::string& history) {
-    const Grid& g = s.grid;
-    if (s.z.size() != g.size()) fail(path, "variable 'z'", "size does not match the grid");
-    AtomicOutput out(path);
-    {
-        nc::File f = nc::File::create(out.temp_path());
-        const int dx = f.def_dim("x", g.nx), dy = f.def_dim("y", g.ny);
-        const cf::XYAxes axes = cf::def_xy(f, dx, dy, "cell centre");
-        cf::def_crs(f, s.crs);
+namespace {
+
+// What write_scene writes, one part each: its variables are defined while the file is in
+// define mode, then their values are put, in the same order as defined.
+
+// The gridded fields (y, x): z, and Manning's n, the building mask and the initial state
+// where the scene has them.
+class SceneFields {
+public:
+    SceneFields(nc::File& f, const Scene& s, int dx, int dy) : f_(f), s_(s) {
+        const Grid& g = s.grid;
         const std::vector<std::size_t> chunk = {std::size_t(std::min(g.ny, 128)), std::size_t(std::min(g.nx, 128))};
         auto field = [&](const char* name, nc_type t, const char* units, const char* standard_name, const char* long_name) {
             return cf::def_var(f, {.name = name,
@@ -260,134 +262,185 @@ void write_scene(const std::string& path, const Scene& s, const std::string& his
                                    .deflate = 4,
                                    .grid_mapping = cf::grid_mapping_of(s.crs)});
         };
-        const int vz = field("z", NC_FLOAT, "m", "", "bed and building elevation above still water level");
-        f.put_att(vz, "positive", std::string("up"));
-        int vn = -1, vb = -1, ve = -1, vu = -1, vv = -1;
-        if (!s.manning_n.empty()) vn = field("manning_n", NC_FLOAT, "s m-1/3", "", "Manning roughness coefficient");
+        vz_ = field("z", NC_FLOAT, "m", "", "bed and building elevation above still water level");
+        f.put_att(vz_, "positive", std::string("up"));
+        if (!s.manning_n.empty()) vn_ = field("manning_n", NC_FLOAT, "s m-1/3", "", "Manning roughness coefficient");
         if (!s.building.empty()) {
-            vb = field("building", NC_BYTE, "", "", "building mask (1 = building)");
-            f.put_att(vb, "flag_values", std::vector<std::int8_t>{0, 1});
-            f.put_att(vb, "flag_meanings", std::string("open building"));
+            vb_ = field("building", NC_BYTE, "", "", "building mask (1 = building)");
+            f.put_att(vb_, "flag_values", std::vector<std::int8_t>{0, 1});
+            f.put_att(vb_, "flag_meanings", std::string("open building"));
         }
-        if (!s.eta0.empty()) ve = field("eta0", NC_FLOAT, "m", "sea_surface_height_above_mean_sea_level", "initial water level");
+        if (!s.eta0.empty()) ve_ = field("eta0", NC_FLOAT, "m", "sea_surface_height_above_mean_sea_level", "initial water level");
         if (!s.u0.empty()) {
-            vu = field("u0", NC_FLOAT, "m s-1", "", "initial x velocity");
-            vv = field("v0", NC_FLOAT, "m s-1", "", "initial y velocity");
+            vu_ = field("u0", NC_FLOAT, "m s-1", "", "initial x velocity");
+            vv_ = field("v0", NC_FLOAT, "m s-1", "", "initial y velocity");
         }
-        // Feature tables.
-        int pn = -1, pk = -1, px = -1, py = -1, ph = -1;
-        if (!s.points.empty()) {
-            const int d = f.def_dim("point", s.points.size());
-            std::vector<std::string> names, kinds;
-            for (const auto& p : s.points) {
-                names.push_back(p.name);
-                kinds.push_back(p.kind);
-            }
-            pn = f.def_text_var("point_name", {d}, cf::longest(names));
-            pk = cf::def_var(f, {.name = "point_kind",
+    }
+    void put() const {
+        auto as_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
+        f_.put(vz_, as_float(s_.z));
+        if (vn_ >= 0) f_.put(vn_, as_float(s_.manning_n));
+        if (vb_ >= 0) f_.put(vb_, s_.building);
+        if (ve_ >= 0) f_.put(ve_, as_float(s_.eta0));
+        if (vu_ >= 0) {
+            f_.put(vu_, as_float(s_.u0));
+            f_.put(vv_, as_float(s_.v0));
+        }
+    }
+
+private:
+    nc::File& f_;
+    const Scene& s_;
+    int vz_ = -1, vn_ = -1, vb_ = -1, ve_ = -1, vu_ = -1, vv_ = -1;
+};
+
+// The named points: gauges and debris starts.
+class PointTable {
+public:
+    PointTable(nc::File& f, const std::vector<ScenePoint>& points) : f_(f) {
+        if (points.empty()) return;
+        for (const auto& p : points) {
+            names_.push_back(p.name);
+            kinds_.push_back(p.kind);
+            x_.push_back(p.x);
+            y_.push_back(p.y);
+            heading_.push_back(p.heading_deg);
+        }
+        const int d = f.def_dim("point", points.size());
+        vname_ = f.def_text_var("point_name", {d}, cf::longest(names_));
+        vkind_ = cf::def_var(f, {.name = "point_kind",
                                  .type = NC_CHAR,
                                  .dims = {d},
                                  .long_name = "gauge: record a time series; start: a debris start",
-                                 .text_length = cf::longest(kinds)});
-            px = cf::def_var(f, {.name = "point_x", .dims = {d}, .units = "m"});
-            py = cf::def_var(f, {.name = "point_y", .dims = {d}, .units = "m"});
-            ph = cf::def_var(f, {.name = "point_heading",
-                                 .dims = {d},
-                                 .units = "degree",
-                                 .long_name = "debris long axis from +x, counter-clockwise"});
-        }
-        int sn = -1, sx = -1, s0 = -1, s1 = -1;
-        if (!s.sections.empty()) {
-            const int d = f.def_dim("section", s.sections.size());
-            std::vector<std::string> names;
-            for (const auto& c : s.sections) names.push_back(c.name);
-            sn = f.def_text_var("section_name", {d}, cf::longest(names));
-            sx = cf::def_var(f, {.name = "section_x", .dims = {d}, .units = "m"});
-            s0 = cf::def_var(f, {.name = "section_y_min", .dims = {d}, .units = "m"});
-            s1 = cf::def_var(f, {.name = "section_y_max", .dims = {d}, .units = "m"});
-        }
-        int rn = -1, rs = -1, rc = -1, rx = -1, ry = -1;
-        std::vector<int> start, count;
-        std::vector<double> vxs, vys;
-        if (!s.regions.empty()) {
-            for (const auto& r : s.regions) {
-                start.push_back(int(vxs.size()));
-                count.push_back(int(r.polygon.size()));
-                for (const auto& p : r.polygon) {
-                    vxs.push_back(p[0]);
-                    vys.push_back(p[1]);
-                }
-            }
-            const int d = f.def_dim("region", s.regions.size());
-            const int dv = f.def_dim("region_vertex", vxs.size());
-            std::vector<std::string> names;
-            for (const auto& r : s.regions) names.push_back(r.name);
-            rn = f.def_text_var("region_name", {d}, cf::longest(names));
-            rs = f.def_var("region_vertex_start", NC_INT, {d});
-            rc = f.def_var("region_vertex_count", NC_INT, {d});
-            rx = cf::def_var(f, {.name = "region_vertex_x", .dims = {dv}, .units = "m"});
-            ry = cf::def_var(f, {.name = "region_vertex_y", .dims = {dv}, .units = "m"});
-        }
-        cf::put_conventions(f);
-        cf::put_kind(f, "scene");
-        f.put_att(NC_GLOBAL, "title", s.title);
-        f.put_att(NC_GLOBAL, "source", s.source.empty() ? version_string() : s.source);
-        f.put_att(NC_GLOBAL, "history", history);
-        if (!s.comment.empty()) f.put_att(NC_GLOBAL, "comment", s.comment);
-        f.put_att(NC_GLOBAL, "flotsam_synthetic", std::string(s.synthetic ? "true" : "false"));
-        if (!s.hydro_defaults.empty()) f.put_att(NC_GLOBAL, "flotsam_hydro_defaults", s.hydro_defaults);
-        f.enddef();
+                                 .text_length = cf::longest(kinds_)});
+        vx_ = cf::def_var(f, {.name = "point_x", .dims = {d}, .units = "m"});
+        vy_ = cf::def_var(f, {.name = "point_y", .dims = {d}, .units = "m"});
+        vheading_ = cf::def_var(f, {.name = "point_heading",
+                                    .dims = {d},
+                                    .units = "degree",
+                                    .long_name = "debris long axis from +x, counter-clockwise"});
+    }
+    void put() const {
+        if (vname_ < 0) return;
+        f_.put(vname_, names_);
+        f_.put(vkind_, kinds_);
+        f_.put(vx_, x_);
+        f_.put(vy_, y_);
+        f_.put(vheading_, heading_);
+    }
 
+private:
+    nc::File& f_;
+    std::vector<std::string> names_, kinds_;
+    std::vector<double> x_, y_, heading_;
+    int vname_ = -1, vkind_ = -1, vx_ = -1, vy_ = -1, vheading_ = -1;
+};
+
+// The cross-sections debris passages are counted at.
+class SectionTable {
+public:
+    SectionTable(nc::File& f, const std::vector<Section>& sections) : f_(f) {
+        if (sections.empty()) return;
+        for (const auto& c : sections) {
+            names_.push_back(c.name);
+            x_.push_back(c.x);
+            y_min_.push_back(c.y_min);
+            y_max_.push_back(c.y_max);
+        }
+        const int d = f.def_dim("section", sections.size());
+        vname_ = f.def_text_var("section_name", {d}, cf::longest(names_));
+        vx_ = cf::def_var(f, {.name = "section_x", .dims = {d}, .units = "m"});
+        vy_min_ = cf::def_var(f, {.name = "section_y_min", .dims = {d}, .units = "m"});
+        vy_max_ = cf::def_var(f, {.name = "section_y_max", .dims = {d}, .units = "m"});
+    }
+    void put() const {
+        if (vname_ < 0) return;
+        f_.put(vname_, names_);
+        f_.put(vx_, x_);
+        f_.put(vy_min_, y_min_);
+        f_.put(vy_max_, y_max_);
+    }
+
+private:
+    nc::File& f_;
+    std::vector<std::string> names_;
+    std::vector<double> x_, y_min_, y_max_;
+    int vname_ = -1, vx_ = -1, vy_min_ = -1, vy_max_ = -1;
+};
+
+// The named regions (polygons), their vertices in one ragged array.
+class RegionTable {
+public:
+    RegionTable(nc::File& f, const std::vector<Region>& regions) : f_(f) {
+        if (regions.empty()) return;
+        for (const auto& r : regions) {
+            names_.push_back(r.name);
+            start_.push_back(int(x_.size()));
+            count_.push_back(int(r.polygon.size()));
+            for (const auto& p : r.polygon) {
+                x_.push_back(p[0]);
+                y_.push_back(p[1]);
+            }
+        }
+        const int d = f.def_dim("region", regions.size());
+        const int dv = f.def_dim("region_vertex", x_.size());
+        vname_ = f.def_text_var("region_name", {d}, cf::longest(names_));
+        vstart_ = f.def_var("region_vertex_start", NC_INT, {d});
+        vcount_ = f.def_var("region_vertex_count", NC_INT, {d});
+        vx_ = cf::def_var(f, {.name = "region_vertex_x", .dims = {dv}, .units = "m"});
+        vy_ = cf::def_var(f, {.name = "region_vertex_y", .dims = {dv}, .units = "m"});
+    }
+    void put() const {
+        if (vname_ < 0) return;
+        f_.put(vname_, names_);
+        f_.put(vstart_, start_);
+        f_.put(vcount_, count_);
+        f_.put(vx_, x_);
+        f_.put(vy_, y_);
+    }
+
+private:
+    nc::File& f_;
+    std::vector<std::string> names_;
+    std::vector<int> start_, count_;
+    std::vector<double> x_, y_;
+    int vname_ = -1, vstart_ = -1, vcount_ = -1, vx_ = -1, vy_ = -1;
+};
+
+void put_scene_attributes(nc::File& f, const Scene& s, const std::string& history) {
+    cf::put_conventions(f);
+    cf::put_kind(f, "scene");
+    f.put_att(NC_GLOBAL, "title", s.title);
+    f.put_att(NC_GLOBAL, "source", s.source.empty() ? version_string() : s.source);
+    f.put_att(NC_GLOBAL, "history", history);
+    if (!s.comment.empty()) f.put_att(NC_GLOBAL, "comment", s.comment);
+    f.put_att(NC_GLOBAL, "flotsam_synthetic", std::string(s.synthetic ? "true" : "false"));
+    if (!s.hydro_defaults.empty()) f.put_att(NC_GLOBAL, "flotsam_hydro_defaults", s.hydro_defaults);
+}
+
+}  // namespace
+
+void write_scene(const std::string& path, const Scene& s, const std::string& history) {
+    const Grid& g = s.grid;
+    if (s.z.size() != g.size()) fail(path, "variable 'z'", "size does not match the grid");
+    AtomicOutput out(path);
+    {
+        nc::File f = nc::File::create(out.temp_path());
+        const int dx = f.def_dim("x", g.nx), dy = f.def_dim("y", g.ny);
+        const cf::XYAxes axes = cf::def_xy(f, dx, dy, "cell centre");
+        cf::def_crs(f, s.crs);
+        const SceneFields fields(f, s, dx, dy);
+        const PointTable points(f, s.points);
+        const SectionTable sections(f, s.sections);
+        const RegionTable regions(f, s.regions);
+        put_scene_attributes(f, s, history);
+        f.enddef();
         f.put(axes.x, g.xs());
         f.put(axes.y, g.ys());
-        auto as_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
-        f.put(vz, as_float(s.z));
-        if (vn >= 0) f.put(vn, as_float(s.manning_n));
-        if (vb >= 0) f.put(vb, s.building);
-        if (ve >= 0) f.put(ve, as_float(s.eta0));
-        if (vu >= 0) {
-            f.put(vu, as_float(s.u0));
-            f.put(vv, as_float(s.v0));
-        }
-        if (pn >= 0) {
-            std::vector<std::string> names, kinds;
-            std::vector<double> x, y, h;
-            for (const auto& p : s.points) {
-                names.push_back(p.name);
-                kinds.push_back(p.kind);
-                x.push_back(p.x);
-                y.push_back(p.y);
-                h.push_back(p.heading_deg);
-            }
-            f.put(pn, names);
-            f.put(pk, kinds);
-            f.put(px, x);
-            f.put(py, y);
-            f.put(ph, h);
-        }
-        if (sn >= 0) {
-            std::vector<std::string> names;
-            std::vector<double> x, y0, y1;
-            for (const auto& c : s.sections) {
-                names.push_back(c.name);
-                x.push_back(c.x);
-                y0.push_back(c.y_min);
-                y1.push_back(c.y_max);
-            }
-            f.put(sn, names);
-            f.put(sx, x);
-            f.put(s0, y0);
-            f.put(s1, y1);
-        }
-        if (rn >= 0) {
-            std::vector<std::string> names;
-            for (const auto& r : s.regions) names.push_back(r.name);
-            f.put(rn, names);
-            f.put(rs, start);
-            f.put(rc, count);
-            f.put(rx, vxs);
-            f.put(ry, vys);
-        }
+        fields.put();
+        points.put();
+        sections.put();
+        regions.put();
         f.close();
     }
     out.commit();
