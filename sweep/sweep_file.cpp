@@ -181,12 +181,20 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
     out.commit();
 }
 
-SweepResult read_sweep_file(const std::string& path) {
-    nc::File f = nc::File::open_read(path);
-    cf::require_kind(f, {"sweep"});
-    for (const char* v : {"member_id", "flow_path", "param_set_label", "variant"})
-        if (!f.has_var(v)) fail(path, std::string("variable '") + v + "'", "missing: not a file written by `flotsam sweep`");
-    SweepResult r;
+namespace {
+
+// A table column of the sweep file, checked to be one-dimensional on `dim` before it is
+// read: a short column is a named error, never a read past its end.
+int column_var(nc::File& f, const std::string& path, const std::string& name, const std::string& dim) {
+    const int v = f.var(name);
+    const auto dims = f.value_dims(v);  // a string column's: without its string length
+    if (dims != std::vector<std::string>{dim}) fail(path, "variable '" + name + "'", "must be one-dimensional on dimension '" + dim + "'");
+    return v;
+}
+
+// The global attributes: the spec, the scene, the design, the shard, the world and the
+// perturbations.
+void read_sweep_attributes(nc::File& f, const std::string& path, SweepResult& r) {
     auto text = [&](const char* name) {
         const auto a = f.att_text(NC_GLOBAL, name);
         if (!a) fail(path, std::string("attribute '") + name + "'", "missing");
@@ -202,7 +210,6 @@ SweepResult read_sweep_file(const std::string& path) {
     r.spec_sha256 = text("spec_sha256");
     r.scene_file = text("scene_file");
     r.scene_buildings_sha256 = f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or("");
-    r.path = path;
     r.ground_file = f.att_text(NC_GLOBAL, "ground_file").value_or("");
     r.design = text("design");
     r.member_count = int(number("member_count", Range::count(0, 2e9)));
@@ -213,24 +220,19 @@ SweepResult read_sweep_file(const std::string& path) {
     r.perturbation.position_std = number("perturbation_position_std_m", Range::non_negative("m"));
     r.perturbation.heading_std = number("perturbation_heading_std_deg", Range::non_negative("degree"));
     r.perturbation.seed = std::uint64_t(number("perturbation_seed", Range::count(0, 1.8e19)));
-    // Every table is checked against its dimension before it is read: a short column is
-    // a named error, never a read past its end.
-    auto column_var = [&](const std::string& name, const std::string& dim) {
-        const int v = f.var(name);
-        const auto dims = f.value_dims(v);  // a string column's: without its string length
-        if (dims != std::vector<std::string>{dim})
-            fail(path, "variable '" + name + "'", "must be one-dimensional on dimension '" + dim + "'");
-        return v;
-    };
+}
+
+// The time axis and the sweep's tables: flows, bodies, variants, parameter sets; the CRS.
+void read_sweep_tables(nc::File& f, const std::string& path, SweepResult& r) {
     r.time = nc::read_finite(f, "time");
-    column_var("time", "time");
+    column_var(f, path, "time", "time");
     for (std::size_t k = 1; k < r.time.size(); ++k)
         if (!(r.time[k] > r.time[k - 1])) fail(path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
-    r.flows = f.get_strings(column_var("flow_path", "flow"));
-    r.bodies = f.get_strings(column_var("body_name", "body"));
-    r.variants = f.get_strings(column_var("variant_name", "variant"));
-    const auto labels = f.get_strings(column_var("param_set_label", "param_set"));
-    const auto ctrl = f.get_int(column_var("param_set_is_control", "param_set"));
+    r.flows = f.get_strings(column_var(f, path, "flow_path", "flow"));
+    r.bodies = f.get_strings(column_var(f, path, "body_name", "body"));
+    r.variants = f.get_strings(column_var(f, path, "variant_name", "variant"));
+    const auto labels = f.get_strings(column_var(f, path, "param_set_label", "param_set"));
+    const auto ctrl = f.get_int(column_var(f, path, "param_set_is_control", "param_set"));
     std::vector<std::vector<double>> set_values;
     for (const auto& p : design_parameters()) {
         const std::string name = "param_set_" + p.variable();
@@ -239,7 +241,7 @@ SweepResult read_sweep_file(const std::string& path) {
             set_values.push_back(std::vector<double>(labels.size(), p.number(debris::default_body_def())));
             continue;
         }
-        column_var(name, "param_set");
+        column_var(f, path, name, "param_set");
         set_values.push_back(nc::read_finite(f, name));
     }
     r.crs = cf::read_crs(f, "yaw");
@@ -248,94 +250,141 @@ SweepResult read_sweep_file(const std::string& path) {
         for (const auto& v : set_values) ps.values.push_back(v[s]);
         r.params.push_back(ps);
     }
+}
 
+// The per-trajectory columns of the members, read whole.
+struct MemberColumns {
+    std::vector<int> id, flow, perturbation, param_set, collision_steps, unresolved, axis_shift_steps;
+    std::vector<std::string> body, start, variant, contact, collision;
+    std::vector<double> x0, y0, heading0;
+    std::vector<debris::BodyDef> defs;
+
+    MemberColumns(nc::File& f, const std::string& path, std::size_t nm) : defs(nm) {
+        const auto ints = [&](const char* n) { return f.get_int(column_var(f, path, n, "trajectory")); };
+        const auto doubles = [&](const char* n) {
+            column_var(f, path, n, "trajectory");
+            return nc::read_finite(f, n);
+        };
+        const auto strings = [&](const char* n) { return f.get_strings(column_var(f, path, n, "trajectory")); };
+        id = ints("member_id"), flow = ints("flow_index"), perturbation = ints("perturbation"), param_set = ints("param_set");
+        collision_steps = ints("collision_steps"), unresolved = ints("unresolved_collisions"), axis_shift_steps = ints("axis_shift_steps");
+        body = strings("body"), start = strings("start_name"), variant = strings("variant"), contact = strings("contact_model"),
+        collision = strings("collision_model");
+        x0 = doubles("x0"), y0 = doubles("y0"), heading0 = doubles("heading0");
+        get_setting_vars(f, debris::body_coefficient_settings(), defs);
+        get_setting_vars(f, debris::body_shape_settings(), defs);
+        get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
+    }
+};
+
+// Member b's record from the columns, checked against the sweep's tables.
+MemberRecord member_of(const MemberColumns& c, std::size_t b, const SweepResult& r, const std::string& path) {
+    MemberRecord m;
+    m.id = c.id[b];
+    m.flow = c.flow[b];
+    m.perturbation = c.perturbation[b];
+    m.param_set = c.param_set[b];
+    m.body_name = c.body[b];
+    m.start_name = c.start[b];
+    m.variant_name = c.variant[b];
+    m.def = c.defs[b];
+    m.def.name = m.body_name;
+    m.def.contact = parse_enum<debris::ContactModel>(c.contact[b], path + ": variable 'contact_model'");
+    m.def.collision = parse_enum<debris::CollisionModel>(c.collision[b], path + ": variable 'collision_model'");
+    const auto bi = std::find(r.bodies.begin(), r.bodies.end(), m.body_name);
+    const auto vi = std::find(r.variants.begin(), r.variants.end(), m.variant_name);
+    if (bi == r.bodies.end() || vi == r.variants.end() || m.flow < 0 || m.flow >= int(r.flows.size()) || m.param_set < 0 ||
+        m.param_set >= int(r.params.size()))
+        fail(path, "trajectory " + std::to_string(b), "body, variant, flow or parameter set not in the sweep's tables");
+    m.body = int(bi - r.bodies.begin());
+    m.variant = int(vi - r.variants.begin());
+    m.def.x = c.x0[b];
+    m.def.y = c.y0[b];
+    m.heading0_deg = c.heading0[b];
+    m.def.heading = c.heading0[b] * std::numbers::pi / 180.0;
+    m.collision_steps = c.collision_steps[b];
+    m.unresolved_collisions = c.unresolved[b];
+    m.axis_shift_steps = c.axis_shift_steps[b];
+    return m;
+}
+
+// The track variables (trajectory, time), checked for their shape; then member b's track.
+class TrackReader {
+public:
+    TrackReader(nc::File& f, const std::string& path, std::size_t nm, std::size_t nt) : f_(f), path_(path), nt_(nt), status_(nt) {
+        auto track_var = [&](const char* name) {
+            const int v = f.var(name);
+            if (f.dim_names(v) != std::vector<std::string>{"trajectory", "time"} || f.shape(v) != std::vector<std::size_t>{nm, nt})
+                fail(path, std::string("variable '") + name + "'",
+                     "must have dimensions (trajectory, time) = (" + std::to_string(nm) + ", " + std::to_string(nt) + ")");
+            return v;
+        };
+        vx_ = track_var("x"), vy_ = track_var("y"), vyaw_ = track_var("yaw"), vu_ = track_var("u"), vv_ = track_var("v"),
+        vom_ = track_var("omega"), vst_ = track_var("status");
+    }
+
+    void read(std::size_t b, debris::Track& t) {
+        for (auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega}) series->resize(nt_);
+        if (nt_ > 0) {
+            const std::vector<std::size_t> st = {b, 0}, count = {1, nt_};
+            f_.get_slab(vx_, st, count, t.x.data());
+            f_.get_slab(vy_, st, count, t.y.data());
+            f_.get_slab(vyaw_, st, count, t.yaw_deg.data());
+            f_.get_slab(vu_, st, count, t.u.data());
+            f_.get_slab(vv_, st, count, t.v.data());
+            f_.get_slab(vom_, st, count, t.omega.data());
+            f_.get_slab(vst_, st, count, status_.data());
+            for (const auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega})
+                for (std::size_t k = 0; k < nt_; ++k)
+                    if (!std::isfinite((*series)[k]) || std::fabs((*series)[k]) > 1e12)
+                        fail(path_, "trajectory " + std::to_string(b) + ", time index " + std::to_string(k),
+                             "a track value is not finite (or is a fill value)");
+        }
+        for (std::size_t k = 0; k < status_.size(); ++k) {
+            // Five flag bits (formats/trajectory_file.hpp); a byte beyond them is no status.
+            if (!(status_[k] >= 0 && status_[k] <= 31))
+                fail(path_, "variable 'status'",
+                     "trajectory " + std::to_string(b) + ", time index " + std::to_string(k) + ": " + number_text(status_[k]) +
+                         " is not a combination of the flags 1, 2, 4, 8, 16 (released moving grounded colliding pivoting)");
+            t.status.push_back(std::int8_t(status_[k]));
+        }
+    }
+
+private:
+    nc::File& f_;
+    const std::string& path_;
+    std::size_t nt_;
+    std::vector<double> status_;
+    int vx_ = -1, vy_ = -1, vyaw_ = -1, vu_ = -1, vv_ = -1, vom_ = -1, vst_ = -1;
+};
+
+}  // namespace
+
+SweepResult read_sweep_file(const std::string& path) {
+    nc::File f = nc::File::open_read(path);
+    cf::require_kind(f, {"sweep"});
+    for (const char* v : {"member_id", "flow_path", "param_set_label", "variant"})
+        if (!f.has_var(v)) fail(path, std::string("variable '") + v + "'", "missing: not a file written by `flotsam sweep`");
+    SweepResult r;
+    r.path = path;
+    read_sweep_attributes(f, path, r);
+    read_sweep_tables(f, path, r);
     const std::size_t nm = f.dim_length("trajectory"), nt = r.time.size();
-    const auto ints = [&](const char* n) { return f.get_int(column_var(n, "trajectory")); };
-    const auto doubles = [&](const char* n) {
-        column_var(n, "trajectory");
-        return nc::read_finite(f, n);
-    };
-    const auto strings = [&](const char* n) { return f.get_strings(column_var(n, "trajectory")); };
-    const auto id = ints("member_id"), flow = ints("flow_index"), pert = ints("perturbation"), set = ints("param_set");
-    const auto nc_ = ints("collision_steps"), nu = ints("unresolved_collisions"), ns = ints("axis_shift_steps");
-    const auto body = strings("body"), start = strings("start_name"), variant = strings("variant"),
-               contact = strings("contact_model"), coll = strings("collision_model");
-    const auto x0 = doubles("x0"), y0 = doubles("y0"), h0 = doubles("heading0");
-    std::vector<debris::BodyDef> defs(nm);
-    get_setting_vars(f, debris::body_coefficient_settings(), defs);
-    get_setting_vars(f, debris::body_shape_settings(), defs);
-    get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
-    auto track_var = [&](const char* name) {
-        const int v = f.var(name);
-        if (f.dim_names(v) != std::vector<std::string>{"trajectory", "time"} || f.shape(v) != std::vector<std::size_t>{nm, nt})
-            fail(path, std::string("variable '") + name + "'",
-                 "must have dimensions (trajectory, time) = (" + std::to_string(nm) + ", " + std::to_string(nt) + ")");
-        return v;
-    };
-    const int vx = track_var("x"), vy = track_var("y"), vyaw = track_var("yaw"), vu = track_var("u"), vv = track_var("v"),
-              vom = track_var("omega"), vst = track_var("status");
-    std::vector<double> statusd(nt);
+    const MemberColumns columns(f, path, nm);
+    TrackReader tracks(f, path, nm, nt);
     std::set<int> seen;
     for (std::size_t b = 0; b < nm; ++b) {
         // Members are named by their place in the sweep's member list: each once, inside it.
-        if (id[b] < 0 || id[b] >= r.member_count)
+        const int id = columns.id[b];
+        if (id < 0 || id >= r.member_count)
             fail(path, "variable 'member_id'",
-                 "trajectory " + std::to_string(b) + " has member_id " + std::to_string(id[b]) + ", outside [0, " +
+                 "trajectory " + std::to_string(b) + " has member_id " + std::to_string(id) + ", outside [0, " +
                      std::to_string(r.member_count) + ") (member_count)");
-        if (!seen.insert(id[b]).second)
+        if (!seen.insert(id).second)
             fail(path, "variable 'member_id'",
-                 "member_id " + std::to_string(id[b]) + " is given twice (trajectory " + std::to_string(b) + " and an earlier one)");
-        MemberRecord m;
-        m.id = id[b];
-        m.flow = flow[b];
-        m.perturbation = pert[b];
-        m.param_set = set[b];
-        m.body_name = body[b];
-        m.start_name = start[b];
-        m.variant_name = variant[b];
-        m.def = defs[b];
-        m.def.name = m.body_name;
-        m.def.contact = parse_enum<debris::ContactModel>(contact[b], path + ": variable 'contact_model'");
-        m.def.collision = parse_enum<debris::CollisionModel>(coll[b], path + ": variable 'collision_model'");
-        const auto bi = std::find(r.bodies.begin(), r.bodies.end(), m.body_name);
-        const auto vi = std::find(r.variants.begin(), r.variants.end(), m.variant_name);
-        if (bi == r.bodies.end() || vi == r.variants.end() || m.flow < 0 || m.flow >= int(r.flows.size()) || m.param_set < 0 ||
-            m.param_set >= int(r.params.size()))
-            fail(path, "trajectory " + std::to_string(b), "body, variant, flow or parameter set not in the sweep's tables");
-        m.body = int(bi - r.bodies.begin());
-        m.variant = int(vi - r.variants.begin());
-        m.def.x = x0[b];
-        m.def.y = y0[b];
-        m.heading0_deg = h0[b];
-        m.def.heading = h0[b] * std::numbers::pi / 180.0;
-        m.collision_steps = nc_[b];
-        m.unresolved_collisions = nu[b];
-        m.axis_shift_steps = ns[b];
-        debris::Track& t = m.track;
-        for (auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega}) series->resize(nt);
-        if (nt > 0) {
-            const std::vector<std::size_t> st = {b, 0}, count = {1, nt};
-            f.get_slab(vx, st, count, t.x.data());
-            f.get_slab(vy, st, count, t.y.data());
-            f.get_slab(vyaw, st, count, t.yaw_deg.data());
-            f.get_slab(vu, st, count, t.u.data());
-            f.get_slab(vv, st, count, t.v.data());
-            f.get_slab(vom, st, count, t.omega.data());
-            f.get_slab(vst, st, count, statusd.data());
-            for (const auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega})
-                for (std::size_t k = 0; k < nt; ++k)
-                    if (!std::isfinite((*series)[k]) || std::fabs((*series)[k]) > 1e12)
-                        fail(path, "trajectory " + std::to_string(b) + ", time index " + std::to_string(k),
-                             "a track value is not finite (or is a fill value)");
-        }
-        for (std::size_t k = 0; k < statusd.size(); ++k) {
-            // Five flag bits (formats/trajectory_file.hpp); a byte beyond them is no status.
-            if (!(statusd[k] >= 0 && statusd[k] <= 31))
-                fail(path, "variable 'status'",
-                     "trajectory " + std::to_string(b) + ", time index " + std::to_string(k) + ": " + number_text(statusd[k]) +
-                         " is not a combination of the flags 1, 2, 4, 8, 16 (released moving grounded colliding pivoting)");
-            t.status.push_back(std::int8_t(statusd[k]));
-        }
+                 "member_id " + std::to_string(id) + " is given twice (trajectory " + std::to_string(b) + " and an earlier one)");
+        MemberRecord m = member_of(columns, b, r, path);
+        tracks.read(b, m.track);
         r.members.push_back(std::move(m));
     }
     return r;
