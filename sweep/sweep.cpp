@@ -77,6 +77,10 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));
     std::unique_ptr<Scene> ground;
     if (!spec.ground.empty()) ground = std::make_unique<Scene>(read_scene(spec.ground));
+    // The scene every shard records, whichever flows its members are on (merging shards
+    // compares it).
+    r.scene_buildings_sha256 =
+        scene ? scene_buildings_sha256(*scene) : debris::FlowReader(spec.flows.front()).scene_buildings_sha256();
     // The work of this shard, flow by flow, before any body steps.
     double body_steps = 0.0;
     for (int f = 0; f < int(spec.flows.size()); ++f) {
@@ -84,7 +88,6 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         for (int id = range[0]; id < range[1]; ++id) on_flow += all[std::size_t(id)].flow == f ? 1 : 0;
         if (on_flow == 0) continue;
         const debris::FlowReader probe(spec.flows[std::size_t(f)]);
-        if (f == 0) r.scene_buildings_sha256 = scene ? scene_buildings_sha256(*scene) : probe.scene_buildings_sha256();
         const Grid cells = ground && ground->grid.dx < probe.grid().dx ? ground->grid : probe.grid();
         body_steps += on_flow * debris::check_replay_work(probe, cells, wdef.step, r.time.front(), r.time.back(), on_flow,
                                                           def.allow_large_run, "[sweep] dt-max",

@@ -388,6 +388,35 @@ TEST(SweepRun, MergedShardsGiveTheBytesOfTheWholeRun) {
     EXPECT_EQ(rows, 49);
 }
 
+// Every shard records the scene's building fingerprint, also a shard whose members are
+// all on a later flow (the third of three: members 32-47 are on flow 1), so that the
+// shards of a sweep over a scene merge.
+TEST(SweepRun, ShardsOverASceneMergeWhateverFlowsTheirMembersAreOn) {
+    const auto dir = test::scratch_dir("sweep_shards_scene");
+    const auto flows = two_flows(dir);
+    const std::string spec = small_spec(dir, flows);
+    Scene scene;
+    scene.grid = grid;
+    scene.z.assign(grid.size(), -0.1);
+    write_scene(dir + "/scene.nc", scene, "test");
+    std::string out;
+    for (int i = 0; i < 3; ++i)
+        ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --scene " + dir + "/scene.nc --shard " + std::to_string(i) +
+                                    "/3 --out " + dir + "/part" + std::to_string(i) + ".nc --quiet --threads 1",
+                                &out),
+                  0)
+            << out;
+    const SweepResult last = read_sweep_file(dir + "/part2.nc");
+    ASSERT_FALSE(last.members.empty());
+    EXPECT_EQ(last.members.front().flow, 1);
+    EXPECT_EQ(last.scene_buildings_sha256, scene_buildings_sha256(scene));
+    EXPECT_EQ(test::run_cli("sweep merge " + dir + "/part0.nc " + dir + "/part1.nc " + dir + "/part2.nc --out " + dir +
+                                "/merged.nc",
+                            &out),
+              0)
+        << out;
+}
+
 // A ground finer than the flows (--ground, or [sweep] ground): the sweep file names it,
 // and shards run with different grounds are not one sweep.
 TEST(SweepRun, GroundIsRecordedAndShardsMustShareIt) {
