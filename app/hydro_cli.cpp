@@ -225,7 +225,7 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->group(kStudyGroup);
     sub->add_option("--fronts", o->fronts,
                     "Finite volumes: dry-bed fronts 'plain' (cell averages) or 'tracked' (a wet fraction and an invariant "
-                    "correction; with --time-stepping heun only; it fails Thacker's bowl and the parabola, docs/studies/wetdry_suite.md)")
+                    "correction; with --time-stepping heun only; it fails Thacker's planar case and Ritter's dam break, docs/studies/wetdry_suite.md)")
         ->capture_default_str()
         ->group(kStudyGroup);
     sub->add_option("--time-stepping", o->stepping,
