@@ -1,4 +1,4 @@
-// Precision benchmark (issue 17, lever 3): what float32 state and arithmetic would gain in
+// Precision benchmark (speed lever 3): what float32 state and arithmetic would gain in
 // the finite-volume scheme's row kernels, the same code (hydro/swe_rows.hpp) compiled for
 // float and for double. Prints figures; asserts nothing.
 //

@@ -1,4 +1,4 @@
-// Ritter's dam break onto dry ground (issue 14): where the finite-volume front stands
+// Ritter's dam break onto dry ground: where the finite-volume front stands
 // and why. Prints tables, asserts nothing (tests/hydro_front_test.cpp asserts a subset);
 // docs/hydro.md, "Wet/dry fronts", shows its output.
 //

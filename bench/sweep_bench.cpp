@@ -13,7 +13,7 @@
 // (FlowReaderDef::decode_tiles; the same values), to compare the two.
 // --decode-threads N: threads that decode a frame's tiles (default: the stepping threads).
 // --dt-max S: the debris step's upper bound [s]; default 0.02, as the paper's spec files
-// (sweep/examples/paper_sensitivity*.toml; 0.01 before, docs/sweep.md "The step").
+// (sweep/examples/paper_sensitivity*.toml; docs/sweep.md "The step").
 //
 // --ground FILE: the bodies stand on that finer scene's ground (`flotsam sweep --ground`;
 // the pipeline's default at 2 and 4 cm).

@@ -127,7 +127,7 @@ double dam_break_error(int nx, double hl, double hr, double t_end, Make&& make, 
     return err;
 }
 
-// Ritter's dam break in a box (issue 14): [0, 10] m, h0 [m] of still water west of the
+// Ritter's dam break in a box: [0, 10] m, h0 [m] of still water west of the
 // dam at x = 5 m, dry flat ground east of it, nx x 4 cells, walls, no friction. At
 // t0 > 0 the scene holds the exact solution at that time instead (depth and velocity:
 // a resolved fan, for the transport of the front alone). The exact wet tip is at

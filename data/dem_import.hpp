@@ -54,7 +54,7 @@ struct ImportFeatures {
 };
 
 // The hydro options a scene may recommend: those whose defaults hold at the flume's
-// scale only (docs/scene.md, "Full scale").
+// scale only (docs/gis.md, "Any scale").
 const std::vector<std::string>& scene_hydro_options();
 
 // The Kainan defaults: kainan_features(KainanLayout::measured), kainan_manning(), kainan_hydro_defaults() and the

@@ -1,4 +1,4 @@
-// GIS data into a scene (issue 15): a DEM from any raster GDAL reads, with its CRS,
+// GIS data into a scene: a DEM from any raster GDAL reads, with its CRS,
 // vertical datum and nodata; building footprints from a vector file, burnt into the
 // building mask and, with heights, into z; Manning n from a land-use raster or from
 // polygons. dem_import.cpp calls these; the flume's own NetCDF and ESRI ASCII grids in

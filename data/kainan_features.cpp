@@ -33,7 +33,7 @@ std::vector<std::array<double, 2>> band_around(const Line& line, double half_wid
 
 // The channels of the measured layout (the DEM `flotsam scene import` reads,
 // ../shared/data/city-topography-from-figure.nc), their lines through the lowest ground of
-// the 1 cm import on cross-sections 5 cm apart (docs/scene.md, "Regions"): Channel A from
+// the 1 cm import on cross-sections 5 cm apart (docs/scene.md, "Points, sections, regions"): Channel A from
 // the basin's north-east arm north along x ≈ 4.4 m, then east-south-east from (4.75, −1.35);
 // Channel B the trench from the basin's south-east corner to (4.70, −3.34).
 const Line measured_channel_a = {{4.00, -1.90}, {4.40, -1.86}, {4.45, -1.52}, {4.58, -1.40}, {4.78, -1.35},

@@ -1,4 +1,4 @@
-// Checks before a replay (issue 18): a flow is replayed with the scene it was computed
+// Checks before a replay: a flow is replayed with the scene it was computed
 // on, and every body starts inside the domain, out of the buildings, and smaller than
 // the domain. Errors name the flow and scene files, or the body and its position.
 #pragma once

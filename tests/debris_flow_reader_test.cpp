@@ -723,7 +723,7 @@ TEST(FlowReader, ADamagedTileIsANamedError) {
     }
 }
 
-// pipelines/subsample_flow.py --keep-bits N (docs/accuracy.md, "How much of that is chaos?")
+// pipelines/subsample_flow.py --keep-bits N (docs/studies/resolution_by_debris.md, "How much of that is chaos?")
 // perturbs a flow by a known amount: each stored h, u, v keeps N significant bits, so it
 // moves by at most 2^-(N+1) of itself; dry stays dry and wet stays wet. Read back through
 // the replay's own reader (its tile decoder). By hand, for N = 12: u = 1 + 2^-13 + 2^-20

@@ -1,4 +1,4 @@
-// Froude similarity (issue 15): the real layout at the prototype scale, x250 (lengths
+// Froude similarity: the real layout at the prototype scale, x250 (lengths
 // x250, times x sqrt(250), Manning n x 250^(1/6), the paper's box x250 at the same
 // specific gravity), placed in UTM zone 53N near Kainan, gives the flume's WG2 level,
 // arrival times and debris path scaled by the same factors. The shallow-water equations
@@ -128,7 +128,7 @@ TEST(FroudeSimilarity, RealLayoutAtPrototypeScaleMatchesTheFlume) {
 
     const double duration = 90.0, frame = 1.0;
     // One run. The prototype scales every setting that is a length or a time, as its
-    // scene recommends (docs/scene.md, "Full scale"): the output and gauge intervals, the
+    // scene recommends (docs/gis.md, "Any scale"): the output and gauge intervals, the
     // window, the nesting interface, the arrival depth, max-dt and, unless
     // `keep_dry_depth`, the dry tolerance.
     auto run = [&](const std::string& scene, const std::string& series, const std::string& out, bool prototype,

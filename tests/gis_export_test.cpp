@@ -1,4 +1,4 @@
-// GIS out (issue 15): the Cloud-Optimised GeoTIFFs read back through GDAL with the right
+// GIS out: the Cloud-Optimised GeoTIFFs read back through GDAL with the right
 // origin, pixel size, north-up orientation, CRS and values, and gdalinfo reports a COG;
 // and the whole chain from a GeoTIFF through hydro, debris (a catalogue body) and export
 // carries the CRS into every file, the maps and the track lines.

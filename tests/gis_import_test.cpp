@@ -1,4 +1,4 @@
-// GIS in (issue 15): a GeoTIFF DEM with its CRS, datum and nodata; footprints burnt into
+// GIS in: a GeoTIFF DEM with its CRS, datum and nodata; footprints burnt into
 // the building mask and z; Manning n from a land-use raster and polygons; the CRS
 // carried into the scene as a CF grid mapping that GDAL reads back; and the errors a user
 // meets, each naming the file and what is wrong.

@@ -94,7 +94,7 @@ double level_left_at_30s(const std::string& dir, SeriesEnd end, double hold) {
 
 }  // namespace
 
-// A level series that ends can hand over to a transmissive side (issue 14): the hump
+// A level series that ends can hand over to a transmissive side: the hump
 // that comes back from the east wall leaves through the west side, where a level held
 // at 0 sends it back into the channel at full height.
 TEST(LevelBoundary, SeriesThatEndsHandsOverToATransmissiveSide) {

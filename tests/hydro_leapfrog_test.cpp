@@ -115,10 +115,9 @@ TEST(Leapfrog, DryDamBreakConvergesToRitter) {
 
 // The fixed step comes from the initial state's largest |u| + sqrt(g h) per direction,
 // not from the deepest water alone: Thacker's planar bowl starts with every wet cell
-// moving at 0.70 m/s. Chosen from the depth alone (the step before issue 14) the run
-// stopped with "Courant number > 1" at the default 0.7 (issue 14: 1.0013 at t = 0.23 s);
-// now the step is 0.0143 s instead of 0.0200 s, and it runs a whole period near
-// Thacker's solution.
+// moving at 0.70 m/s. A step chosen from the depth alone (0.0200 s) stops the run with
+// "Courant number > 1" at the default 0.7 (1.0013 at t = 0.23 s); the step from the
+// velocity too is 0.0143 s, and it runs a whole period near Thacker's solution.
 TEST(Leapfrog, StepFromTheInitialVelocityLetsAMovingSceneRun) {
     const test::Thacker th;
     const Scene s = test::thacker_planar(100, th);

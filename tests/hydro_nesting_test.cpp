@@ -244,7 +244,7 @@ TEST(Nesting, AnInterfaceWhereTheGridsSeeDifferentShoresIsRefused) {
     std::printf("%s\n", msg.c_str());
 }
 
-// A time interface (issue 17.2's local time stepping): the finest grid in two parts at
+// A time interface (local time stepping): the finest grid in two parts at
 // x = 6 m, where the slope is 0.1 m deep, each with a step of its own. West of it the
 // water is up to 0.3 m deep, east of it 0.1 m and less, so the east part's CFL limit is
 // sqrt(3) times longer and it takes fewer sub-steps. The ghosts across the interface are

@@ -384,7 +384,7 @@ TEST(HydroCli, LeapfrogOnASceneThatRecommendsNesting) {
     EXPECT_NE(out.find("nest-ratio = 4"), std::string::npos) << out;
 }
 
-// pipelines.resolution_cost (issue 17.4's hydro chart): two records, the second grid a
+// pipelines.resolution_cost (the hydro cost chart): two records, the second grid a
 // copy of the reference with WG2 raised by 1 mm in record r01 only; every other measure
 // is zero (LD does not flood in 8 s: no draft time). The costs come from the make log's
 // run summaries: a continued flow's parts summed, a flow with a part that left no summary

@@ -1,4 +1,4 @@
-// Reliability through the command line, as a user runs it (issue 18): restart, one writer
+// Reliability through the command line, as a user runs it: restart, one writer
 // per output, finite numbers or a named error, inputs never outputs, readers that do
 // not crash, a full disk. Each test runs the built `flotsam` binary.
 #include <gtest/gtest.h>

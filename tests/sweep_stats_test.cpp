@@ -343,7 +343,7 @@ TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
     EXPECT_NE(out.find("merge the parts first"), std::string::npos) << out;
 }
 
-// pipelines.resolution_stats's intervals over the records (issue 17.4), on hand-made stats
+// pipelines.resolution_stats's intervals over the records, on hand-made stats
 // folders of ten records, two members each (FD CC+SC). The reference has one member of
 // every record in Channel A and all crossing x = 1.8 m at y = -2.20 m, 5 cm/s. Resampling
 // the records, paired:

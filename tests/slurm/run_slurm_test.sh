@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The pipeline on a real Slurm (issue 16), run by `make -f Makefile.pipeline test`.
+# The pipeline on a real Slurm, run by `make -f Makefile.pipeline test`.
 #
 # Brings up a two-node Slurm on this machine from Debian's packages (installed if missing,
 # as root), then, on a coarse generated scene (16 cm, three boundary records):
