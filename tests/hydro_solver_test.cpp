@@ -201,7 +201,9 @@ TEST(Solver, ATouchedStateStepsToTheSameBits) {
                     front_cells_on_edges += u.wet_fraction(i, j) > 0.0 && u.wet_fraction(i, j) < 1.0;
         }
         EXPECT_EQ(differing, 0) << (fronts ? "tracked" : "default") << ", first at step " << first;
-        if (fronts) EXPECT_GT(front_cells_on_edges, 100);
+        if (fronts) {
+            EXPECT_GT(front_cells_on_edges, 100);
+        }
     }
 }
 
