@@ -1,5 +1,5 @@
-"""What limits the time step of a nested run, and how wet it is (docs/hydro.md, "Where the
-time goes at 1 cm"). Reads what a run leaves; runs nothing.
+"""What limits the time step of a nested run, and how wet it is
+(docs/studies/hydro_speed_levers.md). Reads what a run leaves; runs nothing.
 
   flow_dt_limits.py frames FLOW.nc [EVERY]
       per EVERY-th stored frame (window only): wet fraction, and the cell that sets the

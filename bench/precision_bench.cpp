@@ -16,7 +16,7 @@
 // forcing are left out: they are the same work in either precision.
 //
 // What the ratio means for a whole run: the row kernels were 67 % of a 1 cm flow's
-// processor time in the profile of docs/hydro.md ("Where the time goes at 1 cm"), so the
+// processor time with Heun steps (perf; docs/studies/hydro_speed_levers.md), so the
 // line "whole 1 cm run at most" is 1 / (0.33 + 0.67 / ratio): Amdahl's bound, with
 // nothing else made faster. The last line compares the two final states.
 #include <time.h>
@@ -39,7 +39,7 @@ using flotsam::hydro::kGhost;
 
 namespace {
 
-constexpr double kKernelShare = 0.67;  // docs/hydro.md, "Where the time goes at 1 cm"
+constexpr double kKernelShare = 0.67;  // the row kernels' share of a 1 cm Heun run's processor time (perf)
 
 double processor_seconds() {
     timespec t{};

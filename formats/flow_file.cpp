@@ -87,7 +87,7 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
     f.put_att(flooded_, "flag_meanings", std::string("dry flooded"));
     f.put_att(flooded_, "flood_depth", def.flood_depth);
     f.put_att(flooded_, "comment",
-              std::string("the inundation line is the 0.5 contour of this flag (docs/hydro.md, \"Runup and inundation\")"));
+              std::string("the inundation line is the 0.5 contour of this flag (docs/hydro.md, \"What a run writes\")"));
     auto runup_scalar = [&](const char* name, const char* long_name) {
         const int v = cf::def_var(f, {.name = name, .units = "m", .long_name = long_name, .fill = true});
         f.put_att(v, "flood_depth", def.flood_depth);
