@@ -291,14 +291,4 @@ template <class Real, bool kFriction, bool kRate>
     rate_max = std::max(rate_max, rate);
 }
 
-// Largest split-step CFL rate of the cells `cols` of a row.
-template <class Real>
-[[gnu::noinline]] Real max_wave_rate_row(const Sweep<Real>& s, ColumnRange cols, const Real* h, const Real* hu, const Real* hv) {
-    Real a = 0;
-#pragma omp simd reduction(max : a)
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c)
-        a = std::max(a, directional_wave_rate(h[c], hu[c], hv[c], s.g, s.dry, s.idx, s.idy));
-    return a;
-}
-
 }  // namespace flotsam::hydro::split
