@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
                     double(st.steps) / (wall * threads), st.read_cpu_seconds, 100 * st.read_cpu_seconds / cpu, stepping_cpu,
                     double(st.steps) / stepping_cpu);
         std::printf(
-            "  floor (paper sweep under 300 s on 2 cores at 2 cm): %s; issue 17's wall goals on 2 cores: 20 s at 1 cm "
+            "  floor (paper sweep under 300 s on 2 cores at 2 cm): %s; wall goals on 2 cores: 20 s at 1 cm "
             "(floor 60 s), 10 s at 4 cm\n",
             wall < 300 ? "met" : "NOT met");
     } catch (const std::exception& e) {
