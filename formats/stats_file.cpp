@@ -199,33 +199,63 @@ const Variable pass_probability_all{
 const Variable max_debris_speed_all{
     "max_debris_speed_all", NC_FLOAT, map, "m s-1", "largest body speed in the cell over all trajectories", true};
 
+namespace {
+
+// The file's variables in order: those of the schema, and the names of the others (no
+// Variable).
+struct Entry {
+    std::string name;
+    const Variable* variable;
+};
+
+std::vector<Entry> entries() {
+    std::vector<Entry> e;
+    auto add = [&](std::initializer_list<const Variable*> vars) {
+        for (const Variable* v : vars) e.push_back({v->name, v});
+    };
+    auto add_names = [&](std::initializer_list<const char*> names) {
+        for (const char* n : names) e.push_back({n, nullptr});
+    };
+    auto add_passages = [&](const PassageVariables& p) {
+        add({&p.count, &p.y_mean, &p.y_median, &p.y_std, &p.speed_mean, &p.speed_median, &p.speed_std, &p.speed_bandwidth,
+             &p.speed_kde});
+    };
+    add({&group_body, &group_variant, &group_members});
+    add_names({param_set_label, param_set_is_control});
+    add({&param_members, &section_name, &section_x, &section_y_min, &section_y_max, &region_name});
+    add_passages(passage);
+    add_passages(passage_by_param);
+    add({&speed, &member_passage_time, &member_passage_y, &member_passage_speed});
+    add({&yaw_bin, &yaw_bin_bounds, &max_rotation_histogram, &max_yaw_to_motion_histogram});
+    add({&member_id, &member_group, &member_param_set, &member_flow});
+    add({&member_motion_start, &member_max_rotation, &member_max_yaw_to_motion, &member_motion_direction});
+    add({&member_max_rotation_from_start, &member_movement_direction, &max_rotation_from_start_histogram,
+         &max_rotation_from_start_count, &max_rotation_from_start_median, &max_rotation_from_start_mean,
+         &max_rotation_from_start_min, &max_rotation_from_start_max, &rotation_direction_correlation});
+    add({&member_region, &region_count, &region_count_by_param});
+    add_names({time});
+    add({&distance_mean, &distance_std, &relative_error});
+    add_names({x, y});
+    add({&pass_probability, &max_debris_speed, &pass_probability_all, &max_debris_speed_all});
+    return e;
+}
+
+}  // namespace
+
+const std::vector<const Variable*>& variables() {
+    static const std::vector<const Variable*> list = [] {
+        std::vector<const Variable*> l;
+        for (const Entry& e : entries())
+            if (e.variable) l.push_back(e.variable);
+        return l;
+    }();
+    return list;
+}
+
 const std::vector<std::string>& variable_names() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n;
-        auto add = [&](std::initializer_list<const Variable*> vars) {
-            for (const Variable* v : vars) n.push_back(v->name);
-        };
-        auto add_passages = [&](const PassageVariables& p) {
-            add({&p.count, &p.y_mean, &p.y_median, &p.y_std, &p.speed_mean, &p.speed_median, &p.speed_std, &p.speed_bandwidth,
-                 &p.speed_kde});
-        };
-        add({&group_body, &group_variant, &group_members});
-        n.insert(n.end(), {param_set_label, param_set_is_control});
-        add({&param_members, &section_name, &section_x, &section_y_min, &section_y_max, &region_name});
-        add_passages(passage);
-        add_passages(passage_by_param);
-        add({&speed, &member_passage_time, &member_passage_y, &member_passage_speed});
-        add({&yaw_bin, &yaw_bin_bounds, &max_rotation_histogram, &max_yaw_to_motion_histogram});
-        add({&member_id, &member_group, &member_param_set, &member_flow});
-        add({&member_motion_start, &member_max_rotation, &member_max_yaw_to_motion, &member_motion_direction});
-        add({&member_max_rotation_from_start, &member_movement_direction, &max_rotation_from_start_histogram,
-             &max_rotation_from_start_count, &max_rotation_from_start_median, &max_rotation_from_start_mean,
-             &max_rotation_from_start_min, &max_rotation_from_start_max, &rotation_direction_correlation});
-        add({&member_region, &region_count, &region_count_by_param});
-        n.push_back(time);
-        add({&distance_mean, &distance_std, &relative_error});
-        n.insert(n.end(), {x, y});
-        add({&pass_probability, &max_debris_speed, &pass_probability_all, &max_debris_speed_all});
+        for (const Entry& e : entries()) n.push_back(e.name);
         return n;
     }();
     return names;

@@ -109,6 +109,8 @@ inline constexpr const char* x = "x";
 inline constexpr const char* y = "y";
 extern const Variable pass_probability, max_debris_speed, pass_probability_all, max_debris_speed_all;
 
+// Every Variable above, in the order of the file.
+const std::vector<const Variable*>& variables();
 // Every variable name above, in the order of the file (without the grid mapping and the
 // per-parameter param_set_<parameter> columns, which depend on the scene and the sweep).
 const std::vector<std::string>& variable_names();
