@@ -12,6 +12,7 @@
 #include "common/netcdf.hpp"
 #include "common/units.hpp"
 #include "data/gdal_support.hpp"
+#include "formats/stats_file.hpp"
 #include "sweep/sweep_file.hpp"
 
 namespace flotsam::gis {
@@ -158,32 +159,36 @@ void check_map(const std::string& path, const MapLayer& m, double lo, double hi,
 }  // namespace
 
 std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs, SceneOf* scene) {
+    namespace schema = stats_file;
     const nc::File f = nc::File::open_read(stats_path);
-    cf::require_kind(f, {"stats"}, "--stats");
-    for (const char* v : {"pass_probability", "max_debris_speed", "group_body", "group_variant"})
+    cf::require_kind(f, {schema::kind}, "--stats");
+    for (const char* v :
+         {schema::pass_probability.name, schema::max_debris_speed.name, schema::group_body.name, schema::group_variant.name})
         if (!f.has_var(v)) fail(stats_path, std::string("variable '") + v + "'", "missing: not a file written by `flotsam stats`");
     grid = grid_of(f);
-    crs = cf::read_crs(f, "pass_probability");
+    crs = cf::read_crs(f, schema::pass_probability.name);
     if (scene) {
-        const double coarsen = f.att_double(NC_GLOBAL, "map_coarsen").value_or(1.0);
-        *scene = SceneOf{stats_path, grid.dx / std::max(coarsen, 1.0), f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""), crs};
+        const double coarsen = f.att_double(NC_GLOBAL, schema::attribute::map_coarsen).value_or(1.0);
+        *scene = SceneOf{stats_path, grid.dx / std::max(coarsen, 1.0),
+                         f.att_text(NC_GLOBAL, schema::attribute::scene_buildings_sha256).value_or(""), crs};
     }
-    const auto bodies = f.get_strings(f.var("group_body")), variants = f.get_strings(f.var("group_variant"));
+    const auto bodies = f.get_strings(f.var(schema::group_body.name)), variants = f.get_strings(f.var(schema::group_variant.name));
+    const std::string probability = schema::pass_probability.name, speed = schema::max_debris_speed.name;
     std::vector<MapLayer> maps;
     for (std::size_t k = 0; k < bodies.size(); ++k) {
         const std::string group = bodies[k] + " " + variants[k];
         const std::string stem = file_safe(bodies[k] + "_" + variants[k]);
-        maps.push_back({"pass_probability_" + stem, "fraction of the trajectories of " + group + " whose centre passes the cell",
-                        "1", read_map(f, "pass_probability", grid, k)});
-        maps.push_back({"max_debris_speed_" + stem, "largest speed of " + group + " in the cell [m/s]", "m s-1",
-                        read_map(f, "max_debris_speed", grid, k)});
+        maps.push_back({probability + "_" + stem, "fraction of the trajectories of " + group + " whose centre passes the cell", "1",
+                        read_map(f, probability, grid, k)});
+        maps.push_back(
+            {speed + "_" + stem, "largest speed of " + group + " in the cell [m/s]", "m s-1", read_map(f, speed, grid, k)});
     }
-    maps.push_back({"pass_probability_all", "fraction of all trajectories whose centre passes the cell", "1",
-                    read_map(f, "pass_probability_all", grid)});
-    maps.push_back({"max_debris_speed_all", "largest body speed in the cell over all trajectories [m/s]", "m s-1",
-                    read_map(f, "max_debris_speed_all", grid)});
+    maps.push_back({schema::pass_probability_all.name, "fraction of all trajectories whose centre passes the cell", "1",
+                    read_map(f, schema::pass_probability_all.name, grid)});
+    maps.push_back({schema::max_debris_speed_all.name, "largest body speed in the cell over all trajectories [m/s]", "m s-1",
+                    read_map(f, schema::max_debris_speed_all.name, grid)});
     for (const MapLayer& m : maps) {
-        if (m.name.rfind("pass_probability", 0) == 0)
+        if (m.name.rfind(probability, 0) == 0)
             check_map(stats_path, m, 0.0, 1.0, "a fraction of trajectories");
         else if (std::any_of(m.values.begin(), m.values.end(), [](float v) { return !std::isnan(v); }))
             check_map(stats_path, m, 0.0, 1000.0, "a speed in m/s");  // no trajectory passes a cell: all missing is fine

@@ -1,7 +1,7 @@
 // GIS out: the hazard maps as Cloud-Optimised GeoTIFF and the debris tracks
 // as lines in a vector file, in the scene's CRS, so a planner opens them in QGIS as they
 // are. Reads the files flotsam writes (statistics, flow, trajectory or sweep files) by
-// their variable names (docs/sweep.md, formats/flow_file.hpp, formats/trajectory_file.hpp).
+// their variable names (formats/stats_file.hpp, flow_file.hpp, trajectory_file.hpp).
 #pragma once
 #include <string>
 #include <vector>

@@ -30,6 +30,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
+from pipelines import stats_file as S  # noqa: E402
+
 VARIANT_STYLE = {"center+single": ("tab:orange", "CC+SC"), "local+multi": ("tab:blue", "LC+MC")}
 
 
@@ -183,7 +185,7 @@ def chart_time_to_draft(scene, flows, out):
 
 
 def group_labels(st):
-    return [f"{b} {v}" for b, v in zip(st["group_body"].values, st["group_variant"].values)]
+    return [f"{b} {v}" for b, v in zip(st[S.GROUP_BODY].values, st[S.GROUP_VARIANT].values)]
 
 
 def group_color(label):
@@ -191,16 +193,18 @@ def group_color(label):
 
 
 def chart_sections(st, out):
-    groups, names = group_labels(st), [str(n) for n in st["section_name"].values]
-    count = st["passage_count"].values
+    groups, names = group_labels(st), [str(n) for n in st[S.SECTION_NAME].values]
+    count = st[S.PASSAGE_COUNT].values
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.6))
     width = 0.8 / max(1, len(groups))
     for g, label in enumerate(groups):
         xs = np.arange(len(names)) + (g - (len(groups) - 1) / 2) * width
-        for ax, var, scale in ((axes[0], "passage_y", 1.0), (axes[1], "passage_speed", 100.0)):
-            mean = st[f"{var}_mean"].values[g] * scale
-            std = st[f"{var}_std"].values[g] * scale
-            med = st[f"{var}_median"].values[g] * scale
+        for ax, (v_mean, v_std, v_median), scale in (
+                (axes[0], (S.PASSAGE_Y_MEAN, S.PASSAGE_Y_STD, S.PASSAGE_Y_MEDIAN), 1.0),
+                (axes[1], (S.PASSAGE_SPEED_MEAN, S.PASSAGE_SPEED_STD, S.PASSAGE_SPEED_MEDIAN), 100.0)):
+            mean = st[v_mean].values[g] * scale
+            std = st[v_std].values[g] * scale
+            med = st[v_median].values[g] * scale
             ok = count[g] > 0
             ax.errorbar(xs[ok], mean[ok], yerr=np.nan_to_num(std[ok]), fmt="o", color=group_color(label),
                         mfc="white" if label.startswith("LD") else group_color(label), capsize=3,
@@ -221,8 +225,8 @@ def chart_sections(st, out):
 
 
 def chart_speed_density(st, out):
-    groups, names = group_labels(st), [str(n) for n in st["section_name"].values]
-    count = st["passage_count"].values
+    groups, names = group_labels(st), [str(n) for n in st[S.SECTION_NAME].values]
+    count = st[S.PASSAGE_COUNT].values
     used = [k for k in range(len(names)) if count[:, k].sum() > 0]
     if not used:
         print("charts.py: speed_density.png skipped (no passages)")
@@ -232,12 +236,12 @@ def chart_speed_density(st, out):
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.4 * ncol, 3.4 * nrow), squeeze=False)
     for ax in axes.flat[len(used):]:
         ax.set_visible(False)
-    speed = st["speed"].values * 100
+    speed = st[S.SPEED].values * 100
     for ax, k in zip(axes.flat, used):
         for g, label in enumerate(groups):
             if count[g, k] < 2:
                 continue
-            ax.plot(speed, st["passage_speed_kde"].values[g, k] / 100, color=group_color(label),
+            ax.plot(speed, st[S.PASSAGE_SPEED_KDE].values[g, k] / 100, color=group_color(label),
                     ls="--" if label.startswith("LD") else "-", label=f"{label} (n={count[g, k]})")
         ax.set_title(names[k])
         ax.set_xlabel("passage speed [cm/s]")
@@ -262,16 +266,17 @@ def chart_yaw(st, out):
     """Top: the paper's Fig. 16 (from the run's start): the largest rotation and its relation
     to the direction of movement. Bottom: the same window counted from motion start."""
     groups = group_labels(st)
-    centres = st["yaw_bin"].values
+    centres = st[S.YAW_BIN].values
     width = float(centres[1] - centres[0]) if len(centres) > 1 else 10.0
-    window = float(st.attrs.get("yaw_window_s", 30.0))
+    window = float(st.attrs.get(S.YAW_WINDOW, 30.0))
     fig, axes = plt.subplots(2, 2, figsize=(13, 8.4))
     style = {g: dict(color=group_color(g), ls="--" if g.startswith("LD") else "-") for g in groups}
 
     ax = axes[0][0]
-    med, lo, hi = (finite(st[f"max_rotation_from_start_{k}"].values) for k in ("median", "min", "max"))
+    med, lo, hi = (finite(st[v].values) for v in (S.MAX_ROTATION_FROM_START_MEDIAN, S.MAX_ROTATION_FROM_START_MIN,
+                                                  S.MAX_ROTATION_FROM_START_MAX))
     for g, label in enumerate(groups):
-        ax.step(centres, st["max_rotation_from_start_histogram"].values[g], where="mid", **style[label],
+        ax.step(centres, st[S.MAX_ROTATION_FROM_START_HISTOGRAM].values[g], where="mid", **style[label],
                 label=f"{label}: median {med[g]:.0f}°, {lo[g]:.0f} to {hi[g]:.0f}°")
     p = PAPER_FD_ROTATION
     ax.axvspan(p["min"], p["max"], color="tab:red", alpha=0.12, label=f"experiment FD: {p['min']:.0f} to {p['max']:.0f}°")
@@ -282,9 +287,10 @@ def chart_yaw(st, out):
     ax.legend(fontsize=7)
 
     ax = axes[0][1]
-    rotation, direction = finite(st["member_max_rotation_from_start"].values), finite(st["member_movement_direction"].values)
-    member_group = st["member_group"].values
-    r = finite(st["rotation_direction_correlation"].values)
+    rotation = finite(st[S.MEMBER_MAX_ROTATION_FROM_START].values)
+    direction = finite(st[S.MEMBER_MOVEMENT_DIRECTION].values)
+    member_group = st[S.MEMBER_GROUP].values
+    r = finite(st[S.ROTATION_DIRECTION_CORRELATION].values)
     for g, label in enumerate(groups):
         sel = member_group == g
         ax.scatter(rotation[sel], direction[sel], s=14, color=style[label]["color"], marker="^" if label.startswith("LD") else "o",
@@ -295,8 +301,9 @@ def chart_yaw(st, out):
     ax.set_title("rotation against direction of movement (paper Fig. 16c)", fontsize=10)
     ax.legend(fontsize=7)
 
-    for ax, var, title in ((axes[1][0], "max_rotation_histogram", "largest rotation from the heading at motion start"),
-                           (axes[1][1], "max_yaw_to_motion_histogram", "largest angle of the long axis to the direction of motion")):
+    for ax, var, title in ((axes[1][0], S.MAX_ROTATION_HISTOGRAM, "largest rotation from the heading at motion start"),
+                           (axes[1][1], S.MAX_YAW_TO_MOTION_HISTOGRAM,
+                            "largest angle of the long axis to the direction of motion")):
         for g, label in enumerate(groups):
             ax.step(centres, st[var].values[g], where="mid", **style[label], label=label)
         ax.set_xlabel(f"angle in the first {window:g} s after motion starts [degree]")
@@ -311,16 +318,16 @@ def chart_yaw(st, out):
 
 def chart_relative_error(st, out):
     groups = group_labels(st)
-    labels = [str(v) for v in st["param_set_label"].values]
-    control = [bool(v) for v in st["param_set_is_control"].values]
-    t = st["time"].values - st["time"].values[0]
+    labels = [str(v) for v in st[S.PARAM_SET_LABEL].values]
+    control = [bool(v) for v in st[S.PARAM_SET_IS_CONTROL].values]
+    t = st[S.TIME].values - st[S.TIME].values[0]
     fig, axes = plt.subplots(1, len(groups), figsize=(4.2 * len(groups), 3.8), squeeze=False, sharey=True)
     cmap = plt.get_cmap("tab10")
     for ax, (g, label) in zip(axes[0], enumerate(groups)):
         for p, pl in enumerate(labels):
             if control[p]:
                 continue
-            r = st["relative_error"].values[g, p]
+            r = st[S.RELATIVE_ERROR].values[g, p]
             r = np.where(np.abs(r) > 1e30, np.nan, r)
             ax.plot(t, r, color=cmap(p % 10), ls="-" if "x" in pl else "--", lw=1.2, label=pl)
         ax.axhline(0, color="k", lw=0.8)
@@ -336,7 +343,7 @@ def chart_relative_error(st, out):
 
 def chart_map(scene, st, out, var, name, label, cmap, scale=1.0, vmax=None):
     groups = group_labels(st)
-    xs, ys = st["x"].values, st["y"].values
+    xs, ys = st[S.X].values, st[S.Y].values
     fig, axes = plt.subplots(len(groups), 1, figsize=(11, 3.3 * len(groups)), squeeze=False)
     for ax, (g, glabel) in zip(axes[:, 0], enumerate(groups)):
         scene_background(ax, scene, city_extent(scene))
@@ -344,7 +351,7 @@ def chart_map(scene, st, out, var, name, label, cmap, scale=1.0, vmax=None):
         v = np.ma.masked_where(~np.isfinite(v) | (v <= 0) | (v > 1e30), v)
         im = ax.imshow(v, origin="lower", extent=[xs[0], xs[-1], ys[0], ys[-1]], cmap=cmap, vmin=0, vmax=vmax, aspect="equal")
         fig.colorbar(im, ax=ax, shrink=0.85, label=label)
-        ax.set_title(f"{glabel}: {int(st['group_members'].values[g])} trajectories", fontsize=10)
+        ax.set_title(f"{glabel}: {int(st[S.GROUP_MEMBERS].values[g])} trajectories", fontsize=10)
     fig.tight_layout()
     save(fig, out, name)
 
@@ -358,9 +365,9 @@ def charts_from_stats(scene, stats_path, out):
     chart_speed_density(st, out)
     chart_yaw(st, out)
     chart_relative_error(st, out)
-    chart_map(scene, st, out, "pass_probability", "probability.png", "probability that debris passes the cell [-]", "magma_r",
+    chart_map(scene, st, out, S.PASS_PROBABILITY, "probability.png", "probability that debris passes the cell [-]", "magma_r",
               vmax=1.0)
-    chart_map(scene, st, out, "max_debris_speed", "max_speed.png", "largest debris speed in the cell [cm/s]", "viridis", scale=100.0)
+    chart_map(scene, st, out, S.MAX_DEBRIS_SPEED, "max_speed.png", "largest debris speed in the cell [cm/s]", "viridis", scale=100.0)
 
 
 def point_positions(scene):

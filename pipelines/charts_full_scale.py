@@ -21,6 +21,8 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.colors import LinearSegmentedColormap  # noqa: E402
 
+from pipelines import stats_file as S  # noqa: E402
+
 BODY_COLOURS = ["tab:red", "tab:purple", "tab:orange", "tab:green", "tab:brown", "tab:pink"]
 
 
@@ -66,7 +68,7 @@ def main():
     scene = xr.open_dataset(a.scene)
     stats = xr.open_dataset(a.stats)
     sweep = xr.open_dataset(a.sweep, decode_times=False)
-    x, y = stats["x"].values, stats["y"].values
+    x, y = stats[S.X].values, stats[S.Y].values
     dx = x[1] - x[0]
     ext_map = [x[0] - dx / 2, x[-1] + dx / 2, y[0] - dx / 2, y[-1] + dx / 2]
     # The port and city: east of the flume's x = -0.5 m (E 517875) in the demo's frame.
@@ -75,11 +77,11 @@ def main():
     fig, axes = plt.subplots(2, 1, figsize=(13, 10.5), constrained_layout=True)
     ax = axes[0]
     ground(ax, scene, extent)
-    bodies = list(dict.fromkeys(str(b) for b in stats["group_body"].values))
+    bodies = list(dict.fromkeys(str(b) for b in stats[S.GROUP_BODY].values))
     handles = []
-    for g, body in enumerate(stats["group_body"].values):
+    for g, body in enumerate(stats[S.GROUP_BODY].values):
         colour = BODY_COLOURS[bodies.index(str(body)) % len(BODY_COLOURS)]
-        pp = stats["pass_probability"].values[g]
+        pp = stats[S.PASS_PROBABILITY].values[g]
         cmap = LinearSegmentedColormap.from_list("p", [(0, 0, 0, 0), colour])
         ax.imshow(np.ma.masked_where(pp <= 0, pp), origin="lower", extent=ext_map, cmap=cmap, vmin=0, vmax=1, alpha=0.75,
                   aspect="equal")
@@ -95,13 +97,13 @@ def main():
                 mec=BODY_COLOURS[bodies.index(b) % len(BODY_COLOURS)], ms=5)
     ax.legend(handles=handles, loc="lower right", fontsize=9, framealpha=0.9)
     members = sweep.sizes["trajectory"]
-    flows = int(stats["member_flow"].max()) + 1 if "member_flow" in stats else 0
+    flows = int(stats[S.MEMBER_FLOW].max()) + 1 if S.MEMBER_FLOW in stats else 0
     ax.set_title(f"(a) probability that the body's centre passes each cell ({members} tracks over {flows} flows; "
                  f"colour strength = probability)", fontsize=11, loc="left")
 
     ax = axes[1]
     ground(ax, scene, extent)
-    speed = stats["max_debris_speed_all"].values
+    speed = stats[S.MAX_DEBRIS_SPEED_ALL].values
     im = ax.imshow(np.ma.masked_invalid(speed), origin="lower", extent=ext_map, cmap="inferno_r", aspect="equal",
                    vmin=0, vmax=np.nanpercentile(speed, 99) if np.isfinite(speed).any() else 1)
     fig.colorbar(im, ax=list(axes), shrink=0.45, anchor=(0.0, 0.05), label="largest debris speed [m/s], panel (b)")

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <numbers>
@@ -38,100 +37,6 @@ void apply_parameters(const ParamValues& values, debris::BodyDef& def) {
     for (bool factors : {false, true})
         for (std::size_t p = 0; p < table.size(); ++p)
             if (table[p].is_factor() == factors) table[p].set_number(def, values[p]);
-}
-
-namespace {
-
-std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
-
-std::string numbered(const char* prefix, int k, int count) {
-    const std::size_t digits = std::max<std::size_t>(2, std::to_string(std::max(count - 1, 0)).size());
-    std::string n = std::to_string(k);
-    return prefix + std::string(digits > n.size() ? digits - n.size() : 0, '0') + n;
-}
-
-}  // namespace
-
-std::uint64_t Rng::next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-double Rng::uniform() { return double(next() >> 11) * 0x1.0p-53; }
-
-double Rng::normal() {
-    const double u1 = 1.0 - uniform(), u2 = uniform();  // u1 in (0, 1]
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-}
-
-std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::vector<int>& varied, double factor) {
-    std::vector<ParameterSet> out{{"control", control, true}};
-    for (int p : varied) {
-        const std::string& key = design_parameters()[std::size_t(p)].key;
-        ParameterSet up{key + "x" + fmt(factor), control, false};
-        up.values[p] = control[p] * factor;
-        ParameterSet down{key + "/" + fmt(factor), control, false};
-        down.values[p] = control[p] / factor;
-        out.push_back(up);
-        out.push_back(down);
-    }
-    return out;
-}
-
-std::vector<ParameterSet> factorial(const ParamValues& control, const std::vector<std::vector<double>>& levels) {
-    const std::size_t np = control.size();
-    std::vector<std::vector<double>> lv(np);
-    std::size_t total = 1;
-    for (std::size_t p = 0; p < np; ++p) {
-        lv[p] = p >= levels.size() || levels[p].empty() ? std::vector<double>{control[p]} : levels[p];
-        total *= lv[p].size();
-    }
-    std::vector<ParameterSet> out;
-    for (std::size_t k = 0; k < total; ++k) {
-        ParameterSet s{numbered("grid", int(k), int(total)), ParamValues(np), false};
-        std::size_t rest = k;
-        for (int p = int(np) - 1; p >= 0; --p) {  // last parameter fastest
-            s.values[p] = lv[p][rest % lv[p].size()];
-            rest /= lv[p].size();
-        }
-        s.is_control = s.values == control;
-        out.push_back(s);
-    }
-    return out;
-}
-
-std::vector<ParameterSet> random_samples(const ParamRanges& ranges, int count, std::uint64_t seed) {
-    Rng rng(seed);
-    std::vector<ParameterSet> out;
-    for (int k = 0; k < count; ++k) {
-        ParameterSet s{numbered("random", k, count), ParamValues(ranges.size()), false};
-        for (std::size_t p = 0; p < ranges.size(); ++p) s.values[p] = ranges[p][0] + (ranges[p][1] - ranges[p][0]) * rng.uniform();
-        out.push_back(s);
-    }
-    return out;
-}
-
-std::vector<ParameterSet> latin_hypercube(const ParamRanges& ranges, int count, std::uint64_t seed) {
-    Rng rng(seed);
-    std::vector<ParameterSet> out(static_cast<std::size_t>(count));
-    for (int k = 0; k < count; ++k) out[std::size_t(k)] = {numbered("lhs", k, count), ParamValues(ranges.size()), false};
-    for (std::size_t p = 0; p < ranges.size(); ++p) {
-        std::vector<int> strata(static_cast<std::size_t>(count));
-        for (int k = 0; k < count; ++k) strata[std::size_t(k)] = k;
-        for (int k = count - 1; k > 0; --k)
-            std::swap(strata[std::size_t(k)], strata[std::size_t(rng.next() % std::uint64_t(k + 1))]);  // Fisher–Yates
-        for (int k = 0; k < count; ++k) {
-            const double u = (strata[std::size_t(k)] + rng.uniform()) / count;
-            out[std::size_t(k)].values[p] = ranges[p][0] + (ranges[p][1] - ranges[p][0]) * u;
-        }
-    }
-    return out;
 }
 
 Variant parse_variant(const std::string& name) {
@@ -197,6 +102,42 @@ std::vector<std::string> glob_flows(const TomlDoc& doc, const TomlTable& t, cons
 }
 
 // [parameters]: the design and the values of the design parameters. Scalars set the
+// The parameters a one-at-a-time design varies ("vary"; default cd1, cd2, cm, mu), as
+// indices into design_parameters().
+std::vector<int> varied_parameters(const TomlDoc& doc, const TomlTable& t) {
+    const auto& table = design_parameters();
+    std::vector<int> varied;
+    const std::vector<std::string> names =
+        has(t, "vary") ? toml_strings(doc, t, "vary") : std::vector<std::string>{"cd1", "cd2", "cm", "mu"};
+    for (const auto& n : names) {
+        const Setting<debris::BodyDef>* p = find_setting(table, n);
+        if (!p) {
+            std::string list;
+            for (const auto& k : setting_keys(table)) list += (list.empty() ? "" : ", ") + k;
+            toml_fail(doc, t, "vary", "unknown parameter '" + n + "' (" + list + ")");
+        }
+        varied.push_back(int(p - table.data()));
+    }
+    return varied;
+}
+
+// A factorial design is counted before a set is built: the product of the levels' counts,
+// at most 1e6.
+void check_factorial_size(const TomlDoc& doc, const TomlTable& t, const std::vector<std::vector<double>>& levels) {
+    const auto& table = design_parameters();
+    double sets = 1;
+    std::string product;
+    for (std::size_t p = 0; p < levels.size(); ++p)
+        if (!levels[p].empty()) {
+            sets *= double(levels[p].size());
+            product += (product.empty() ? "" : " x ") + std::to_string(levels[p].size()) + " (" + table[p].key + ")";
+        }
+    if (sets > 1e6)
+        toml_fail(doc, t, "design",
+                  "a factorial of " + product + " levels is " + number_text(sets) +
+                      " parameter sets, more than 1e6 (a random or latin_hypercube design samples a large space)");
+}
+
 // control (and fixed) values; arrays are levels (factorial) or [low, high] ranges
 // (random, latin_hypercube).
 void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
@@ -241,32 +182,9 @@ void read_parameters(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) {
         spec.params = {{"control", control, true}};
     } else if (d == Design::one_at_a_time) {
         const double factor = has(*t, "factor") ? number_in(doc, *t, "factor", Range::positive()) : 1.5;
-        std::vector<int> varied;
-        const std::vector<std::string> names =
-            has(*t, "vary") ? toml_strings(doc, *t, "vary") : std::vector<std::string>{"cd1", "cd2", "cm", "mu"};
-        for (const auto& n : names) {
-            const Setting<debris::BodyDef>* p = find_setting(table, n);
-            if (!p) {
-                std::string list;
-                for (const auto& k : setting_keys(table)) list += (list.empty() ? "" : ", ") + k;
-                toml_fail(doc, *t, "vary", "unknown parameter '" + n + "' (" + list + ")");
-            }
-            varied.push_back(int(p - table.data()));
-        }
-        spec.params = one_at_a_time(control, varied, factor);
+        spec.params = one_at_a_time(control, varied_parameters(doc, *t), factor);
     } else if (d == Design::factorial) {
-        // Counted before a set is built: the product of the levels' counts.
-        double sets = 1;
-        std::string product;
-        for (std::size_t p = 0; p < np; ++p)
-            if (!arrays[p].empty()) {
-                sets *= double(arrays[p].size());
-                product += (product.empty() ? "" : " x ") + std::to_string(arrays[p].size()) + " (" + table[p].key + ")";
-            }
-        if (sets > 1e6)
-            toml_fail(doc, *t, "design",
-                      "a factorial of " + product + " levels is " + number_text(sets) +
-                          " parameter sets, more than 1e6 (a random or latin_hypercube design samples a large space)");
+        check_factorial_size(doc, *t, arrays);
         spec.params = factorial(control, arrays);
         const bool found = std::any_of(spec.params.begin(), spec.params.end(), [](const ParameterSet& s) { return s.is_control; });
         if (include_control && !found) spec.params.insert(spec.params.begin(), {"control", control, true});

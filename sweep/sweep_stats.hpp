@@ -88,7 +88,8 @@ struct SweepStats {
 
 SweepStats compute_stats(const SweepResult& sweep, const Scene& scene, const StatsDef& def = default_stats_def());
 
-// NetCDF (atomically) and a folder of CSV tables; see docs/sweep.md for the contents.
+// The statistics file (formats/stats_file.hpp; written atomically, sweep_stats_file.cpp)
+// and a folder of CSV tables (sweep_stats_csv.cpp); see docs/sweep.md for the contents.
 void write_stats_file(const std::string& path, const SweepStats& s, const StatsDef& def, const std::string& sweep_file,
                       const std::string& scene_file, const std::string& history);
 void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepResult& sweep);
