@@ -1,6 +1,6 @@
 // One background thread that runs one job at a time, for work that can overlap the
 // caller's (the flow replay reads the next frame while the bodies step through this
-// interval, debris/flow_reader.hpp). start() hands it a job; wait() blocks until that
+// interval, debris/frame_source.hpp). start() hands it a job; wait() blocks until that
 // job is done and returns what it threw (null if nothing). The thread starts with the
 // first job and is joined by the destructor, after the job in hand.
 //

@@ -14,7 +14,7 @@ constexpr double sliding_epsilon = 1e-12;
 
 }  // namespace
 
-void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams& b, const Box& box, double centre_depth, double t,
+void contact_patches(const FlowSampler& flow, const Grid& grid, const BodyParams& b, const Box& box, double centre_depth, double t,
                      double rho, double g, FootprintCache& footprint_cache, std::vector<ContactPatch>& out, bool depth_bound) {
     const BodyDef& def = b.def;
     const Vec2 xg = box.centre;
@@ -36,7 +36,7 @@ void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams&
     // itself (the interpolated depth may lie round-off below its nodes' smallest). The
     // bound then holds whatever the rounding, and the patches are the same bits.
     struct RowBound {
-        const FlowReader& flow;
+        const FlowSampler& flow;
         double pad, draft;
     };
     const RowBound bound{flow, 1e-3 * std::min(grid.dx, grid.dy), b.draft * (1.0 + 1e-9)};
@@ -46,7 +46,7 @@ void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams&
     };
     const std::vector<FootprintPatch>& footprint =
         depth_bound ? footprint_cache.patches(box, grid, shallow_somewhere, &bound) : footprint_cache.patches(box, grid);
-    const FlowReader::TimeStencil at_t = flow.at_time(t);
+    const FlowSampler::TimeStencil at_t = flow.at_time(t);
     // The depths at the patches' centroids, sampled a block of patches at a time.
     constexpr int block = 64;
     Vec2 at[block];
@@ -106,7 +106,7 @@ AxisShift axis_shift(const BodyParams& b, const BodyState& s, const std::vector<
         area += p.area;
     }
     r_sub = (1.0 / area) * r_sub;
-    const Vec2 arm = -1.0 * r_sub;                                           // centre relative to the axis
+    const Vec2 arm = -1.0 * r_sub;                                         // centre relative to the axis
     const double torque_sub = torque_about(load.torque, load.force, arm);  // T_sub: no friction term (Eq. 6's T')
     const double torque_now = (s.flags & flag_pivoting) ? torque_sub : load.torque;
     if (!(norm(arm) > 1e-9 && s.omega * omega_after <= 0.0 && s.torque_prev * torque_now >= 0.0 && norm(load.force) <= capacity))

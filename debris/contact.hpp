@@ -7,7 +7,7 @@
 
 #include "debris/body.hpp"
 #include "debris/box.hpp"
-#include "debris/flow_reader.hpp"
+#include "debris/flow_sampler.hpp"
 #include "debris/footprint.hpp"
 #include "debris/loads.hpp"
 
@@ -26,7 +26,7 @@ struct ContactPatch {
 // lower bound of the depth under the body and return at once where even that is as deep
 // as the draft (the same answer, sooner for a floating body; for a body that was grounded
 // at its last step the bound seldom skips anything and costs a scan of the window).
-void contact_patches(const FlowReader& flow, const Grid& grid, const BodyParams& body, const Box& box, double centre_depth,
+void contact_patches(const FlowSampler& flow, const Grid& grid, const BodyParams& body, const Box& box, double centre_depth,
                      double t, double rho, double g, FootprintCache& footprint, std::vector<ContactPatch>& out,
                      bool depth_bound = true);
 

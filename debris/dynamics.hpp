@@ -8,7 +8,7 @@
 #include "common/enum_names.hpp"
 #include "debris/body.hpp"
 #include "debris/contact.hpp"
-#include "debris/flow_reader.hpp"
+#include "debris/flow_sampler.hpp"
 #include "debris/footprint.hpp"
 #include "debris/obstacles.hpp"
 
@@ -41,7 +41,7 @@ struct StepScratch {
 };
 
 struct StepContext {
-    const FlowReader& flow;
+    const FlowSampler& flow;
     const ObstacleMap& obstacles;
     const StepDef& def;
 };

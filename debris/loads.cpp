@@ -13,12 +13,12 @@ Inertia effective_inertia(const BodyParams& b, double submerged_volume, double r
     return {b.mass + added, b.inertia + added_yaw, added};
 }
 
-FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
+FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
                      double t, double rho) {
     return fluid_load(flow, b, m, Box::make(m.centre, m.theta, b.def.length, b.def.width), centre, submerged, t, rho);
 }
 
-FluidLoad fluid_load(const FlowReader& flow, const BodyParams& b, const Motion& m, const Box& box, const FlowPointAccel& centre,
+FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& b, const Motion& m, const Box& box, const FlowPointAccel& centre,
                      double submerged, double t, double rho) {
     const BodyDef& def = b.def;
     // Velocity of the body point at r from the centre: translation, rotation about the

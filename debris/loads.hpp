@@ -11,7 +11,7 @@
 #pragma once
 #include "debris/body.hpp"
 #include "debris/box.hpp"
-#include "debris/flow_reader.hpp"
+#include "debris/flow_sampler.hpp"
 #include "debris/kernels.hpp"
 
 namespace flotsam::debris {
@@ -35,10 +35,10 @@ struct FluidLoad {
 
 // The load at time t (in the reader's prepared interval). centre: the flow sampled at
 // the centre (for Du/Dt); submerged: V_s = L B min(d, h_c) [m³]; rho: ρw [kg/m³].
-FluidLoad fluid_load(const FlowReader& flow, const BodyParams& body, const Motion& motion, const FlowPointAccel& centre,
+FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& body, const Motion& motion, const FlowPointAccel& centre,
                      double submerged, double t, double rho);
 // The same, given the footprint at the motion's pose (Box::make of its centre and heading).
-FluidLoad fluid_load(const FlowReader& flow, const BodyParams& body, const Motion& motion, const Box& box,
+FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& body, const Motion& motion, const Box& box,
                      const FlowPointAccel& centre, double submerged, double t, double rho);
 
 // Effective mass and yaw inertia: the body plus, when implicit, the added mass ρ C_a V_s

@@ -14,6 +14,7 @@
 
 #include "cases/debris_flows.hpp"
 #include "debris/contact.hpp"
+#include "debris/flow_reader.hpp"
 #include "debris/footprint.hpp"
 #include "debris/obstacles.hpp"
 #include "tests/test_support.hpp"
