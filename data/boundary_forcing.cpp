@@ -283,6 +283,12 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
     for (const auto& c : chosen)
         if (unique.empty() || c.first - unique.back().first > 1e-9 * std::max(1.0, std::fabs(c.first))) unique.push_back(c);
 
+    const double first = unique.front().first, last = unique.back().first, half = 0.5 * line.cell_along * (1.0 + 1e-9);
+    if (first > line.along.front() + half || last < line.along.back() - half)
+        fail(f.path(), "stations",
+             "do not cover the side: those within reach of its edge span " + number_text(first) + " to " + number_text(last) +
+                 " m along it, its cells " + number_text(line.along.front()) + " to " + number_text(line.along.back()) + " m");
+
     SideRecord r;
     r.source = f.path();
     r.time = s.time;
