@@ -109,6 +109,9 @@ void find_station_coordinates(const nc::File& f, Source& s, const std::string& s
 std::vector<double> read_times(const nc::File& f, const std::string& dim) {
     const auto tv = f.find_var(dim);
     if (!tv) fail(f.path(), "dimension '" + dim + "'", "has no time coordinate variable of the same name");
+    const auto sn = f.att_text(*tv, "standard_name"), axis = f.att_text(*tv, "axis"), u = f.att_text(*tv, "units");
+    if (!(sn && *sn == "time") && !(axis && *axis == "T") && !(u && units::time_to_seconds(*u)))
+        fail(f.path(), "variable '" + dim + "'", "the first dimension of the level must be time (standard_name time, axis T, or time units)");
     std::vector<double> t = nc::read_finite(f, dim);
     const double factor = units::time_factor(f, *tv);
     for (double& v : t) v *= factor;
@@ -133,6 +136,9 @@ std::vector<double> read_times(const nc::File& f, const std::string& dim) {
 }
 
 Source find_source(const nc::File& f) {
+    if (const std::string kind = cf::kind_of(f); !kind.empty() && kind != boundary_names::file_kind)
+        fail(f.path(), "flotsam_file_kind",
+             "is '" + kind + "', not boundary values: a run writes those with --boundary-output FILE --boundary-box ...");
     Source s;
     const auto level = find_standard(f, level_names);
     if (!level)

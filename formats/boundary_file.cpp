@@ -9,7 +9,7 @@ BoundaryWriter::BoundaryWriter(const std::string& path, const BoundaryFileDef& d
     nc::File& f = file_;
     if (def.y.size() != stations_ || def.names.size() != stations_ || stations_ == 0)
         fail(path, "stations", "positions and names must be given, one of each per station");
-    const int dt = f.def_dim("time", def.samples), ds = f.def_dim("station", stations_);
+    const int dt = f.def_dim("time", NC_UNLIMITED), ds = f.def_dim("station", stations_);
     time_ = cf::def_time(f, dt, "time", "time since the start of the run");
     const std::string grid_mapping = cf::grid_mapping_of(def.crs);
     const bool mapped = !def.crs.empty();

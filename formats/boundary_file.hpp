@@ -51,7 +51,6 @@ struct SideRecord {
 struct BoundaryFileDef {
     std::vector<double> x, y;                       // [m] station positions
     std::vector<std::string> names;                 // one per station
-    std::size_t samples = 0;                        // length of the time axis, fixed up front
     std::map<std::string, std::string> attributes;  // global attributes (history, ...)
     cf::GridMapping crs;                            // the run's CRS; empty: local metres
 };
