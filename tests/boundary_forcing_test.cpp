@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <sstream>
 
 #include "common/error.hpp"
 #include "data/boundary_forcing.hpp"
@@ -65,15 +67,6 @@ std::string write_stations(const std::string& path, const Stations& s) {
     }
     f.close();
     return path;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
 }
 
 OGRSpatialReference epsg(int code) {
@@ -172,9 +165,9 @@ TEST(BoundaryForcing, BadFilesAreNamedErrors) {
     s.level = [](double, std::size_t) { return 0.1; };
     auto err = [&](const Stations& st, const std::string& name, const cf::GridMapping& crs) {
         const std::string path = write_stations(dir + "/" + name, st);
-        return error_of([&] { data::read_side_forcing(path, "west", g, crs); });
+        return test::error_of([&] { data::read_side_forcing(path, "west", g, crs); });
     };
-    EXPECT_EQ(err(s, "good.nc", {}), "no error");
+    EXPECT_EQ(err(s, "good.nc", {}), "(no error)");
     const std::string no_crs = err(s, "no_crs.nc", gdal::grid_mapping(utm));
     EXPECT_NE(no_crs.find("no_crs.nc: coordinate reference system: none"), std::string::npos) << no_crs;
     Stations backwards = s;
@@ -199,4 +192,32 @@ TEST(BoundaryForcing, BadFilesAreNamedErrors) {
     for (double& x : far.x) x = 500.0;
     const std::string reach = err(far, "far.nc", {});
     EXPECT_NE(reach.find("far.nc: stations: none within"), std::string::npos) << reach;
+}
+
+// GeoClaw's ASCII gauges, converted by pipelines/boundary_files.py, are read through the
+// same path: three gauges on the west edge of a UTM scene, h = 2 m, hu = 1 m^2/s, so
+// u = 0.5 m/s, and eta = 0.1 + 0.01 t.
+TEST(BoundaryForcing, GeoclawGaugesConvertedByThePipelineDriveASide) {
+    const std::string dir = test::scratch_dir("BoundaryForcingGeoclaw");
+    const Grid g{10, 10, 518005.0, 3780005.0, 10.0, 10.0};
+    std::string files;
+    for (int k = 0; k < 3; ++k) {
+        std::ostringstream text;
+        text << "# gauge_id=     " << k + 1 << " location=(   0.518000E+06   " << 3780000.0 + 50.0 * k << " ) num_var=  4\n"
+             << "# Stationary gauge\n# level, time, q[  1  2  3], eta, aux[]\n# file format ascii\n";
+        for (int n = 0; n <= 4; ++n) text << "1 " << 5.0 * n << " 2.0 1.0 0.0 " << 0.1 + 0.05 * n << "\n";
+        files += " " + test::write_file(dir, "gauge0000" + std::to_string(k + 1) + ".txt", text.str());
+    }
+    const std::string out = dir + "/geoclaw.nc";
+    const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.boundary_files geoclaw-gauges --crs "
+                            "EPSG:32653 --out " + out + files + " > " + dir + "/log.txt 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    gdal::init();
+    const SideRecord r = data::read_side_forcing(out, "west", g, gdal::grid_mapping(epsg(32653)));
+    ASSERT_EQ(r.along.size(), 3u);
+    EXPECT_DOUBLE_EQ(r.along[2], 3780100.0);
+    EXPECT_DOUBLE_EQ(r.time[4], 20.0);
+    EXPECT_NEAR(r.level[3 * 3 + 1], 0.25, 1e-12);
+    EXPECT_NEAR(r.u[2], 0.5, 1e-12);
+    EXPECT_NEAR(r.v[2], 0.0, 1e-12);
 }
