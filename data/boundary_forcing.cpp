@@ -56,6 +56,7 @@ std::optional<int> find_standard(const nc::File& f, const std::vector<std::strin
 // The file's variables and how its coordinates are given.
 struct Source {
     int level = -1, u = -1, v = -1;  // u, v: -1 without velocity
+    int depth = -1;                  // -1 without depth
     bool gridded = false;            // (time, y, x); else (time, station)
     int x = -1, y = -1;              // coordinate variables (1-D on the grid's axes, or per station)
     bool geographic = false;         // x, y are longitude and latitude [degrees]
@@ -161,6 +162,7 @@ Source find_source(const nc::File& f) {
         s.u = *u;
         s.v = *v;
     }
+    if (auto d = find_standard(f, {boundary_names::depth}); d && f.dim_names(*d) == dims) s.depth = *d;
     s.time = read_times(f, dims[0]);
     if (s.gridded) {
         const auto x = f.find_var(dims[2]), y = f.find_var(dims[1]);
@@ -303,8 +305,14 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
     const std::vector<double> level = f.get_double(s.level);
     const double lf = units::length_factor(f, s.level), level_fill = fill_of(f, s.level);
     r.level.resize(nt * np);
-    std::vector<double> uf, vf;
-    double sf = 1.0, u_fill = 0.0, v_fill = 0.0;
+    std::vector<double> uf, vf, df;
+    double sf = 1.0, u_fill = 0.0, v_fill = 0.0, d_fill = 0.0, dfac = 1.0;
+    if (s.depth >= 0) {
+        df = f.get_double(s.depth);
+        dfac = units::length_factor(f, s.depth);
+        d_fill = fill_of(f, s.depth);
+        r.depth.resize(nt * np);
+    }
     if (s.u >= 0) {
         uf = f.get_double(s.u);
         vf = f.get_double(s.v);
@@ -323,6 +331,10 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
             const double value = level[k * ns + p];
             check_value(f, s.level, value, level_fill, k, where);
             r.level[k * np + c] = lf * value;
+            if (s.depth >= 0) {
+                check_value(f, s.depth, df[k * ns + p], d_fill, k, where);
+                r.depth[k * np + c] = std::max(0.0, dfac * df[k * ns + p]);
+            }
             if (s.u >= 0) {
                 const double a = uf[k * ns + p], b = vf[k * ns + p];
                 check_value(f, s.u, a, u_fill, k, where);
@@ -390,7 +402,9 @@ SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, c
     }
     const double lf = units::length_factor(f, s.level);
     const double sf = s.u >= 0 ? units::speed_factor(f, s.u) : 1.0;
-    std::vector<double> lw(wx * wy), uw, vw;
+    const double dfac = s.depth >= 0 ? units::length_factor(f, s.depth) : 1.0;
+    if (s.depth >= 0) r.depth.resize(nt * np);
+    std::vector<double> lw(wx * wy), uw, vw, dw;
     for (std::size_t k = 0; k < nt; ++k) {
         auto slab = [&](int var, std::vector<double>& out) {
             out.resize(wx * wy);
@@ -405,6 +419,7 @@ SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, c
             slab(s.u, uw);
             slab(s.v, vw);
         }
+        if (s.depth >= 0) slab(s.depth, dw);
         for (std::size_t p = 0; p < np; ++p) {
             const std::size_t ia = std::min(std::size_t(std::floor(fi[p])), nx - 1), ja = std::min(std::size_t(std::floor(fj[p])), ny - 1);
             const std::size_t ib = std::min(ia + 1, nx - 1), jb = std::min(ja + 1, ny - 1);
@@ -414,6 +429,7 @@ SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, c
                 return (1 - wyp) * ((1 - wxp) * at(ia, ja) + wxp * at(ib, ja)) + wyp * ((1 - wxp) * at(ia, jb) + wxp * at(ib, jb));
             };
             r.level[k * np + p] = lf * bilinear(lw);
+            if (s.depth >= 0) r.depth[k * np + p] = std::max(0.0, dfac * bilinear(dw));
             if (s.u >= 0) {
                 const double a = bilinear(uw), b = bilinear(vw);
                 r.u[k * np + p] = sf * (a * axes[p][0] + b * axes[p][2]);

@@ -8,7 +8,9 @@
 // sea_surface_height_above_mean_sea_level (or _above_geoid, sea_surface_height,
 // sea_surface_elevation); the velocity, optional, by sea_water_x_velocity and
 // sea_water_y_velocity (along the file's own axes) or eastward_ and
-// northward_sea_water_velocity. Units are converted (common/units.hpp); time is the
+// northward_sea_water_velocity; the depth, optional, by sea_floor_depth_below_sea_surface
+// (where it is 0 the source is dry, and its level is only its ground). Units are
+// converted (common/units.hpp); time is the
 // file's time coordinate in seconds from its own origin, which is the run's t = 0.
 //
 // Placement: stations are carried into the scene's CRS and those within reach of the side

@@ -44,7 +44,10 @@ struct SideRecord {
                                 // east sides, x on the south and north), strictly increasing
     std::vector<double> level;  // [m] above still water, (time, point) row-major
     std::vector<double> u, v;   // [m s-1] along the scene's x and y, (time, point); empty: level only
+    std::vector<double> depth;  // [m] water depth, (time, point), where the source has it; empty: none.
+                                // Where it is 0 the source is dry there, whatever its level says
     bool has_velocity() const { return !u.empty(); }
+    bool has_depth() const { return !depth.empty(); }
     std::size_t points() const { return along.size(); }
 };
 

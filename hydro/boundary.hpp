@@ -116,6 +116,7 @@ struct SideForcing {
     const std::vector<double>* level = nullptr;
     const std::vector<double>* u = nullptr;
     const std::vector<double>* v = nullptr;
+    const std::vector<double>* depth = nullptr;  // [m] where the record has it
 };
 
 // The state (depth h_out, inward velocity un_out) at an open side of kind level or
@@ -159,7 +160,7 @@ private:
     PumpDef pump_;
     std::array<TimeSeries, 4> series_;  // level [m] or discharge [m^3/s], where used
     std::array<std::shared_ptr<const ForcedSide>, 4> forced_;        // forced sides
-    std::array<std::vector<double>, 4> level_now_, u_now_, v_now_;  // a forced side's values at the last at()
+    std::array<std::vector<double>, 4> level_now_, u_now_, v_now_, depth_now_;  // a forced side's values at the last at()
     std::array<double, 4> length_{};    // [m] of each side
     std::vector<std::array<int, 2>> pump_cells_;
     double pump_area_ = 0.0;           // [m^2]
@@ -185,8 +186,9 @@ SideForcing Forcing::at(Side s, double t, StripLevel&& strip_level) {
         if (t < fs.start() || t > fs.end()) {
             f.kind = BoundaryKind::transmissive;  // outside the record's times
         } else {
-            fs.sample(t, level_now_[int(s)], u_now_[int(s)], v_now_[int(s)]);
+            fs.sample(t, level_now_[int(s)], u_now_[int(s)], v_now_[int(s)], depth_now_[int(s)]);
             f.level = &level_now_[int(s)];
+            if (fs.has_depth()) f.depth = &depth_now_[int(s)];
             if (fs.has_velocity()) {
                 f.u = &u_now_[int(s)];
                 f.v = &v_now_[int(s)];

@@ -59,7 +59,8 @@ ForcedSide::ForcedSide(std::shared_ptr<const SideRecord> record, const std::vect
     if (r.time.size() < 2) fail(r.source, what, "needs at least two times");
     if (r.along.empty()) fail(r.source, what, "no points along the side");
     const std::size_t n = r.points();
-    if (r.level.size() != r.time.size() * n || (r.has_velocity() && (r.u.size() != r.level.size() || r.v.size() != r.level.size())))
+    if (r.level.size() != r.time.size() * n || (r.has_velocity() && (r.u.size() != r.level.size() || r.v.size() != r.level.size())) ||
+        (r.has_depth() && r.depth.size() != r.level.size()))
         fail(r.source, what, "values do not match its times and points");
     const double tolerance = 0.5 * cell_size * (1.0 + 1e-9);
     for (double a : cell_along) {
@@ -82,7 +83,8 @@ double ForcedSide::max_level() const {
     return *std::max_element(v.begin(), v.end());
 }
 
-void ForcedSide::sample(double t, std::vector<double>& level, std::vector<double>& u, std::vector<double>& v) const {
+void ForcedSide::sample(double t, std::vector<double>& level, std::vector<double>& u, std::vector<double>& v,
+                        std::vector<double>& depth) const {
     const SideRecord& r = *record_;
     t = std::clamp(t, r.time.front(), r.time.back());
     const auto it = std::upper_bound(r.time.begin(), r.time.end(), t);
@@ -113,6 +115,10 @@ void ForcedSide::sample(double t, std::vector<double>& level, std::vector<double
         u.clear();
         v.clear();
     }
+    if (r.has_depth())
+        at_cells(r.depth, depth);
+    else
+        depth.clear();
 }
 
 void forced_ghost(double h_in, double un_in, double ut_in, double h_given, double un_given, double ut_given, double g,

@@ -12,12 +12,15 @@
 // invariants, R+ = u_n + 2c into the domain and R- = u_n - 2c out of it (c = sqrt(g h),
 // u_n the velocity into the domain). With the level alone the side is a level side
 // (boundary.hpp, level_ghost, with its LevelMode). With level and velocity R+ is the
-// record's, u_n,f + 2 sqrt(g h_f) with h_f = max(0, eta_f - z) over the edge cell's bed,
+// record's, u_n,f + 2 sqrt(g h_f) with h_f = max(0, eta_f - z) over the edge cell's bed
+// (0 where the record's own depth, where it has one, is below the dry tolerance: a dry
+// point of the source, whose level is its ground, sends no water over a lower edge cell),
 // and R- the edge cell's:
 //     c_b = max(0, (R+ - R-) / 4),   h_b = c_b^2 / g,   u_n,b = (R+ + R-) / 2,
 // the tangential velocity the record's where water flows in and the edge cell's where it
 // flows out. Where the inside agrees with the record the ghost is the record's state; what
-// the inside sends toward the side leaves through it instead of reflecting.
+// the inside sends toward the side leaves through it instead of reflecting. With the level
+// alone, a point the record has dry gives a dry ghost.
 #pragma once
 #include <memory>
 #include <string>
@@ -42,10 +45,12 @@ public:
     double start() const { return record_->time.front(); }  // [s]
     double end() const { return record_->time.back(); }     // [s]
     bool has_velocity() const { return record_->has_velocity(); }
+    bool has_depth() const { return record_->has_depth(); }
     double max_level() const;  // [m] over the whole record
     // Values at each edge cell at t (clamped to [start, end]): level [m], u and v [m s-1]
-    // along the grid's x and y (left empty without velocity).
-    void sample(double t, std::vector<double>& level, std::vector<double>& u, std::vector<double>& v) const;
+    // along the grid's x and y, depth [m] (each left empty where the record has none).
+    void sample(double t, std::vector<double>& level, std::vector<double>& u, std::vector<double>& v,
+                std::vector<double>& depth) const;
 
 private:
     std::shared_ptr<const SideRecord> record_;

@@ -17,8 +17,8 @@ to-lonlat: a flotsam --boundary-output file (projected) rewritten in longitude a
   geographic coordinates would give it; used to check that path (docs/gis.md).
 
 Both write a CF-1.11 NetCDF-4 timeSeries file: time(time) [s], station coordinates,
-eta(time, station) [m] (standard_name sea_surface_height_above_mean_sea_level) and the
-two velocity components [m s-1].
+eta(time, station) [m] (standard_name sea_surface_height_above_mean_sea_level), the two
+velocity components [m s-1] and the depth [m] (0 where the source is dry).
 """
 import argparse
 import math
@@ -30,8 +30,8 @@ import numpy as np
 from osgeo import osr
 
 
-def write_stations(path, time, x, y, eta, u, v, geographic, crs_wkt=None, history=""):
-    """time [s] (n), x, y (stations), eta, u, v (n, stations)."""
+def write_stations(path, time, x, y, eta, u, v, depth, geographic, crs_wkt=None, history=""):
+    """time [s] (n), x, y (stations), eta, u, v, depth (n, stations)."""
     with netCDF4.Dataset(path, "w") as f:
         f.Conventions = "CF-1.11"
         f.featureType = "timeSeries"
@@ -55,7 +55,8 @@ def write_stations(path, time, x, y, eta, u, v, geographic, crs_wkt=None, histor
         vel = ("eastward_sea_water_velocity", "northward_sea_water_velocity") if geographic else (
             "sea_water_x_velocity", "sea_water_y_velocity")
         for name, s, un, values in (("eta", "sea_surface_height_above_mean_sea_level", "m", eta),
-                                    ("u", vel[0], "m s-1", u), ("v", vel[1], "m s-1", v)):
+                                    ("u", vel[0], "m s-1", u), ("v", vel[1], "m s-1", v),
+                                    ("depth", "sea_floor_depth_below_sea_surface", "m", depth)):
             var = f.createVariable(name, "f8", ("time", "station"))
             var.standard_name, var.units, var.coordinates = s, un, coords
             if crs_wkt:
@@ -64,7 +65,7 @@ def write_stations(path, time, x, y, eta, u, v, geographic, crs_wkt=None, histor
 
 
 def read_geoclaw_gauge(path):
-    """(x, y, time, eta, u, v) of one GeoClaw ASCII gauge file."""
+    """(x, y, time, eta, u, v, h) of one GeoClaw ASCII gauge file."""
     with open(path) as f:
         head = f.readline()
     m = re.search(r"location=\(\s*(\S+)\s+(\S+)\s*\)", head)
@@ -77,7 +78,7 @@ def read_geoclaw_gauge(path):
     wet = h > 1e-6
     u = np.where(wet, hu / np.where(wet, h, 1.0), 0.0)
     v = np.where(wet, hv / np.where(wet, h, 1.0), 0.0)
-    return float(m.group(1)), float(m.group(2)), t, eta, u, v
+    return float(m.group(1)), float(m.group(2)), t, eta, u, v, h
 
 
 def geoclaw_gauges(args):
@@ -94,7 +95,7 @@ def geoclaw_gauges(args):
             sys.exit(f"--crs {args.crs}: not a CRS GDAL knows")
         wkt = s.ExportToWkt()
     stack = lambda k: np.stack([g[k] for g in gauges], axis=1)
-    write_stations(args.out, time, [g[0] for g in gauges], [g[1] for g in gauges], stack(3), stack(4), stack(5),
+    write_stations(args.out, time, [g[0] for g in gauges], [g[1] for g in gauges], stack(3), stack(4), stack(5), stack(6),
                    args.geographic, wkt, "pipelines.boundary_files geoclaw-gauges " + " ".join(args.gauges))
 
 
@@ -106,7 +107,7 @@ def to_lonlat(args):
         src.ImportFromWkt(f.variables["crs"].crs_wkt)
         time = f.variables["time"][:].filled()
         x, y = f.variables["x"][:].filled(), f.variables["y"][:].filled()
-        eta, u, v = (f.variables[n][:].filled() for n in ("eta", "u", "v"))
+        eta, u, v, depth = (f.variables[n][:].filled() for n in ("eta", "u", "v", "depth"))
     wgs = osr.SpatialReference()
     wgs.ImportFromEPSG(4326)
     for s in (src, wgs):
@@ -124,7 +125,7 @@ def to_lonlat(args):
             out[k] = d / math.hypot(*d)
     ue = u * east[:, 0] + v * east[:, 1]
     vn = u * north[:, 0] + v * north[:, 1]
-    write_stations(args.output, time, lon, lat, eta, ue, vn, True, None, "pipelines.boundary_files to-lonlat " + args.input)
+    write_stations(args.output, time, lon, lat, eta, ue, vn, depth, True, None, "pipelines.boundary_files to-lonlat " + args.input)
 
 
 def main(argv):

@@ -41,11 +41,11 @@ TEST(ForcedSide, TimeInterpolationIsExactForALinearLevelAndTheCubicForAQuadratic
     auto linear = record_of(time, along, [](double t, double a) { return 0.3 + 0.2 * t - 0.1 * a; });
     auto quadratic = record_of(time, along, [](double t, double) { return t * t; });
     const std::vector<double> cells{0.25, 0.75};
-    std::vector<double> level, u, v;
+    std::vector<double> level, u, v, depth;
     for (ForcingTime kind : {ForcingTime::linear, ForcingTime::cubic}) {
         const ForcedSide side(linear, cells, 0.5, kind, "west");
         for (double t : {0.0, 0.35, 1.3, 2.05, 4.9, 5.0}) {
-            side.sample(t, level, u, v);
+            side.sample(t, level, u, v, depth);
             EXPECT_NEAR(level[0], 0.3 + 0.2 * t - 0.025, 1e-14) << t;
             EXPECT_NEAR(level[1], 0.3 + 0.2 * t - 0.075, 1e-14) << t;
         }
@@ -54,10 +54,10 @@ TEST(ForcedSide, TimeInterpolationIsExactForALinearLevelAndTheCubicForAQuadratic
     const ForcedSide cubic(quadratic, cells, 0.5, ForcingTime::cubic, "west");
     const ForcedSide chord(quadratic, cells, 0.5, ForcingTime::linear, "west");
     for (double t : {0.7, 1.3, 2.0, 2.05, 2.1}) {
-        cubic.sample(t, level, u, v);
+        cubic.sample(t, level, u, v, depth);
         EXPECT_NEAR(level[0], t * t, 1e-13) << t;
     }
-    chord.sample(1.3, level, u, v);
+    chord.sample(1.3, level, u, v, depth);
     EXPECT_NEAR(level[0], 1.69 + 0.42, 1e-12);
 }
 
@@ -65,9 +65,9 @@ TEST(ForcedSide, TimeInterpolationIsExactForALinearLevelAndTheCubicForAQuadratic
 // more is an error that names the record and the span.
 TEST(ForcedSide, AlongTheSideLinearAndAnUncoveredSideIsNamed) {
     auto r = record_of({0.0, 1.0}, {0.0, 2.0}, [](double, double a) { return a; });
-    std::vector<double> level, u, v;
+    std::vector<double> level, u, v, depth;
     const ForcedSide side(r, {0.5, 1.5, 2.1}, 0.5, ForcingTime::linear, "south");
-    side.sample(0.5, level, u, v);
+    side.sample(0.5, level, u, v, depth);
     EXPECT_DOUBLE_EQ(level[0], 0.5);
     EXPECT_DOUBLE_EQ(level[1], 1.5);
     EXPECT_DOUBLE_EQ(level[2], 2.0);
@@ -220,4 +220,32 @@ TEST(ForcedBoundary, AnObliqueWaveEntersAtItsAngle) {
     EXPECT_GT(count, 2000.0);
     EXPECT_NEAR(best_angle, 30.0, 0.5);
     EXPECT_LT(rms, 0.05 * w.A);
+}
+
+// A point the record has dry (its depth 0, its level only its own ground, here 3 cm above
+// the edge cell's) sends no water over the lower edge: the dry land stays dry. The same
+// record without its depth column reads as 3 cm of still water there and floods it.
+TEST(ForcedBoundary, APointTheRecordHasDrySendsNoWater) {
+    Scene scene;
+    scene.grid = Grid{20, 3, 0.025, 0.025, 0.05, 0.05};
+    scene.z.assign(scene.grid.size(), 0.05);
+    PhysicsDef d = default_physics_def();
+    d.default_manning_n = 0.0;
+    d.east.kind = BoundaryKind::wall;
+    d.west.kind = BoundaryKind::forced;
+    auto dry = record_of({0.0, 10.0}, {0.0, 0.15}, [](double, double) { return 0.08; });
+    dry->u.assign(dry->level.size(), 0.0);
+    dry->v.assign(dry->level.size(), 0.0);
+    auto wet = std::make_shared<SideRecord>(*dry);
+    dry->depth.assign(dry->level.size(), 0.0);
+    auto volume_after = [&](std::shared_ptr<SideRecord> r) {
+        d.west.record = r;
+        Solver solver(scene, d);
+        while (solver.time() < 5.0 - 1e-9) solver.step(std::min(solver.stable_dt(), 5.0 - solver.time()));
+        return solver.volume();
+    };
+    const double v_dry = volume_after(dry), v_wet = volume_after(wet);
+    std::printf("volume after 5 s: record dry %.3e m^3, without its depth %.3e m^3\n", v_dry, v_wet);
+    EXPECT_EQ(v_dry, 0.0);
+    EXPECT_GT(v_wet, 1e-4);
 }
