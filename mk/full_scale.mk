@@ -99,6 +99,7 @@ $(FULL)/port/flow_r00.nc: $(FULL)/port/scene.nc $(FULL)/regional/outline_lonlat.
 real-scale-nested: $(FULL)/port/flow_r00.nc $(FULL)/flows/flow_r00.nc
 	$(PYTHON) -m pipelines.flow_error --box $(FULL_BOX) $(FULL)/scene.nc $(FULL)/flows/flow_r00.nc \
 	  $(FULL)/regional/flow_r00.nc $(FULL)/port/flow_r00.nc | tee $(FULL)/port/nesting_error.csv
+	$(PYTHON) -m pipelines.nesting_check $(FULL)/port/nesting_error.csv $(FULL)/flows/flow_r00.nc --time-scale 15.811
 
 ## real-scale-demo   install what is missing, then all of the above (runs/kainan-full/)
 real-scale-demo: setup

@@ -14,7 +14,8 @@
 #   box     the box alone at FINE, west and south sides forced by that outline
 #   fine    the whole flume at FINE (the reference)
 # and 25 floating boxes around FD's start replayed through each. Writes
-# RUNS_DIR/self-nesting/{cost.txt,flow_error.csv,debris_error.csv}.
+# RUNS_DIR/self-nesting/{cost.txt,flow_error.csv,debris_error.csv} and checks the box run
+# against the tolerances of pipelines/nesting_check.py (exit 1 when one is passed).
 set -euo pipefail
 [ $# -ge 4 ] || { echo "usage: $0 FLOTSAM DEM SERIES RUNS_DIR [COARSE FINE DURATION BOX]" >&2; exit 2; }
 flotsam=$(realpath "$1"); dem=$2; series=$3; out=$4/self-nesting
@@ -41,9 +42,10 @@ PYTHONPATH=. "$python" -m pipelines.flow_error --box "$box" "$out/fine-scene.nc"
   > "$out/flow_error.csv"
 at=$(for x in 1.27 1.32 1.37 1.42 1.47; do for y in -2.25 -2.20 -2.15 -2.10 -2.05; do echo "--at $x,$y,0"; done; done)
 for f in fine coarse box; do
-  [ -f "$out/$f.traj.nc" ] || "$flotsam" debris --flow "$out/$f.nc" --scene "$out/${f/fine/fine}-scene.nc" $at --quiet \
+  [ -f "$out/$f.traj.nc" ] || "$flotsam" debris --flow "$out/$f.nc" --scene "$out/$f-scene.nc" $at --quiet \
     --out "$out/$f.traj.nc"
 done
 PYTHONPATH=. "$python" -m pipelines.debris_error "$out/fine.traj.nc" "$out/coarse.traj.nc" "$out/box.traj.nc" \
   --times 30,60,"$duration" > "$out/debris_error.csv"
 cat "$out/cost.txt" "$out/flow_error.csv" "$out/debris_error.csv"
+PYTHONPATH=. "$python" -m pipelines.nesting_check "$out/flow_error.csv" "$out/fine.nc" --debris "$out/debris_error.csv"
