@@ -11,6 +11,8 @@
 #include "common/checks.hpp"
 #include "common/error.hpp"
 #include "common/output_lock.hpp"
+#include "data/boundary_forcing.hpp"
+#include "formats/scene.hpp"
 #include "hydro/run.hpp"
 
 namespace flotsam {
@@ -32,6 +34,9 @@ struct HydroOptions {
     std::array<std::string, 4> level_mode{"total", "total", "total", "total"};  // west, east, south, north
     std::array<std::string, 4> series_end{"error", "error", "error", "error"};
     std::string level_mode_all;  // --level-mode: every side at once (a side's own option wins)
+    std::array<std::string, 4> forcing;  // --<side>-forcing: another run's NetCDF
+    std::string forcing_time = "linear";
+    std::vector<double> boundary_box;
     std::string scheme = "fv";
     std::string friction = "implicit";
     std::string fronts = "plain";
@@ -61,6 +66,17 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     o.run.finite_volume.friction = parse_enum<Friction>(o.friction, "--friction");
     o.run.finite_volume.fronts = parse_enum<FrontTreatment>(o.fronts, "--fronts");
     o.run.finite_volume.stepping = parse_enum<TimeStepping>(o.stepping, "--time-stepping");
+    // A side given a forcing file is forced (recorded so, for --config to reproduce it).
+    for (std::size_t k = 0; k < 4; ++k) {
+        if (o.forcing[k].empty()) continue;
+        const std::string side = kSideNames[k];
+        CLI::Option* kind = sub->get_option("--" + side);
+        std::string& given = k == 0 ? o.west : k == 1 ? o.east : k == 2 ? o.south : o.north;
+        if (kind->count() > 0 && given != "forced")
+            fail("", "--" + side + "-forcing", "forces the " + side + " side, which --" + side + " makes '" + given + "'");
+        if (kind->count() == 0) kind->add_result("forced");
+        given = "forced";
+    }
     s.west.kind = parse_enum<BoundaryKind>(o.west, "--west");
     s.east.kind = parse_enum<BoundaryKind>(o.east, "--east");
     s.south.kind = parse_enum<BoundaryKind>(o.south, "--south");
@@ -72,7 +88,24 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
         sides[k]->level_mode = own || o.level_mode_all.empty() ? parse_enum<LevelMode>(o.level_mode[k], "--" + side + "-level-mode")
                                                                : parse_enum<LevelMode>(o.level_mode_all, "--level-mode");
         sides[k]->series_end = parse_enum<SeriesEnd>(o.series_end[k], "--" + side + "-series-end");
+        if (sides[k]->kind == BoundaryKind::forced && o.forcing[k].empty())
+            fail("", "--" + side + " forced", "needs --" + side + "-forcing FILE");
     }
+    if (std::any_of(o.forcing.begin(), o.forcing.end(), [](const std::string& f) { return !f.empty(); })) {
+        const Scene scene = read_scene(o.run.scene_file);
+        for (std::size_t k = 0; k < 4; ++k)
+            if (!o.forcing[k].empty()) {
+                sides[k]->series_file = o.forcing[k];
+                sides[k]->forcing_time = parse_enum<ForcingTime>(o.forcing_time, "--forcing-time");
+                sides[k]->record = std::make_shared<const SideRecord>(
+                    data::read_side_forcing(o.forcing[k], kSideNames[k], scene.grid, scene.crs));
+            }
+    }
+    if (!o.boundary_box.empty() != !o.run.boundary_output.file.empty())
+        fail("", o.boundary_box.empty() ? "--boundary-output" : "--boundary-box",
+             "goes with " + std::string(o.boundary_box.empty() ? "--boundary-box x_min,x_max,y_min,y_max" : "--boundary-output FILE"));
+    if (!o.boundary_box.empty())
+        o.run.boundary_output.box = {o.boundary_box[0], o.boundary_box[1], o.boundary_box[2], o.boundary_box[3]};
     if (!o.window.empty()) o.run.window = std::array<double, 4>{o.window[0], o.window[1], o.window[2], o.window[3]};
     for (const auto& g : o.gauges) {
         const auto a = g.find(','), b = g.rfind(',');
@@ -102,12 +135,14 @@ void run_command(HydroOptions& o, CLI::App* sub, const std::string& command_line
     sigemptyset(&stop.sa_mask);
     for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaction(sig, &stop, nullptr);
     // One writer per output, and no output over an input (common/output_lock.hpp).
-    const OutputGuard guard({{"--out", o.run.out_file}, {"--out (its checkpoint)", checkpoint_path(o.run.out_file)}},
-                            {{"--scene", o.run.scene_file},
-                             {"--west-series", s.west.series_file},
-                             {"--east-series", s.east.series_file},
-                             {"--south-series", s.south.series_file},
-                             {"--north-series", s.north.series_file}});
+    std::vector<NamedPath> outputs{{"--out", o.run.out_file},
+                                                             {"--out (its checkpoint)", checkpoint_path(o.run.out_file)}};
+    if (!o.run.boundary_output.file.empty()) outputs.push_back({"--boundary-output", o.run.boundary_output.file});
+    std::vector<NamedPath> inputs{{"--scene", o.run.scene_file}};
+    for (std::size_t k = 0; k < 4; ++k)
+        inputs.push_back({std::string("--") + kSideNames[k] + (sides[k]->kind == BoundaryKind::forced ? "-forcing" : "-series"),
+                          sides[k]->series_file});
+    const OutputGuard guard(outputs, inputs);
     const RunResult r = run_hydro(o.run, s);
     const std::string stop_name = r.stop_signal != 0 ? std::string("SIG") + sigabbrev_np(r.stop_signal) : "";
     // Every run that stepped says what it cost, an interrupted one too: the parts of a flow
@@ -255,7 +290,8 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
         ->capture_default_str()
         ->check(in_range(Range::non_negative("s m^-1/3").below(1.0)));
     // Boundaries.
-    const std::string kinds = "wall, transmissive, level, discharge or pump (zero-gradient: finite-volume study only)";
+    const std::string kinds =
+        "wall, transmissive, level, discharge, pump or forced (zero-gradient: finite-volume study only)";
     sub->add_option("--west", o->west, "West boundary: " + kinds)->capture_default_str();
     sub->add_option("--east", o->east, "East boundary: " + kinds)->capture_default_str();
     sub->add_option("--south", o->south, "South boundary: " + kinds)->capture_default_str();
@@ -281,6 +317,27 @@ void register_hydro_commands(CLI::App& app, const std::string& command_line) {
             ->check(CLI::IsMember({"error", "transmissive"}))
             ->capture_default_str();
     }
+    for (std::size_t k = 0; k < 4; ++k) {
+        const std::string side = kSideNames[k];
+        sub->add_option("--" + side + "-forcing", o->forcing[k],
+                        "CF NetCDF of another run's water level (and velocity, where it has them) on the " + side +
+                            " side, gridded or at stations, in any CRS (docs/gis.md, \"Forcing from a regional model\"); "
+                            "makes the side 'forced'. Outside its times the side is transmissive");
+    }
+    sub->add_option("--forcing-time", o->forcing_time, "How forced sides read their files in time: linear or cubic")
+        ->check(CLI::IsMember({"linear", "cubic"}))
+        ->capture_default_str();
+    sub->add_option("--boundary-output", r.boundary_output.file,
+                    "Write the level, depth and velocity on the outline of --boundary-box to this NetCDF, to force a finer "
+                    "run over the box (its --<side>-forcing)");
+    sub->add_option("--boundary-box", o->boundary_box, "The box of --boundary-output: x_min,x_max,y_min,y_max [m]")
+        ->expected(4)
+        ->delimiter(',')
+        ->check(in_range(Range::any("m")));
+    sub->add_option("--boundary-interval", r.boundary_output.interval,
+                    "Simulated time between --boundary-output samples [s]; 0: every step")
+        ->capture_default_str()
+        ->check(in_range(Range::non_negative("s")));
     sub->add_option("--pump-discharge", s.pump.discharge, "Pump boundary: mass source [m^3/s]")
         ->capture_default_str()
         ->check(in_range(Range::non_negative("m^3/s")));

@@ -133,6 +133,7 @@ const char* kind_description(const std::string& kind) {
     if (kind == "trajectories") return "a trajectory file (written by `flotsam debris`)";
     if (kind == "sweep") return "a sweep file (written by `flotsam sweep`)";
     if (kind == "stats") return "a statistics file (written by `flotsam stats`)";
+    if (kind == "boundary") return "boundary values (written by `flotsam hydro --boundary-output`)";
     return nullptr;
 }
 
@@ -142,7 +143,7 @@ std::string kind_of(const nc::File& f) {
     if (const auto k = f.att_text(NC_GLOBAL, kind_attribute)) {
         if (!kind_description(*k))
             fail(f.path(), std::string("attribute '") + kind_attribute + "'",
-                 "'" + *k + "' is not a kind of flotsam file (scene, flow, trajectories, sweep, stats)");
+                 "'" + *k + "' is not a kind of flotsam file (scene, flow, trajectories, sweep, stats, boundary)");
         return *k;
     }
     // Files written before the attribute: what their variables say.

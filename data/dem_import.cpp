@@ -362,8 +362,13 @@ std::vector<std::int8_t> building_mask(const Grid& g, const std::vector<double>&
 Scene import_scene(const ImportDef& def) {
     if (!(def.resolution > 0.0)) fail("--resolution", "", "grid spacing must be positive");
     const Dem dem = read_dem(def.dem_path, def.gis, def.resolution);
-    const bool kainan = dem.crs.empty() && matches_kainan_extent(dem.grid);
-    const ImportFeatures defaults = kainan ? kainan_import_features() : ImportFeatures{};
+    // A crop of the Kainan DEM (a box for a nested run) keeps the Kainan defaults that lie
+    // inside it; the recommended hydro settings (nesting, output window) are for the
+    // whole flume and are left out.
+    const bool cropped = dem.source_grid.nx > 0;
+    const bool kainan = dem.crs.empty() && matches_kainan_extent(cropped ? dem.source_grid : dem.grid);
+    ImportFeatures defaults = kainan ? kainan_import_features() : ImportFeatures{};
+    if (kainan && cropped) defaults.hydro_defaults.clear();
     const ImportFeatures f = def.features_path.empty() ? defaults : read_import_features(def.features_path, defaults);
     Scene s;
     s.grid =
@@ -377,7 +382,20 @@ Scene import_scene(const ImportDef& def) {
         s.building = building_mask(s.grid, s.z, f.buildings);
     else
         notes += std::string(notes.empty() ? "" : "; ") + burn_building_footprints(s, def.gis);
-    apply_features(s, f.features);
+    SceneFeatures inside = f.features;
+    if (cropped) {  // points and sections off the cropped grid are left out, and named
+        std::string left_out;
+        auto off = [&](const std::string& name, bool out) {
+            if (out) left_out += (left_out.empty() ? "" : ", ") + name;
+            return out;
+        };
+        std::erase_if(inside.points, [&](const ScenePoint& p) { return off(p.name, !s.grid.contains(p.x, p.y)); });
+        std::erase_if(inside.sections, [&](const Section& c) {
+            return off(c.name, c.x < s.grid.x_min_edge() || c.x > s.grid.x_max_edge());
+        });
+        if (!left_out.empty()) notes += std::string(notes.empty() ? "" : "; ") + "outside --extent, left out: " + left_out;
+    }
+    apply_features(s, inside);
     s.hydro_defaults = f.hydro_defaults;
     s.title = dem.title.empty() ? "Scene imported from " + std::filesystem::path(def.dem_path).filename().string() : dem.title;
     s.comment =

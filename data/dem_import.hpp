@@ -21,6 +21,7 @@ struct Dem {
     std::string path;
     std::string title;    // the file's title attribute, if any
     cf::GridMapping crs;  // its CRS; empty: local metres
+    Grid source_grid;     // the file's grid before --extent cropped it (nx = 0: not cropped)
 };
 
 // Reads `.asc` as an ESRI ASCII grid, anything else as NetCDF with variables x, y and

@@ -364,6 +364,7 @@ void apply_extent_and_datum(Dem& d, const GisImportDef& gis) {
                  "holds no cell centre of " + d.path + " (its cells span x " + coordinate_text(d.grid.x_min_edge()) + " .. " +
                      coordinate_text(d.grid.x_max_edge()) + ", y " + coordinate_text(d.grid.y_min_edge()) + " .. " +
                      coordinate_text(d.grid.y_max_edge()) + ")");
+        d.source_grid = d.grid;
         Grid g = d.grid;
         g.nx = i1 - i0 + 1;
         g.ny = j1 - j0 + 1;

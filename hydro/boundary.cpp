@@ -71,6 +71,15 @@ Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const PumpDef& pump, c
                 fail("", std::string("boundary ") + enum_name(b.kind), "needs a series file (time,value CSV)");
             series_[int(s)] = read_time_series_csv(b.series_file);
         }
+        if (b.kind == BoundaryKind::forced) {
+            if (!b.record)
+                fail("", std::string("boundary ") + side_name(s), "is forced but has no record (--<side>-forcing FILE)");
+            const bool x_side = s == Side::west || s == Side::east;
+            std::vector<double> along;
+            for (int k = 0; k < (x_side ? grid.ny : grid.nx); ++k) along.push_back(x_side ? grid.y(k) : grid.x(k));
+            forced_[int(s)] = std::make_shared<const ForcedSide>(b.record, along, x_side ? grid.dy : grid.dx, b.forcing_time,
+                                                                 side_name(s));
+        }
         if (b.kind == BoundaryKind::pump && s != Side::west) fail("", "boundary pump", "is only available on the west side");
         if (b.kind == BoundaryKind::nested && s != Side::west && s != Side::east)
             fail("", "boundary nested", "is only available on the west and east sides");
@@ -89,6 +98,7 @@ Forcing::Forcing(const std::array<BoundaryDef, 4>& sides, const PumpDef& pump, c
 }
 
 double Forcing::series_max(Side s) const {
+    if (forced_[int(s)]) return forced_[int(s)]->max_level();
     const auto& v = series_[int(s)].value;
     return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
 }

@@ -3,16 +3,23 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/enum_names.hpp"
 #include "common/grid.hpp"
 #include "common/timeseries.hpp"
+#include "formats/boundary_file.hpp"
+#include "hydro/forced_side.hpp"
 
 namespace flotsam::hydro {
 
 enum class Side { west, east, south, north };
+inline const char* side_name(Side s) {
+    constexpr const char* names[4] = {"west", "east", "south", "north"};
+    return names[int(s)];
+}
 
 enum class BoundaryKind {
     wall,           // slip wall: normal velocity mirrored, tangential kept
@@ -26,16 +33,18 @@ enum class BoundaryKind {
     pump,           // the public benchmark forcing: a wall with a mass source in the
                     // first cells until pump_stop, then a level relaxing to still water
     nested,         // ghost cells given by the other grid of a nested pair (hydro/nesting.hpp)
+    forced,         // level (and velocity) along the side from another run's output (forced_side.hpp)
 };
 // The kinds a user may give a side (`nested` is set by the nesting driver only).
-inline constexpr EnumNames<BoundaryKind, 7> boundary_kind_names{"boundary",
+inline constexpr EnumNames<BoundaryKind, 8> boundary_kind_names{"boundary",
                                                                 {{{BoundaryKind::wall, "wall"},
                                                                   {BoundaryKind::transmissive, "transmissive"},
                                                                   {BoundaryKind::level, "level"},
                                                                   {BoundaryKind::discharge, "discharge"},
                                                                   {BoundaryKind::pump, "pump"},
                                                                   {BoundaryKind::transmissive, "open"},
-                                                                  {BoundaryKind::zero_gradient, "zero-gradient"}}}};
+                                                                  {BoundaryKind::zero_gradient, "zero-gradient"},
+                                                                  {BoundaryKind::forced, "forced"}}}};
 constexpr const auto& enum_names(BoundaryKind) { return boundary_kind_names; }
 
 // A measured record (WG1) is the total level: the wave going in plus what the city sent
@@ -65,9 +74,13 @@ constexpr const auto& enum_names(SeriesEnd) { return series_end_names; }
 
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
-    std::string series_file;  // CSV time,value for level / discharge
+    std::string series_file;  // CSV time,value for level / discharge; the NetCDF file of a forced side
     LevelMode level_mode = LevelMode::total;
     SeriesEnd series_end = SeriesEnd::error;
+    // A forced side's values along the side, placed in the scene's frame
+    // (data/boundary_forcing.hpp reads them from series_file), and how they are read in time.
+    std::shared_ptr<const SideRecord> record;
+    ForcingTime forcing_time = ForcingTime::linear;
 };
 
 // The public benchmark's forcing on the west side (BoundaryKind::pump): a mass source in
@@ -98,6 +111,12 @@ struct SideForcing {
     BoundaryKind kind = BoundaryKind::wall;  // never pump
     LevelMode mode = LevelMode::incident;
     double given = 0.0;  // level [m], or discharge per unit length of the side [m^2/s]
+    // A forced side: per edge cell (south to north, or west to east) the level [m] and,
+    // where the record has them, u and v [m s-1] (empty otherwise).
+    const std::vector<double>* level = nullptr;
+    const std::vector<double>* u = nullptr;
+    const std::vector<double>* v = nullptr;
+    const std::vector<double>* depth = nullptr;  // [m] where the record has it
 };
 
 // The state (depth h_out, inward velocity un_out) at an open side of kind level or
@@ -118,7 +137,8 @@ public:
 
     const BoundaryDef& def(Side s) const { return sides_[int(s)]; }
     const PumpDef& pump() const { return pump_; }
-    // Largest value of side s's series (level [m] or discharge [m^3/s]); 0 without one.
+    // Largest value of side s's series (level [m] or discharge [m^3/s]) or record (level
+    // [m]); 0 without one.
     double series_max(Side s) const;
     // Forcing of side s at time t. `strip_level()` is the mean level [m] over the pump's
     // strip now; it is called once, the first time past the pump's stop, to fix the level
@@ -139,6 +159,8 @@ private:
     std::array<BoundaryDef, 4> sides_;
     PumpDef pump_;
     std::array<TimeSeries, 4> series_;  // level [m] or discharge [m^3/s], where used
+    std::array<std::shared_ptr<const ForcedSide>, 4> forced_;        // forced sides
+    std::array<std::vector<double>, 4> level_now_, u_now_, v_now_, depth_now_;  // a forced side's values at the last at()
     std::array<double, 4> length_{};    // [m] of each side
     std::vector<std::array<int, 2>> pump_cells_;
     double pump_area_ = 0.0;           // [m^2]
@@ -158,6 +180,19 @@ SideForcing Forcing::at(Side s, double t, StripLevel&& strip_level) {
             f.kind = BoundaryKind::level;
             f.mode = LevelMode::total;
             f.given = pump_level_at_stop_ * std::exp(-(t - pump_.stop) / pump_.relax_time);
+        }
+    } else if (b.kind == BoundaryKind::forced) {
+        const ForcedSide& fs = *forced_[int(s)];
+        if (t < fs.start() || t > fs.end()) {
+            f.kind = BoundaryKind::transmissive;  // outside the record's times
+        } else {
+            fs.sample(t, level_now_[int(s)], u_now_[int(s)], v_now_[int(s)], depth_now_[int(s)]);
+            f.level = &level_now_[int(s)];
+            if (fs.has_depth()) f.depth = &depth_now_[int(s)];
+            if (fs.has_velocity()) {
+                f.u = &u_now_[int(s)];
+                f.v = &v_now_[int(s)];
+            }
         }
     } else if ((b.kind == BoundaryKind::level || b.kind == BoundaryKind::discharge) && b.series_end == SeriesEnd::transmissive &&
                t > series_[int(s)].end()) {

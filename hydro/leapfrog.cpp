@@ -30,6 +30,8 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const 
             fail("", "--scheme leapfrog",
                  "a zero-gradient side is a finite-volume study option (on a C-grid it would freeze the boundary "
                  "discharge): use transmissive");
+        if (b->kind == BoundaryKind::forced)
+            fail("", "--scheme leapfrog", "a side forced from a file is written for the finite-volume scheme: use --scheme fv");
         if (b->kind == BoundaryKind::nested)
             fail("", "--scheme leapfrog",
                  "nested grids (--nest-ratio > 1) are written for the finite-volume scheme: use --scheme fv with "

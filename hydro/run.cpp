@@ -16,6 +16,8 @@
 #include "common/progress.hpp"
 #include "common/sha256.hpp"
 #include "common/version.hpp"
+#include "hydro/boundary_output.hpp"
+#include "hydro/point_samples.hpp"
 #include "hydro/restart_key.hpp"
 #include "hydro/state_checks.hpp"
 
@@ -70,21 +72,14 @@ std::vector<double> frame_times(double duration, double interval) {
     return t;
 }
 
-struct GaugeSample {
-    double eta, h, u, v;
-};
+using GaugeSample = PointSample;
 
 // Accumulated over the run on the output window.
 struct Summary {
     std::vector<float> max_depth, max_speed, arrival;
 };
 
-// Gauges sample the state bilinearly between the four cell centres around each point
-// (at a cell centre: that cell alone), so a gauge reads the flow where it stands, not
-// at the nearest centre up to half a cell away. Depth and velocities are interpolated
-// over the four cells (a dry one counts as h = u = v = 0); the level over the wet ones
-// only (a dry cell's "level" is its ground), and where all four are dry it is the
-// interpolated ground.
+// Gauges at named points (hydro/point_samples.hpp), sampled every `interval`.
 class Gauges {
 public:
     Gauges(const std::vector<FlowGauge>& gauges, const Grid& g, double interval, double duration) : interval_(interval) {
@@ -95,7 +90,7 @@ public:
                 at += std::to_string(p.y);
                 fail("", "gauge '" + p.name + "'", "position (" + at + ") is outside the grid");
             }
-            points_.push_back(Stencil{axis(p.x, g.x(0), g.dx, g.nx), axis(p.y, g.y(0), g.dy, g.ny)});
+            points_.push_back(point_stencil(g, p.x, p.y));
         }
         check_range("--gauge-interval", interval, Range::positive("s"));
         if (!gauges.empty())
@@ -109,27 +104,7 @@ public:
     template <class S>
     std::vector<GaugeSample> read(const S& s) const {
         std::vector<GaugeSample> out;
-        for (const Stencil& p : points_) {
-            GaugeSample g{0.0, 0.0, 0.0, 0.0};
-            double wet_weight = 0.0, wet_level = 0.0, ground = 0.0;
-            for (int b = 0; b < 2; ++b)
-                for (int a = 0; a < 2; ++a) {
-                    const double w = (a ? p.x.w : 1.0 - p.x.w) * (b ? p.y.w : 1.0 - p.y.w);
-                    if (w == 0.0) continue;
-                    const int i = p.x.i + a, j = p.y.i + b;
-                    const double h = s.depth(i, j);
-                    g.h += w * h;
-                    g.u += w * s.x_velocity(i, j);
-                    g.v += w * s.y_velocity(i, j);
-                    ground += w * (s.level(i, j) - h);
-                    if (h > 0.0) {
-                        wet_weight += w;
-                        wet_level += w * s.level(i, j);
-                    }
-                }
-            g.eta = wet_weight > 0.0 ? wet_level / wet_weight : ground;
-            out.push_back(g);
-        }
+        for (const PointStencil& p : points_) out.push_back(sample_point(s, p));
         return out;
     }
     // Records every sample time in (t0, t1] by linear interpolation between the states.
@@ -163,23 +138,8 @@ public:
     void resume_at(std::size_t next) { next_ = flushed_ = next; }
 
 private:
-    // Along one axis: the cell centre at or before the point (the last but one at the far
-    // edge) and the weight of the next one, in [0, 1].
-    struct Axis {
-        int i = 0;
-        double w = 0.0;
-    };
-    struct Stencil {
-        Axis x, y;
-    };
-    static Axis axis(double p, double first_centre, double spacing, int n) {
-        if (n < 2) return {0, 0.0};
-        const double f = (p - first_centre) / spacing;
-        const int i = std::clamp(int(std::floor(f)), 0, n - 2);
-        return {i, std::clamp(f - double(i), 0.0, 1.0)};
-    }
     double interval_;
-    std::vector<Stencil> points_;
+    std::vector<PointStencil> points_;
     std::size_t samples_ = 0, next_ = 0, flushed_ = 0;
     std::vector<double> time_;
     std::vector<float> eta_, h_, u_, v_;
@@ -406,6 +366,7 @@ struct RunOutput {
     AtomicOutput file;
     std::string checkpoint;
     std::optional<FlowWriter> writer;
+    std::optional<BoundaryOutput> outline;  // --boundary-output
     Checkpoint state;  // where the run stands (its time and counters are set when saved)
 };
 
@@ -445,7 +406,12 @@ FlowFileDef flow_file_def(const Scene& scene, const RunDef& run, const PhysicsDe
 // the gauges at t = 0).
 template <RunnableSolver S>
 void start(S& solver, const Scene& scene, const RunDef& run, const PhysicsDef& def, RunOutput& o) {
-    o.writer.emplace(o.file.temp_path(), flow_file_def(scene, run, def, o, solver.description()));
+    const FlowFileDef fd = flow_file_def(scene, run, def, o, solver.description());
+    o.writer.emplace(o.file.temp_path(), fd);
+    if (!run.boundary_output.file.empty()) {
+        o.outline.emplace(run.boundary_output, scene.grid, scene.crs, fd.attributes);
+        o.outline->record(0.0, o.outline->read(solver), 0.0, o.outline->read(solver));
+    }
     o.state.volume_start = solver.volume();
     write_frame(*o.writer, 0, solver, o.win);
     o.state.next_frame = 1;
@@ -510,6 +476,7 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
                                  : 1e300;
     long steps = o.state.steps;
     auto before = o.gauges.read(solver);
+    auto outline_before = o.outline ? o.outline->read(solver) : std::vector<PointSample>{};
     StepWatch watch;
     using Clock = std::chrono::steady_clock;
     auto last_step_end = Clock::now();
@@ -532,12 +499,18 @@ long step_to_end(S& solver, const RunDef& run, const PhysicsDef& def, RunOutput&
         auto after = o.gauges.read(solver);
         o.gauges.record(t0, before, t1, after);
         before = std::move(after);
+        if (o.outline) {
+            auto outline_after = o.outline->read(solver);
+            o.outline->record(t0, outline_before, t1, outline_after);
+            outline_before = std::move(outline_after);
+        }
         accumulate(o.sum, solver, o.win, t1, run.arrival_depth);
         if (reaches) {
             check_state(solver, solver.grid(), run.out_file, t1, o.state.volume_start);  // never write NaN
             try {
                 write_frame(*o.writer, o.state.next_frame, solver, o.win);
                 o.gauges.flush(*o.writer);
+                if (o.outline) o.outline->flush();
                 o.writer->sync();  // a full disk shows here, at this frame, not at the end
             } catch (const Error& e) {
                 throw Error(std::string(e.what()) + "; while writing frame " + std::to_string(o.state.next_frame) +
@@ -610,6 +583,7 @@ RunResult run_with(S& solver, const Scene& scene, const RunDef& run, const Physi
     o.writer->write_summary(o.sum.max_depth, o.sum.max_speed, o.sum.arrival);
     o.writer->write_runup(runup_summary(o.win.grid, window_bed(scene, o.win), o.sum.max_depth, run.flood_depth));
     o.writer->close();
+    if (o.outline) o.outline->commit();
     o.file.commit();
     std::filesystem::remove(o.checkpoint);
     progress.finish(solver.time(), std::abs(signed_steps));
@@ -655,11 +629,15 @@ RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     const OutputLock lock(run.out_file);  // one writer per output: a second run stops here
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
+    if (run.restart && !run.boundary_output.file.empty())
+        fail("", "--boundary-output", "is written from the start of a run and not continued by --restart: run it again without --restart");
     // Boundary series must cover the whole run (or its start, where the side hands over
     // to a transmissive one when the series ends) before any work starts.
     double highest_level = 0.0;  // [m] of any boundary series
     for (const BoundaryDef* b : {&physics.west, &physics.east, &physics.south, &physics.north})
-        if (!b->series_file.empty()) {
+        if (b->kind == BoundaryKind::forced && b->record) {
+            for (double v : b->record->level) highest_level = std::max(highest_level, std::fabs(v));
+        } else if (!b->series_file.empty()) {
             const TimeSeries series = read_time_series_csv(b->series_file);
             require_coverage(series, 0.0, b->series_end == SeriesEnd::error ? run.duration : 0.0);
             for (double v : series.value) highest_level = std::max(highest_level, std::fabs(v));

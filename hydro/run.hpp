@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "formats/flow_file.hpp"
+#include "hydro/boundary_output.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/nesting.hpp"
 #include "hydro/solver.hpp"
@@ -54,6 +55,7 @@ struct RunDef {
     std::optional<std::array<double, 4>> window;  // x_min, x_max, y_min, y_max [m] of stored frames
     double gauge_interval = 0.05;                 // [s] between gauge samples
     std::vector<FlowGauge> gauges;                // added to the scene's gauge points
+    BoundaryOutputDef boundary_output;            // level and velocity on a box's outline (boundary_output.hpp)
     Scheme scheme = Scheme::finite_volume;
     FiniteVolumeDef finite_volume;                  // --scheme fv only
     LeapfrogDef leapfrog = default_leapfrog_def();  // --scheme leapfrog only; its step divides output_interval

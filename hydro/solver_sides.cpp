@@ -91,6 +91,27 @@ void Solver::fill_side_cells(Side s, const SideForcing& forcing, std::vector<dou
                     qt[ghost] = hb * ut_in;
                     break;
                 }
+                case BoundaryKind::forced: {
+                    const std::size_t src = cell(0);
+                    const double h_in = h[src];
+                    const double un_in = sign * velocity(h_in, qn[src], def_.dry_depth);
+                    const double ut_in = velocity(h_in, qt[src], def_.dry_depth);
+                    const double level = (*forcing.level)[std::size_t(k)];
+                    const double depth = forcing.depth ? (*forcing.depth)[std::size_t(k)] : INFINITY;
+                    double hb = 0.0, unb = 0.0, utb = ut_in;
+                    if (forcing.u) {
+                        const double u = (*forcing.u)[std::size_t(k)], v = (*forcing.v)[std::size_t(k)];
+                        const double un_given = sign * (xs ? u : v), ut_given = xs ? v : u;
+                        const double h_given = depth > def_.dry_depth ? std::max(0.0, level - z_[src]) : 0.0;
+                        forced_ghost(h_in, un_in, ut_in, h_given, un_given, ut_given, g, hb, unb, utb);
+                    } else if (depth > def_.dry_depth) {
+                        level_ghost(h_in, un_in, std::max(0.0, -z_[src]), level, forcing.mode, g, hb, unb);
+                    }
+                    h[ghost] = hb;
+                    qn[ghost] = sign * hb * unb;
+                    qt[ghost] = hb * utb;
+                    break;
+                }
                 case BoundaryKind::pump:
                 case BoundaryKind::nested:
                     break;  // resolved above

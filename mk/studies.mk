@@ -1,6 +1,6 @@
 # Studies: runs on the real layout whose CSVs and charts the docs show.
 
-.PHONY: accuracy-hydro accuracy-debris resolution-debris stability-hydro hydro-levers
+.PHONY: accuracy-hydro accuracy-debris resolution-debris stability-hydro hydro-levers self-nesting
 
 ##@ Studies (docs/accuracy.md, docs/studies/)
 # Flows at 8, 4 and 2 cm, some on one uniform grid, against the 1 cm flow on the flows'
@@ -55,3 +55,9 @@ stability-hydro: build
 ## hydro-levers       each hydro speed lever's cost and error: runs/levers/*.csv
 hydro-levers: build
 	pipelines/hydro_levers.sh $(FLOTSAM) $(REAL_DEM) $(RUNS) $(wildcard $(RUNS)/speed-ratio/flow-0.02-baseline.nc)
+
+# A box of the real layout at 2 cm driven by a 4 cm run's outline, against the 2 cm run of
+# the whole flume, 0-150 s; fails when a tolerance of pipelines/nesting_check.py is passed.
+## self-nesting       nesting flotsam in itself, checked: runs/self-nesting/*.csv
+self-nesting: build $(RUNS)/bc/wg1_r00.csv
+	pipelines/self_nesting.sh $(FLOTSAM) $(REAL_DEM) $(RUNS)/bc/wg1_r00.csv $(RUNS)

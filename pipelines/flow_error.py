@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Error of flows against a reference flow, at the points debris cares about.
 
-Usage: python3 -m pipelines.flow_error SCENE.nc REFERENCE.nc FLOW.nc [FLOW.nc ...]
+Usage: python3 -m pipelines.flow_error [--box X0,X1,Y0,Y1] SCENE.nc REFERENCE.nc FLOW.nc [FLOW.nc ...]
 
 For each flow, against the reference (typically the finest run), over their common time:
   wg2_rms_m          RMS difference of the WG2 level (gauge series)
@@ -14,7 +14,9 @@ For each flow, against the reference (typically the finest run), over their comm
                      cells both reach, each flow cell against the reference cell holding its centre
   arrival_only       share of the cells reached by one of the two only (of those either reaches)
   max_depth_mae_m    mean |difference| of the maximum depth over the cells either wets
-Grids may differ: values are taken at the cell holding each point. Prints CSV.
+Grids may differ: values are taken at the cell holding each point. With --box the maps
+are compared over the reference's cells inside the box only (a flow run over the box
+alone). Prints CSV.
 """
 import sys
 
@@ -99,7 +101,7 @@ def map_errors(ref, ds):
     return out
 
 
-def errors(scene, ref_path, ref, path):
+def errors(scene, ref_path, ref, path, box=None):
     ds = xr.open_dataset(path)
     out = {}
     tr, er = gauge(ref, "WG2", ref_path)
@@ -116,17 +118,24 @@ def errors(scene, ref_path, ref, path):
         keep = t_f <= min(t_f[-1], t_r[-1]) + 1e-9
         out[f"{p}_depth_rms_m"] = float(np.sqrt(np.mean((h_f[keep] - np.interp(t_f[keep], t_r, h_r)) ** 2)))
         out[f"{p}_draft_err_s"] = arrival(ds, x, y) - arrival(ref, x, y)
+    if box is not None:
+        x0, x1, y0, y1 = box
+        ref = ref.where((ref.x >= x0) & (ref.x <= x1) & (ref.y >= y0) & (ref.y <= y1), drop=True)
     out.update(map_errors(ref, ds))
     return out
 
 
 def main(argv):
+    box = None
+    if len(argv) > 2 and argv[1] == "--box":
+        box = [float(v) for v in argv[2].split(",")]
+        argv = argv[:1] + argv[3:]
     if len(argv) < 4:
         print(__doc__, file=sys.stderr)
         return 2
     scene = xr.open_dataset(argv[1])
     ref = xr.open_dataset(argv[2], decode_timedelta=False)
-    rows = [(p, errors(scene, argv[2], ref, p)) for p in argv[3:]]
+    rows = [(p, errors(scene, argv[2], ref, p, box)) for p in argv[3:]]
     print_csv(rows)
     return 0
 

@@ -1,0 +1,37 @@
+// Another model's water level (and velocity) on a boundary, read from a CF NetCDF file
+// and placed along one side of a scene (formats/boundary_file.hpp, SideRecord), for
+// `flotsam hydro --<side>-forcing FILE`.
+//
+// The file holds either gridded fields (time, y, x) or series at stations (time, station)
+// with their coordinates, in any CRS: projected x/y with a grid mapping, or longitude and
+// latitude. Variables are found by CF standard name: the level by
+// sea_surface_height_above_mean_sea_level (or _above_geoid, sea_surface_height,
+// sea_surface_elevation); the velocity, optional, by sea_water_x_velocity and
+// sea_water_y_velocity (along the file's own axes) or eastward_ and
+// northward_sea_water_velocity; the depth, optional, by sea_floor_depth_below_sea_surface
+// (where it is 0 the source is dry, and its level is only its ground). Units are
+// converted (common/units.hpp); time is the
+// file's time coordinate in seconds from its own origin, which is the run's t = 0.
+//
+// Placement: stations are carried into the scene's CRS and those within reach of the side
+// (a scene cell, or half the stations' spacing, from its edge line) give the points along
+// it; gridded fields are read bilinearly at the side's edge-cell positions carried into the
+// file's CRS. Velocities are turned from the file's axes (or east and north) to the
+// scene's x and y where the two CRSs differ. Errors name the file and what is wrong: no
+// CRS (or one the scene cannot be placed in), the side not covered, time not increasing,
+// gaps, fill values or values that are not finite.
+#pragma once
+#include <string>
+
+#include "common/cf.hpp"
+#include "common/grid.hpp"
+#include "formats/boundary_file.hpp"
+
+namespace flotsam::data {
+
+// `side`: "west", "east", "south" or "north" of `grid`, whose CRS is `crs` (empty: local
+// metres).
+SideRecord read_side_forcing(const std::string& path, const std::string& side, const Grid& grid,
+                             const cf::GridMapping& crs);
+
+}  // namespace flotsam::data
