@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <functional>
 #include <sstream>
 
@@ -220,4 +221,44 @@ TEST(BoundaryForcing, GeoclawGaugesConvertedByThePipelineDriveASide) {
     EXPECT_NEAR(r.level[3 * 3 + 1], 0.25, 1e-12);
     EXPECT_NEAR(r.u[2], 0.5, 1e-12);
     EXPECT_NEAR(r.v[2], 0.0, 1e-12);
+}
+
+// A regional model's gridded output in longitude and latitude (a 0.001 deg grid with its
+// level linear in both) read along the south side of a UTM scene: each edge cell takes
+// the level at its own longitude and latitude, which bilinear interpolation of a field
+// linear in both gives exactly.
+TEST(BoundaryForcing, AGriddedFieldInLongitudeLatitudeIsReadAtTheUtmSide) {
+    gdal::init();
+    const std::string dir = test::scratch_dir("BoundaryForcingGeoGrid");
+    const std::string path = dir + "/regional.nc";
+    auto level = [](double lon, double lat) { return 1.0 + 50.0 * (lon - 135.0) - 20.0 * (lat - 34.0); };
+    {
+        nc::File f = nc::File::create(path);
+        const int dt = f.def_dim("time", 2), dy = f.def_dim("lat", 40), dx = f.def_dim("lon", 40);
+        const int vt = cf::def_time(f, dt);
+        const int vx = cf::def_var(f, {.name = "lon", .dims = {dx}, .units = "degrees_east", .standard_name = "longitude"});
+        const int vy = cf::def_var(f, {.name = "lat", .dims = {dy}, .units = "degrees_north", .standard_name = "latitude"});
+        const int vl = cf::def_var(f, {.name = "eta", .dims = {dt, dy, dx}, .units = "m", .standard_name = "sea_surface_height"});
+        f.enddef();
+        f.put(vt, std::vector<double>{0.0, 60.0});
+        std::vector<double> lon, lat, l;
+        for (int i = 0; i < 40; ++i) lon.push_back(135.18 + 0.001 * i);
+        for (int j = 0; j < 40; ++j) lat.push_back(34.14 + 0.001 * j);
+        for (int k = 0; k < 2; ++k)
+            for (double b : lat)
+                for (double a : lon) l.push_back(level(a, b) + 0.1 * k);
+        f.put(vx, lon);
+        f.put(vy, lat);
+        f.put(vl, l);
+    }
+    const Grid g{20, 20, 518005.0, 3780005.0, 10.0, 10.0};
+    const OGRSpatialReference utm = epsg(32653), wgs = epsg(4326);
+    const SideRecord r = data::read_side_forcing(path, "south", g, gdal::grid_mapping(utm));
+    std::unique_ptr<OGRCoordinateTransformation> to_geo(OGRCreateCoordinateTransformation(&utm, &wgs));
+    ASSERT_EQ(r.along.size(), 20u);
+    for (std::size_t p = 0; p < 20; ++p) {
+        double x = g.x(int(p)), y = g.y_min_edge();
+        ASSERT_TRUE(to_geo->Transform(1, &x, &y));
+        EXPECT_NEAR(r.level[20 + p], level(x, y) + 0.1, 1e-9) << p;
+    }
 }
