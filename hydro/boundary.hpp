@@ -50,7 +50,7 @@ enum class LevelMode {
                // imposed, the outgoing one comes from inside, so reflections leave
 };
 inline constexpr EnumNames<LevelMode, 2> level_mode_names{"level mode",
-                                                          {{{LevelMode::incident, "incident"}, {LevelMode::total, "total"}}}};
+                                                          {{{LevelMode::total, "total"}, {LevelMode::incident, "incident"}}}};
 constexpr const auto& enum_names(LevelMode) { return level_mode_names; }
 
 // What a level or discharge side becomes after its series ends.
