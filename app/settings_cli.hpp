@@ -7,6 +7,7 @@
 // path that must exist, no default shown, a fixed number of values).
 #pragma once
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -18,10 +19,13 @@ namespace flotsam {
 
 namespace detail {
 
-// The help line: the setting's help and its unit, unless the help already shows it.
+// The help line: the setting's help and its unit, unless the help already shows it
+// ("[m]", "[m, in the scene's CRS]", "[m above still water]").
 template <class Def>
 std::string option_help(const Setting<Def>& s) {
-    if (s.unit.empty() || s.unit == "1" || s.help.find("[" + s.unit + "]") != std::string::npos) return s.help;
+    if (s.unit.empty() || s.unit == "1") return s.help;
+    for (const char* end : {"]", ",", " "})
+        if (s.help.find("[" + s.unit + end) != std::string::npos) return s.help;
     return s.help + " [" + s.unit + "]";
 }
 
@@ -30,7 +34,7 @@ template <class Def, class T>
 CLI::Option* add_value_option(CLI::App* sub, const Setting<Def>& s, const Field<Def, T>& field, Def& def) {
     CLI::Option* opt = sub->add_option("--" + s.key, field.of(def), option_help(s));
     const OptionForm& f = s.form;
-    constexpr bool list = !std::is_same_v<T, std::string> && !std::is_arithmetic_v<T>;
+    constexpr bool list = !std::is_same_v<T, std::string> && !std::is_arithmetic_v<T> && !std::is_same_v<T, std::optional<double>>;
     constexpr bool numbers = !std::is_same_v<T, std::string> && !std::is_same_v<T, std::vector<std::string>>;
     if (f.items > 0) opt->expected(f.items);
     if constexpr (list && numbers) opt->delimiter(',');

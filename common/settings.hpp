@@ -1,7 +1,8 @@
 // One definition per setting, in one table per parameter family (the body's shape,
 // coefficients and model in debris/body.hpp, the step and the flow replay in
-// debris/world.hpp, a hydro run in hydro/run_settings.hpp): its key, the member of the definition struct it sets, its unit, a
-// one-line help and its valid range. The default is the struct's own initialiser
+// debris/world.hpp, a hydro run in hydro/run_settings.hpp, the data and sweep commands in
+// app/): its key, the member of the definition struct it sets, its unit, a one-line help
+// and its valid range. The default is the struct's own initialiser
 // (Box2D's b2BodyDef style), read from a default-constructed struct. The command line
 // (app/settings_cli.hpp), the TOML readers (`--config` files and sweep specs) and the
 // writers that record settings in files all take them from the table, so a setting is
@@ -16,6 +17,7 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -95,7 +97,8 @@ template <class Def>
 struct Setting {
     using Member = std::variant<Field<Def, double>, Field<Def, int>, Field<Def, bool>, Choice<Def>, Factor<Def>,
                                 Field<Def, std::uint64_t>, Field<Def, std::string>, Field<Def, std::vector<double>>,
-                                Field<Def, std::vector<int>>, Field<Def, std::vector<std::string>>>;
+                                Field<Def, std::vector<int>>, Field<Def, std::vector<std::string>>,
+                                Field<Def, std::optional<double>>>;
     std::string key;   // kebab-case: `--key` and `key = ...`
     std::string unit;  // UDUNITS; "1" a number without unit; "" a choice, a switch or a text
     std::string help;  // one line: the option's help and the long_name where files record it
@@ -112,6 +115,7 @@ struct Setting {
     bool is_factor() const { return std::holds_alternative<Factor<Def>>(member); }
     bool is_whole() const { return field<int>() || field<std::uint64_t>(); }
     bool is_number() const { return field<double>() || is_whole() || is_factor(); }
+    bool is_optional() const { return field<std::optional<double>>() != nullptr; }  // a number, or none given
     bool is_text() const { return field<std::string>() != nullptr; }
     bool is_list() const { return field<std::vector<double>>() || field<std::vector<int>>() || field<std::vector<std::string>>(); }
 
@@ -152,6 +156,7 @@ struct Setting {
         if (const auto l = field<std::vector<std::string>>()) return list_text(l->of(d), [](const std::string& v) { return "\"" + v + "\""; });
         if (const auto l = field<std::vector<double>>()) return list_text(l->of(d), number_text_exact);
         if (const auto l = field<std::vector<int>>()) return list_text(l->of(d), number_text_exact);
+        if (const auto o = field<std::optional<double>>()) return o->of(d) ? number_text_exact(*o->of(d)) : "\"\"";
         return number_text_exact(number(d));
     }
 
@@ -235,8 +240,8 @@ void read_setting(const TomlDoc& doc, const TomlTable& t, const Setting<Def>& s,
         s.set_flag(d, toml_bool(doc, t, s.key));
     } else if (const auto text = s.template field<std::string>()) {
         text->of(d) = toml_string(doc, t, s.key);
-    } else if (s.is_list()) {
-        toml_fail(doc, t, s.key, "is a list, which this file cannot set");
+    } else if (s.is_list() || s.is_optional()) {
+        toml_fail(doc, t, s.key, "is not a setting this file can give");
     } else if (s.is_choice()) {
         const std::string name = toml_string(doc, t, s.key);
         try {
