@@ -65,21 +65,38 @@ const Settings<SceneImportOptions>& scene_import_settings() {
     using O = SceneImportOptions;
     const OptionForm path{.no_default = true};  // a path or a name, none by default
     static const Settings<O> table = {
-        {"dem", "", "DEM file (GeoTIFF, .asc, NetCDF, or anything GDAL reads)", Range(), member_of<&O::def, &ImportDef::dem_path>(),
+        {"dem",
+         "",
+         "DEM file (GeoTIFF, .asc, NetCDF, or anything GDAL reads)",
+         Range(),
+         member_of<&O::def, &ImportDef::dem_path>(),
          {.required = true, .no_default = true}},
         {"features", "", "features TOML file", Range(), member_of<&O::def, &ImportDef::features_path>(), path},
-        {"resolution", "m", "grid spacing of the scene", Range::positive("m").up_to(1e5), member_of<&O::def, &ImportDef::resolution>()},
+        {"resolution", "m", "grid spacing of the scene", Range::positive("m").up_to(1e5),
+         member_of<&O::def, &ImportDef::resolution>()},
         {"out", "", "output scene file (NetCDF)", Range(), &O::out, {.required = true, .no_default = true}},
         {"crs", "", "the DEM's CRS when its file has none (EPSG:n, WKT, PROJ or a .prj file), or 'local' for local metres", Range(),
          member_of<&O::def, &ImportDef::gis, &GisImportDef::assign_crs>(), path},
-        {"target-crs", "", "reproject the DEM to this projected CRS in metres (needed for a DEM in degrees), e.g. EPSG:32653", Range(),
-         member_of<&O::def, &ImportDef::gis, &GisImportDef::target_crs>(), path},
-        {"still-water-level", "m", "the DEM's value at still water in its vertical datum [m]: z = DEM - this", Range(),
-         member_of<&O::def, &ImportDef::gis, &GisImportDef::still_water_level>(), {.unchecked = true}},
-        {"extent", "m", "keep only x_min,x_max,y_min,y_max [m, in the scene's CRS]", Range(), &O::extent,
+        {"target-crs", "", "reproject the DEM to this projected CRS in metres (needed for a DEM in degrees), e.g. EPSG:32653",
+         Range(), member_of<&O::def, &ImportDef::gis, &GisImportDef::target_crs>(), path},
+        {"still-water-level",
+         "m",
+         "the DEM's value at still water in its vertical datum [m]: z = DEM - this",
+         Range(),
+         member_of<&O::def, &ImportDef::gis, &GisImportDef::still_water_level>(),
+         {.unchecked = true}},
+        {"extent",
+         "m",
+         "keep only x_min,x_max,y_min,y_max [m, in the scene's CRS]",
+         Range(),
+         &O::extent,
          {.no_default = true, .unchecked = true, .items = 4}},
-        {"nodata-fill", "m", "elevation for the DEM's nodata cells [m above still water] (else an error)", Range(),
-         member_of<&O::def, &ImportDef::gis, &GisImportDef::nodata_fill>(), {.no_default = true, .unchecked = true}},
+        {"nodata-fill",
+         "m",
+         "elevation for the DEM's nodata cells [m above still water] (else an error)",
+         Range(),
+         member_of<&O::def, &ImportDef::gis, &GisImportDef::nodata_fill>(),
+         {.no_default = true, .unchecked = true}},
         {"buildings", "",
          "building footprints (polygons: GeoJSON, shapefile, GeoPackage, ...), burnt into the building mask instead of the "
          "features file's building rule",
@@ -89,8 +106,12 @@ const Settings<SceneImportOptions>& scene_import_settings() {
         {"building-height-field", "",
          "attribute of --buildings with the height above ground [m]: z becomes the footprint's lowest ground + height", Range(),
          member_of<&O::def, &ImportDef::gis, &GisImportDef::building_height_field>(), path},
-        {"building-height", "m", "height above ground [m] of footprints without a height value", Range(),
-         member_of<&O::def, &ImportDef::gis, &GisImportDef::building_height>(), {.no_default = true, .unchecked = true}},
+        {"building-height",
+         "m",
+         "height above ground [m] of footprints without a height value",
+         Range(),
+         member_of<&O::def, &ImportDef::gis, &GisImportDef::building_height>(),
+         {.no_default = true, .unchecked = true}},
         {"manning-raster", "",
          "raster of Manning n, or of land-use codes with --manning-classes (any CRS; resampled onto the scene)", Range(),
          member_of<&O::def, &ImportDef::gis, &GisImportDef::manning_raster>(), path},
@@ -156,9 +177,12 @@ const Settings<BoundaryGenerateOptions>& boundary_generate_settings() {
          "write the records at this many times the flume's scale (times x sqrt, levels x; 250: Kainan itself); the other "
          "options stay in flume units",
          Range::positive().up_to(1e4), &O::froude_scale},
-        {"allow-large-run", "",
-         "write the records even when their samples pass the bound flotsam stops at (docs/reliability.md)", Range(),
-         &O::allow_large_run, {.no_default = true}},
+        {"allow-large-run",
+         "",
+         "write the records even when their samples pass the bound flotsam stops at (docs/reliability.md)",
+         Range(),
+         &O::allow_large_run,
+         {.no_default = true}},
     };
     return table;
 }
@@ -178,8 +202,8 @@ void register_boundary_generate(CLI::App* boundary) {
         // The records' size before anything is computed: count x (duration / dt + 1)
         // samples (Froude scaling stretches duration and dt alike).
         const double samples = double(def.count) * (def.duration / def.dt + 1.0);
-        const std::string span = number_text(def.count) + " records of " + number_text(def.duration) + " s every " +
-                                 number_text(def.dt) + " s";
+        const std::string span =
+            number_text(def.count) + " records of " + number_text(def.duration) + " s every " + number_text(def.dt) + " s";
         check_work("--dt", span, samples, max_boundary_samples, "samples", o->allow_large_run);
         check_allocation("--dt", span, samples, 3.0 * sizeof(double), "samples");
         // Levels a flume or a coast can have, after scaling: no sea is 11 km higher than still water.

@@ -63,7 +63,8 @@ void add_setting_options(CLI::App* sub, const Settings<Def>& table, Def& def) {
             Def* d = &def;
             const bool listed = s.form.names_in_type || s.form.names_in_help;
             opt = sub->add_option_function<std::string>(
-                   name, [c, d, name](const std::string& v) { c.set(*d, v, name); }, listed ? s.help : s.help + " (" + c.names() + ")")
+                         name, [c, d, name](const std::string& v) { c.set(*d, v, name); },
+                         listed ? s.help : s.help + " (" + c.names() + ")")
                       ->run_callback_for_default();  // as an option bound to a variable: `key=""` in settings dumps
             if (s.form.names_in_type) {
                 std::vector<std::string> names;

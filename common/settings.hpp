@@ -95,10 +95,10 @@ struct OptionForm {
 
 template <class Def>
 struct Setting {
-    using Member = std::variant<Field<Def, double>, Field<Def, int>, Field<Def, bool>, Choice<Def>, Factor<Def>,
-                                Field<Def, std::uint64_t>, Field<Def, std::string>, Field<Def, std::vector<double>>,
-                                Field<Def, std::vector<int>>, Field<Def, std::vector<std::string>>,
-                                Field<Def, std::optional<double>>>;
+    using Member =
+        std::variant<Field<Def, double>, Field<Def, int>, Field<Def, bool>, Choice<Def>, Factor<Def>, Field<Def, std::uint64_t>,
+                     Field<Def, std::string>, Field<Def, std::vector<double>>, Field<Def, std::vector<int>>,
+                     Field<Def, std::vector<std::string>>, Field<Def, std::optional<double>>>;
     std::string key;   // kebab-case: `--key` and `key = ...`
     std::string unit;  // UDUNITS; "1" a number without unit; "" a choice, a switch or a text
     std::string help;  // one line: the option's help and the long_name where files record it
@@ -153,7 +153,8 @@ struct Setting {
         if (is_switch()) return flag(d) ? "true" : "false";
         if (is_choice()) return std::string("\"") + choice().get(d) + "\"";
         if (const auto t = field<std::string>()) return "\"" + t->of(d) + "\"";
-        if (const auto l = field<std::vector<std::string>>()) return list_text(l->of(d), [](const std::string& v) { return "\"" + v + "\""; });
+        if (const auto l = field<std::vector<std::string>>())
+            return list_text(l->of(d), [](const std::string& v) { return "\"" + v + "\""; });
         if (const auto l = field<std::vector<double>>()) return list_text(l->of(d), number_text_exact);
         if (const auto l = field<std::vector<int>>()) return list_text(l->of(d), number_text_exact);
         if (const auto o = field<std::optional<double>>()) return o->of(d) ? number_text_exact(*o->of(d)) : "\"\"";
@@ -184,9 +185,10 @@ template <auto M, auto... Ms>
 Choice<typename member_pointer_traits<decltype(M)>::owner> choice_of() {
     using Def = typename member_pointer_traits<decltype(M)>::owner;
     using E = std::remove_cvref_t<decltype(follow_members<M, Ms...>(std::declval<Def&>()))>;
-    return {[](const Def& d) { return enum_name(follow_members<M, Ms...>(const_cast<Def&>(d))); },
-            [](Def& d, std::string_view name, const std::string& where) { follow_members<M, Ms...>(d) = parse_enum<E>(name, where); },
-            [] { return enum_list<E>(); }};
+    return {
+        [](const Def& d) { return enum_name(follow_members<M, Ms...>(const_cast<Def&>(d))); },
+        [](Def& d, std::string_view name, const std::string& where) { follow_members<M, Ms...>(d) = parse_enum<E>(name, where); },
+        [] { return enum_list<E>(); }};
 }
 
 // The setting with this key; nullptr when none.

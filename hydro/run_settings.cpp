@@ -9,19 +9,35 @@ using S = Setting<HydroDef>;
 
 // What a run reads and stores, and how it goes (restart, threads, progress).
 void add_run_settings(Settings<HydroDef>& t) {
-    t.push_back({"scene", "", "Scene NetCDF (x, y, z; optional manning_n, building, eta0/u0/v0)", Range(),
-                 member_of<&HydroDef::run, &RunDef::scene_file>(), {.required = true, .existing_file = true, .no_default = true}});
-    t.push_back({"out", "", "Output flow file (.nc); written as <out>.part and renamed when complete", Range(),
-                 member_of<&HydroDef::run, &RunDef::out_file>(), {.required = true, .no_default = true}});
+    t.push_back({"scene",
+                 "",
+                 "Scene NetCDF (x, y, z; optional manning_n, building, eta0/u0/v0)",
+                 Range(),
+                 member_of<&HydroDef::run, &RunDef::scene_file>(),
+                 {.required = true, .existing_file = true, .no_default = true}});
+    t.push_back({"out",
+                 "",
+                 "Output flow file (.nc); written as <out>.part and renamed when complete",
+                 Range(),
+                 member_of<&HydroDef::run, &RunDef::out_file>(),
+                 {.required = true, .no_default = true}});
     t.push_back({"duration", "s", "Simulated time", Range::positive("s"), member_of<&HydroDef::run, &RunDef::duration>()});
     t.push_back({"output-interval", "s", "Time between stored frames", Range::positive("s"),
                  member_of<&HydroDef::run, &RunDef::output_interval>()});
-    t.push_back({"output-window", "m", "Store frames only in x_min,x_max,y_min,y_max [m]", Range::any("m"),
-                 &HydroDef::output_window, {.no_default = true, .items = 4}});
+    t.push_back({"output-window",
+                 "m",
+                 "Store frames only in x_min,x_max,y_min,y_max [m]",
+                 Range::any("m"),
+                 &HydroDef::output_window,
+                 {.no_default = true, .items = 4}});
     t.push_back({"gauge-interval", "s", "Time between gauge samples", Range::positive("s"),
                  member_of<&HydroDef::run, &RunDef::gauge_interval>()});
-    t.push_back({"gauge", "", "Extra gauge NAME,X,Y (repeatable); the scene's gauge points are always recorded", Range(),
-                 &HydroDef::gauges, {.no_default = true}});
+    t.push_back({"gauge",
+                 "",
+                 "Extra gauge NAME,X,Y (repeatable); the scene's gauge points are always recorded",
+                 Range(),
+                 &HydroDef::gauges,
+                 {.no_default = true}});
     t.push_back({"arrival-depth", "m", "Depth threshold of the arrival-time map [m] (the debris draft)", Range::positive("m"),
                  member_of<&HydroDef::run, &RunDef::arrival_depth>()});
     t.push_back({"flood-depth", "m",
@@ -29,27 +45,41 @@ void add_run_settings(Settings<HydroDef>& t) {
                  Range::positive("m"), member_of<&HydroDef::run, &RunDef::flood_depth>()});
     t.push_back({"checkpoint-interval", "s", "Simulated time between checkpoints [s]; 0: none", Range::non_negative("s"),
                  member_of<&HydroDef::run, &RunDef::checkpoint_interval>()});
-    t.push_back({"restart", "", "Continue an interrupted run from <out>.checkpoint.nc and <out>.part", Range(),
-                 member_of<&HydroDef::run, &RunDef::restart>(), {.no_default = true}});
-    t.push_back({"stop-after", "s", "Stop as if interrupted once past this time [s] (leaves a checkpoint)", Range::non_negative("s"),
-                 member_of<&HydroDef::run, &RunDef::stop_after>(), {.no_default = true}});
+    t.push_back({"restart",
+                 "",
+                 "Continue an interrupted run from <out>.checkpoint.nc and <out>.part",
+                 Range(),
+                 member_of<&HydroDef::run, &RunDef::restart>(),
+                 {.no_default = true}});
+    t.push_back({"stop-after",
+                 "s",
+                 "Stop as if interrupted once past this time [s] (leaves a checkpoint)",
+                 Range::non_negative("s"),
+                 member_of<&HydroDef::run, &RunDef::stop_after>(),
+                 {.no_default = true}});
     t.push_back({"realisation", "1", "Boundary realisation id recorded in the file", Range::count(-1, 1e9),
                  member_of<&HydroDef::run, &RunDef::realisation>()});
     t.push_back({"deflate", "1", "Deflate level of stored fields, 0-9", Range::count(0, 9),
                  member_of<&HydroDef::run, &RunDef::deflate_level>()});
     t.push_back({"label", "", "Progress label", Range(), member_of<&HydroDef::run, &RunDef::label>()});
     t.push_back({"quiet", "", "No progress output", Range(), member_of<&HydroDef::run, &RunDef::quiet>(), {.no_default = true}});
-    t.push_back({"allow-large-run", "",
-                 "Run even when the estimated work (cells x steps) passes the bound flotsam stops at (docs/reliability.md)", Range(),
-                 member_of<&HydroDef::run, &RunDef::allow_large_run>(), {.no_default = true}});
+    t.push_back({"allow-large-run",
+                 "",
+                 "Run even when the estimated work (cells x steps) passes the bound flotsam stops at (docs/reliability.md)",
+                 Range(),
+                 member_of<&HydroDef::run, &RunDef::allow_large_run>(),
+                 {.no_default = true}});
     t.push_back({"threads", "1", "OpenMP threads (0: OMP_NUM_THREADS or all cores)", Range::count(0, 4096), &HydroDef::threads});
 }
 
 // The scheme, its step and its study variants, the nesting and the friction.
 void add_scheme_settings(Settings<HydroDef>& t) {
-    t.push_back({"scheme", "",
-                 "fv: finite volumes (MUSCL + HLL + Heun); leapfrog: staggered leap-frog of the classic tsunami codes", Range(),
-                 choice_of<&HydroDef::run, &RunDef::scheme>(), {.names_in_type = true}});
+    t.push_back({"scheme",
+                 "",
+                 "fv: finite volumes (MUSCL + HLL + Heun); leapfrog: staggered leap-frog of the classic tsunami codes",
+                 Range(),
+                 choice_of<&HydroDef::run, &RunDef::scheme>(),
+                 {.names_in_type = true}});
     t.push_back({"courant", "1",
                  "Leap-frog only: Courant number of the fixed step, dt sqrt(g h_max) sqrt(1/dx^2 + 1/dy^2), at most 1",
                  Range::positive().up_to(10.0), member_of<&HydroDef::run, &RunDef::leapfrog, &LeapfrogDef::courant>()});
@@ -66,24 +96,33 @@ void add_scheme_settings(Settings<HydroDef>& t) {
                  member_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::limiter_theta>()});
     t.push_back({"dry-depth", "m", "Dry tolerance [m]: velocities desingularised and reconstruction first order below it",
                  Range::positive("m").up_to(1.0), member_of<&HydroDef::physics, &PhysicsDef::dry_depth>()});
-    t.push_back({"friction", "", "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)", Range(),
+    t.push_back({"friction",
+                 "",
+                 "Finite volumes: Manning friction 'implicit', or 'explicit' (for the stability study only)",
+                 Range(),
                  choice_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::friction>(),
                  {.group = study_group, .names_in_help = true}});
-    t.push_back({"fronts", "",
+    t.push_back({"fronts",
+                 "",
                  "Finite volumes: dry-bed fronts 'plain' (cell averages) or 'tracked' (a wet fraction and an invariant "
                  "correction; with --time-stepping heun only; it fails Thacker's planar case and Ritter's dam break, "
                  "docs/studies/wetdry_suite.md)",
-                 Range(), choice_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::fronts>(),
+                 Range(),
+                 choice_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::fronts>(),
                  {.group = study_group, .names_in_help = true}});
-    t.push_back({"time-stepping", "",
+    t.push_back({"time-stepping",
+                 "",
                  "Finite volumes: 'split' (an x and a y sweep of MUSCL-Hancock per step, their order alternating; the step "
                  "limited by each direction's own speed) or 'heun' (unsplit MUSCL with Heun's method)",
-                 Range(), choice_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::stepping>(),
+                 Range(),
+                 choice_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::stepping>(),
                  {.group = study_group, .names_in_help = true}});
-    t.push_back({"study-past-stability-limit", "",
+    t.push_back({"study-past-stability-limit",
+                 "",
                  "Stability study only: accept --cfl above 1, step above 0.5 without the positivity redo, and let the leap-frog "
                  "run past Courant number 1 (to see the failure)",
-                 Range(), member_of<&HydroDef::physics, &PhysicsDef::study_past_stability_limit>(),
+                 Range(),
+                 member_of<&HydroDef::physics, &PhysicsDef::study_past_stability_limit>(),
                  {.group = study_group, .no_default = true}});
     t.push_back({"nest-ratio", "1",
                  "Grids of this many times the scene's spacing, west to east between the --nest-x interfaces, sub-cycled: "
@@ -104,30 +143,43 @@ const char* const kSideTitles[4] = {"West", "East", "South", "North"};
 
 template <BoundaryDef PhysicsDef::*Side>
 S side_kind(int k) {
-    return {kSideNames[k], "",
+    return {kSideNames[k],
+            "",
             std::string(kSideTitles[k]) +
                 " boundary: wall, transmissive, level, discharge or pump (zero-gradient: finite-volume study only)",
-            Range(), choice_of<&HydroDef::physics, Side, &BoundaryDef::kind>(), {.names_in_help = true}};
+            Range(),
+            choice_of<&HydroDef::physics, Side, &BoundaryDef::kind>(),
+            {.names_in_help = true}};
 }
 
 template <BoundaryDef PhysicsDef::*Side>
 S side_series(int k, const std::string& help) {
-    return {std::string(kSideNames[k]) + "-series", "", help, Range(), member_of<&HydroDef::physics, Side, &BoundaryDef::series_file>(),
+    return {std::string(kSideNames[k]) + "-series",
+            "",
+            help,
+            Range(),
+            member_of<&HydroDef::physics, Side, &BoundaryDef::series_file>(),
             {.no_default = true}};
 }
 
 template <BoundaryDef PhysicsDef::*Side>
 void add_side_modes(Settings<HydroDef>& t, int k) {
     const std::string side = kSideNames[k];
-    t.push_back({side + "-level-mode", "",
+    t.push_back({side + "-level-mode",
+                 "",
                  "A " + side +
                      " level series is the 'total' measured level (velocity from the outgoing characteristic) or only "
                      "the 'incident' wave (reflections leave)",
-                 Range(), choice_of<&HydroDef::physics, Side, &BoundaryDef::level_mode>(), {.names_in_type = true}});
-    t.push_back({side + "-series-end", "",
-                 "After the " + side +
-                     " series ends: 'error' (it must cover the run) or 'transmissive' (the side lets the water leave)",
-                 Range(), choice_of<&HydroDef::physics, Side, &BoundaryDef::series_end>(), {.names_in_type = true}});
+                 Range(),
+                 choice_of<&HydroDef::physics, Side, &BoundaryDef::level_mode>(),
+                 {.names_in_type = true}});
+    t.push_back(
+        {side + "-series-end",
+         "",
+         "After the " + side + " series ends: 'error' (it must cover the run) or 'transmissive' (the side lets the water leave)",
+         Range(),
+         choice_of<&HydroDef::physics, Side, &BoundaryDef::series_end>(),
+         {.names_in_type = true}});
 }
 
 // The four sides, the level mode of all of them, and the pump.
@@ -144,7 +196,11 @@ void add_boundary_settings(Settings<HydroDef>& t) {
         [](const HydroDef& d) { return d.level_mode ? enum_name(*d.level_mode) : ""; },
         [](HydroDef& d, std::string_view name, const std::string& where) { d.level_mode = parse_enum<LevelMode>(name, where); },
         [] { return enum_list<LevelMode>(); }};
-    t.push_back({"level-mode", "", "The level mode of every side (total or incident); --<side>-level-mode wins", Range(), every_side,
+    t.push_back({"level-mode",
+                 "",
+                 "The level mode of every side (total or incident); --<side>-level-mode wins",
+                 Range(),
+                 every_side,
                  {.no_default = true, .names_in_type = true}});
     add_side_modes<&PhysicsDef::west>(t, 0);
     add_side_modes<&PhysicsDef::east>(t, 1);
