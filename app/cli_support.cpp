@@ -38,7 +38,8 @@ std::string join_command_line(int argc, char** argv, const std::vector<DroppedOp
 const std::vector<DroppedOption>& hydro_run_control_options() {
     static const std::vector<DroppedOption> options = {
         {"out", true},        {"restart", false},           {"threads", true}, {"quiet", false}, {"label", true},
-        {"stop-after", true}, {"checkpoint-interval", true}, {"allow-large-run", false}};
+        {"stop-after", true}, {"checkpoint-interval", true}, {"allow-large-run", false},
+        {"boundary-output", true}, {"boundary-box", true}, {"boundary-interval", true}};
     return options;
 }
 

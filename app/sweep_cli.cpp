@@ -1,9 +1,11 @@
 // flotsam sweep, flotsam sweep merge, flotsam stats: many debris runs over stored flows,
-// and the statistics over them (docs/sweep.md).
+// and the statistics over them (docs/sweep.md); each command's options from a settings
+// table (common/settings.hpp).
 #include <cstdio>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/settings_cli.hpp"
 #include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/output_lock.hpp"
@@ -24,15 +26,92 @@ struct SweepOptions {
     bool allow_large_run = false;
 };
 
+const Settings<SweepOptions>& sweep_settings() {
+    using O = SweepOptions;
+    const OptionForm input{.existing_file = true, .no_default = true};
+    static const Settings<O> table = {
+        {"spec", "", "sweep spec (TOML, see docs/sweep.md)", Range(), &O::spec, input},
+        {"out", "", "trajectory file to write (CF trajectory NetCDF)", Range(), &O::out},
+        {"summary", "", "one-row-per-trajectory CSV (default: --out with .csv)", Range(), &O::summary, {.no_default = true}},
+        {"shard", "", "run block i of n of the member list (i/n); join with `sweep merge`", Range(), &O::shard},
+        {"threads", "1", "OpenMP threads over members (0: default)", Range::count(0, 4096), &O::threads},
+        {"no-read-ahead",
+         "",
+         "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)",
+         Range(),
+         &O::no_read_ahead,
+         {.no_default = true}},
+        {"scene", "", "scene file (overrides the spec's [sweep] scene)", Range(), &O::scene, input},
+        {"ground", "",
+         "a finer scene of the same place for the bodies' ground, steps and buildings (overrides [sweep] ground; "
+         "docs/debris.md, \"Ground finer than the flow\")",
+         Range(), &O::ground, input},
+        {"flow", "", "flow file (repeatable; replaces the spec's [flows])", Range(), &O::flows, input},
+        {"quiet", "", "no progress lines", Range(), &O::quiet, {.no_default = true}},
+        {"allow-large-run",
+         "",
+         "run even when the estimated work (steps x members) passes the bound flotsam stops at (docs/reliability.md)",
+         Range(),
+         &O::allow_large_run,
+         {.no_default = true}},
+    };
+    return table;
+}
+
 struct MergeOptions {
     std::vector<std::string> parts;
     std::string out = "sweep.nc", summary;
 };
 
+const Settings<MergeOptions>& merge_settings() {
+    using O = MergeOptions;
+    static const Settings<O> table = {
+        {"out", "", "merged trajectory file", Range(), &O::out},
+        {"summary", "", "one-row-per-trajectory CSV (default: --out with .csv)", Range(), &O::summary, {.no_default = true}},
+    };
+    return table;
+}
+
 struct StatsOptions {
     std::string sweep, scene, out = "stats.nc", csv;
     sweep::StatsDef def = sweep::default_stats_def();
 };
+
+const Settings<StatsOptions>& stats_settings() {
+    using O = StatsOptions;
+    using sweep::StatsDef;
+    static const Settings<O> table = {
+        {"sweep",
+         "",
+         "sweep file (flotsam sweep, or merged)",
+         Range(),
+         &O::sweep,
+         {.required = true, .existing_file = true, .no_default = true}},
+        {"scene",
+         "",
+         "scene with the sections and regions (default: the sweep's scene)",
+         Range(),
+         &O::scene,
+         {.existing_file = true, .no_default = true}},
+        {"out", "", "statistics file to write (NetCDF)", Range(), &O::out},
+        {"csv", "", "also write CSV tables into this folder", Range(), &O::csv, {.no_default = true}},
+        {"arrival-time", "s", "region counts at this time", Range::non_negative("s"),
+         member_of<&O::def, &StatsDef::arrival_time>()},
+        {"yaw-window", "s", "yaw statistics over this long after the run's start (paper Fig. 16) and after motion start",
+         Range::positive("s"), member_of<&O::def, &StatsDef::yaw_window>()},
+        {"yaw-min-speed", "m/s", "yaw against the motion only when faster than this", Range::non_negative("m/s"),
+         member_of<&O::def, &StatsDef::yaw_min_speed>()},
+        {"yaw-bin", "degree", "yaw histogram bin width", Range::closed(0.01, 360.0, "degree"),
+         member_of<&O::def, &StatsDef::yaw_bin_width>()},
+        {"r-min-distance", "m", "R(t) undefined where the control's mean distance is below this", Range::non_negative("m"),
+         member_of<&O::def, &StatsDef::r_min_distance>()},
+        {"kde-points", "1", "points on the speed axis of the densities", Range::count(2, 1e6),
+         member_of<&O::def, &StatsDef::kde_points>()},
+        {"map-coarsen", "1", "map cell = this many scene cells per side", Range::count(1, 1e4),
+         member_of<&O::def, &StatsDef::map_coarsen>()},
+    };
+    return table;
+}
 
 void run_sweep_command(const SweepOptions& o) {
     if (o.spec.empty()) fail("sweep", "--spec", "required (or use `flotsam sweep merge`)");
@@ -98,35 +177,14 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     CLI::App* sweep_cmd = app.add_subcommand(
         "sweep", "Run a sweep (flows x bodies x variants x parameter sets x start perturbations) from a TOML spec");
     add_config_option(sweep_cmd);
-    sweep_cmd->add_option("--spec", so->spec, "sweep spec (TOML, see docs/sweep.md)")->check(CLI::ExistingFile);
-    sweep_cmd->add_option("--out", so->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
-    sweep_cmd->add_option("--summary", so->summary, "one-row-per-trajectory CSV (default: --out with .csv)");
-    sweep_cmd->add_option("--shard", so->shard, "run block i of n of the member list (i/n); join with `sweep merge`")
-        ->capture_default_str();
-    sweep_cmd->add_option("--threads", so->threads, "OpenMP threads over members (0: default)")
-        ->capture_default_str()
-        ->check(in_range(Range::count(0, 4096)));
-    sweep_cmd->add_flag("--no-read-ahead", so->no_read_ahead,
-                        "read each frame on the stepping thread (default: one more thread reads the next frame meanwhile)");
-    sweep_cmd->add_option("--scene", so->scene, "scene file (overrides the spec's [sweep] scene)")->check(CLI::ExistingFile);
-    sweep_cmd
-        ->add_option("--ground", so->ground,
-                     "a finer scene of the same place for the bodies' ground, steps and buildings (overrides [sweep] "
-                     "ground; docs/debris.md, \"Ground finer than the flow\")")
-        ->check(CLI::ExistingFile);
-    sweep_cmd->add_option("--flow", so->flows, "flow file (repeatable; replaces the spec's [flows])")->check(CLI::ExistingFile);
-    sweep_cmd->add_flag("--quiet", so->quiet, "no progress lines");
-    sweep_cmd->add_flag("--allow-large-run", so->allow_large_run,
-                        "run even when the estimated work (steps x members) passes the bound flotsam stops at "
-                        "(docs/reliability.md)");
+    add_setting_options(sweep_cmd, sweep_settings(), *so);
     sweep_cmd->require_subcommand(0, 1);
 
     auto mo = std::make_shared<MergeOptions>();
     CLI::App* merge =
         sweep_cmd->add_subcommand("merge", "Join the shards of one sweep into one file (same bytes as an unsharded run)");
     merge->add_option("parts", mo->parts, "sweep files written with --shard")->required()->check(CLI::ExistingFile);
-    merge->add_option("--out", mo->out, "merged trajectory file")->capture_default_str();
-    merge->add_option("--summary", mo->summary, "one-row-per-trajectory CSV (default: --out with .csv)");
+    add_setting_options(merge, merge_settings(), *mo);
     merge->callback([mo] { run_merge_command(*mo); });
     sweep_cmd->callback([so, merge] {
         if (merge->parsed()) return;
@@ -137,36 +195,7 @@ void register_pipeline_commands(CLI::App& app, const std::string& command_line) 
     CLI::App* stats =
         app.add_subcommand("stats", "The paper's statistics over a sweep, and per-cell pass probability and largest speed");
     add_config_option(stats);
-    stats->add_option("--sweep", to->sweep, "sweep file (flotsam sweep, or merged)")->required()->check(CLI::ExistingFile);
-    stats->add_option("--scene", to->scene, "scene with the sections and regions (default: the sweep's scene)")
-        ->check(CLI::ExistingFile);
-    stats->add_option("--out", to->out, "statistics file to write (NetCDF)")->capture_default_str();
-    stats->add_option("--csv", to->csv, "also write CSV tables into this folder");
-    stats->add_option("--arrival-time", to->def.arrival_time, "region counts at this time [s]")
-        ->capture_default_str()
-        ->check(in_range(Range::non_negative("s")));
-    stats
-        ->add_option("--yaw-window", to->def.yaw_window,
-                     "yaw statistics over this long after the run's start (paper Fig. 16) and after motion start [s]")
-        ->capture_default_str()
-        ->check(in_range(Range::positive("s")));
-    stats->add_option("--yaw-min-speed", to->def.yaw_min_speed, "yaw against the motion only when faster than this [m/s]")
-        ->capture_default_str()
-        ->check(in_range(Range::non_negative("m/s")));
-    stats->add_option("--yaw-bin", to->def.yaw_bin_width, "yaw histogram bin width [degree]")
-        ->capture_default_str()
-        ->check(in_range(Range::closed(0.01, 360.0, "degree")));
-    stats
-        ->add_option("--r-min-distance", to->def.r_min_distance,
-                     "R(t) undefined where the control's mean distance is below this [m]")
-        ->capture_default_str()
-        ->check(in_range(Range::non_negative("m")));
-    stats->add_option("--kde-points", to->def.kde_points, "points on the speed axis of the densities")
-        ->capture_default_str()
-        ->check(in_range(Range::count(2, 1e6)));
-    stats->add_option("--map-coarsen", to->def.map_coarsen, "map cell = this many scene cells per side")
-        ->capture_default_str()
-        ->check(in_range(Range::count(1, 1e4)));
+    add_setting_options(stats, stats_settings(), *to);
     stats->callback([to, command_line] { run_stats_command(*to, command_line); });
 }
 

@@ -59,7 +59,7 @@ enum class LevelMode {
                // imposed, the outgoing one comes from inside, so reflections leave
 };
 inline constexpr EnumNames<LevelMode, 2> level_mode_names{"level mode",
-                                                          {{{LevelMode::incident, "incident"}, {LevelMode::total, "total"}}}};
+                                                          {{{LevelMode::total, "total"}, {LevelMode::incident, "incident"}}}};
 constexpr const auto& enum_names(LevelMode) { return level_mode_names; }
 
 // What a level or discharge side becomes after its series ends.
@@ -74,11 +74,12 @@ constexpr const auto& enum_names(SeriesEnd) { return series_end_names; }
 
 struct BoundaryDef {
     BoundaryKind kind = BoundaryKind::wall;
-    std::string series_file;  // CSV time,value for level / discharge; the NetCDF file of a forced side
+    std::string series_file;   // CSV time,value for level / discharge
+    std::string forcing_file;  // CF NetCDF of a forced side (another run's values; data/boundary_forcing.hpp)
     LevelMode level_mode = LevelMode::total;
     SeriesEnd series_end = SeriesEnd::error;
     // A forced side's values along the side, placed in the scene's frame
-    // (data/boundary_forcing.hpp reads them from series_file), and how they are read in time.
+    // (data/boundary_forcing.hpp reads them from forcing_file), and how they are read in time.
     std::shared_ptr<const SideRecord> record;
     ForcingTime forcing_time = ForcingTime::linear;
 };

@@ -39,6 +39,9 @@ std::string restart_key(const RunDef& run, const PhysicsDef& solver) {
     for (int k = 0; k < 4; ++k) {
         key.erase(std::string(names[k]) + "-series");
         if (!sides[k]->series_file.empty()) key[std::string(names[k]) + "-series sha256"] = sha256_file(sides[k]->series_file);
+        key.erase(std::string(names[k]) + "-forcing");
+        if (!sides[k]->forcing_file.empty())
+            key[std::string(names[k]) + "-forcing sha256"] = sha256_file(sides[k]->forcing_file);
     }
     std::string text;
     for (const auto& [name, value] : key) text += name + " = " + value + "\n";

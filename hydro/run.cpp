@@ -16,9 +16,9 @@
 #include "common/progress.hpp"
 #include "common/sha256.hpp"
 #include "common/version.hpp"
-#include "hydro/boundary_output.hpp"
-#include "hydro/point_samples.hpp"
 #include "hydro/restart_key.hpp"
+#include "hydro/run_checkpoint.hpp"
+#include "hydro/run_frames.hpp"
 #include "hydro/state_checks.hpp"
 
 namespace flotsam::hydro {
@@ -27,292 +27,21 @@ std::string checkpoint_path(const std::string& out_file) { return out_file + ".c
 
 namespace {
 
-constexpr double kFill = 9.969209968386869e36;  // NetCDF's default float fill
-
-struct Window {
-    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // inclusive interior cell ranges
-    Grid grid;
-};
-
-Window make_window(const Grid& g, const std::optional<std::array<double, 4>>& w) {
-    Window out;
-    if (!w) {
-        out.i1 = g.nx - 1;
-        out.j1 = g.ny - 1;
-    } else {
-        const auto& b = *w;
-        if (!(b[0] < b[1] && b[2] < b[3])) fail("", "--output-window", "needs x_min < x_max and y_min < y_max");
-        // At least two cells each way inside the grid (a replayed flow interpolates).
-        if (!(b[0] < g.x(g.nx - 2) && b[1] > g.x(1) && b[2] < g.y(g.ny - 2) && b[3] > g.y(1)))
-            fail("", "--output-window",
-                 "x " + number_text(b[0]) + " to " + number_text(b[1]) + ", y " + number_text(b[2]) + " to " + number_text(b[3]) +
-                     " m does not cover two cells of the scene's grid (x " + number_text(g.x_min_edge()) + " to " +
-                     number_text(g.x_max_edge()) + ", y " + number_text(g.y_min_edge()) + " to " + number_text(g.y_max_edge()) +
-                     " m)");
-        out.i0 = g.cell_i(b[0]);
-        out.i1 = g.cell_i(b[1]);
-        out.j0 = g.cell_j(b[2]);
-        out.j1 = g.cell_j(b[3]);
-    }
-    out.grid = Grid{out.i1 - out.i0 + 1, out.j1 - out.j0 + 1, g.x(out.i0), g.y(out.j0), g.dx, g.dy};
-    return out;
-}
-
-std::vector<double> frame_times(double duration, double interval) {
-    check_range("--output-interval", interval, Range::positive("s"));
-    check_allocation("--output-interval", number_text(interval) + " s over " + number_text(duration) + " s",
-                     duration / interval + 2, sizeof(double), "frame times");
-    std::vector<double> t;
-    const long n = long(std::floor(duration / interval + 1e-9));
-    for (long k = 0; k <= n; ++k) t.push_back(double(k) * interval);
-    if (t.back() < duration - 1e-9) t.push_back(duration);
-    if (t.size() < 2)
-        fail("", "--duration",
-             number_text(duration) + " s stores one frame (t = 0) only: a flow needs at least two; give a longer --duration");
-    return t;
-}
-
-using GaugeSample = PointSample;
-
-// Accumulated over the run on the output window.
-struct Summary {
-    std::vector<float> max_depth, max_speed, arrival;
-};
-
-// Gauges at named points (hydro/point_samples.hpp), sampled every `interval`.
-class Gauges {
-public:
-    Gauges(const std::vector<FlowGauge>& gauges, const Grid& g, double interval, double duration) : interval_(interval) {
-        for (const auto& p : gauges) {
-            if (!g.contains(p.x, p.y)) {
-                std::string at = std::to_string(p.x);
-                at += ", ";
-                at += std::to_string(p.y);
-                fail("", "gauge '" + p.name + "'", "position (" + at + ") is outside the grid");
-            }
-            points_.push_back(point_stencil(g, p.x, p.y));
-        }
-        check_range("--gauge-interval", interval, Range::positive("s"));
-        if (!gauges.empty())
-            check_allocation("--gauge-interval", number_text(interval) + " s over " + number_text(duration) + " s",
-                             (duration / interval + 1) * double(gauges.size()), 4 * sizeof(float) + sizeof(double),
-                             "gauge samples");
-        samples_ = gauges.empty() ? 0 : std::size_t(std::floor(duration / interval + 1e-9)) + 1;
-    }
-    std::size_t samples() const { return samples_; }
-    std::size_t count() const { return points_.size(); }
-    template <class S>
-    std::vector<GaugeSample> read(const S& s) const {
-        std::vector<GaugeSample> out;
-        for (const PointStencil& p : points_) out.push_back(sample_point(s, p));
-        return out;
-    }
-    // Records every sample time in (t0, t1] by linear interpolation between the states.
-    void record(double t0, const std::vector<GaugeSample>& a, double t1, const std::vector<GaugeSample>& b) {
-        while (next_ < samples_) {
-            const double ts = double(next_) * interval_;
-            if (ts > t1 + 1e-12) break;
-            if (ts >= t0 - 1e-12) {
-                const double w = t1 > t0 ? std::clamp((ts - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
-                time_.push_back(ts);
-                for (std::size_t g = 0; g < a.size(); ++g) {
-                    eta_.push_back(float((1 - w) * a[g].eta + w * b[g].eta));
-                    h_.push_back(float((1 - w) * a[g].h + w * b[g].h));
-                    u_.push_back(float((1 - w) * a[g].u + w * b[g].u));
-                    v_.push_back(float((1 - w) * a[g].v + w * b[g].v));
-                }
-            }
-            ++next_;
-        }
-    }
-    void flush(FlowWriter& w) {
-        w.write_gauges(flushed_, time_.size(), time_, eta_, h_, u_, v_);
-        flushed_ += time_.size();
-        time_.clear();
-        eta_.clear();
-        h_.clear();
-        u_.clear();
-        v_.clear();
-    }
-    std::size_t next() const { return next_; }
-    void resume_at(std::size_t next) { next_ = flushed_ = next; }
-
-private:
-    double interval_;
-    std::vector<PointStencil> points_;
-    std::size_t samples_ = 0, next_ = 0, flushed_ = 0;
-    std::vector<double> time_;
-    std::vector<float> eta_, h_, u_, v_;
-};
-
-// Calls f(q0, h, u, v) for each row of the window, rows in parallel: the depth and
-// velocities of the row's cells (state_row) and the index of its first cell in window
-// arrays.
-template <class S, class F>
-void for_each_window_row(const S& s, const Window& win, F&& f) {
-    const std::size_t nx = std::size_t(win.grid.nx);
-#pragma omp parallel
-    {
-        std::vector<double> h(nx), u(nx), v(nx);
-#pragma omp for schedule(static)
-        for (int j = win.j0; j <= win.j1; ++j) {
-            s.state_row(j, win.i0, win.i1 + 1, h.data(), u.data(), v.data());
-            f(win.grid.index(0, j - win.j0), h.data(), u.data(), v.data());
-        }
-    }
-}
-
-template <class S>
-void write_frame(FlowWriter& w, std::size_t k, const S& s, const Window& win) {
-    const std::size_t n = win.grid.size(), nx = std::size_t(win.grid.nx);
-    std::vector<float> h(n), u(n), v(n);
-    for_each_window_row(s, win, [&](std::size_t q0, const double* rh, const double* ru, const double* rv) {
-        for (std::size_t i = 0; i < nx; ++i) {
-            h[q0 + i] = float(rh[i]);
-            u[q0 + i] = float(ru[i]);
-            v[q0 + i] = float(rv[i]);
-        }
-    });
-    w.write_frame(k, h, u, v);
-}
-
-// The maxima and arrival times of one row of cells, given their depth and velocities.
-// Out of line and branch-free: it runs after every step, so it must vectorise.
-[[gnu::noinline]] void accumulate_row(std::size_t n, const double* h, const double* u, const double* v, double t,
-                                      double arrival_depth, float* __restrict max_depth, float* __restrict max_speed,
-                                      float* __restrict arrival) {
-    const float fill = float(kFill), arrival_time = float(t);
-#pragma omp simd
-    for (std::size_t i = 0; i < n; ++i) {
-        // (Values, not references into the arrays, for std::max: else no vectorising.)
-        const float depth = float(h[i]), speed = float(std::sqrt(u[i] * u[i] + v[i] * v[i]));
-        const float depth_so_far = max_depth[i], speed_so_far = max_speed[i], arrived = arrival[i];
-        max_depth[i] = std::max(depth_so_far, depth);
-        max_speed[i] = std::max(speed_so_far, speed);
-        arrival[i] = (h[i] > arrival_depth) & (arrived == fill) ? arrival_time : arrived;
-    }
-}
-
-// Every step, so only where a row may hold water: a cell whose state is exactly zero
-// raises no maximum and does not arrive (the maps start at 0 and the fill value).
-template <class S>
-void accumulate(Summary& sum, const S& s, const Window& win, double t, double arrival_depth) {
-#pragma omp parallel
-    {
-        std::vector<double> h(std::size_t(win.grid.nx)), u(h.size()), v(h.size());
-#pragma omp for schedule(static)
-        for (int j = win.j0; j <= win.j1; ++j) {
-            const ColumnRange c = s.wet_columns(j);
-            const int i0 = std::max(win.i0, c.begin), i1 = std::min(win.i1 + 1, c.end);
-            if (i0 >= i1) continue;
-            s.state_row(j, i0, i1, h.data(), u.data(), v.data());
-            const std::size_t q0 = win.grid.index(i0 - win.i0, j - win.j0);
-            accumulate_row(std::size_t(i1 - i0), h.data(), u.data(), v.data(), t, arrival_depth, sum.max_depth.data() + q0,
-                           sum.max_speed.data() + q0, sum.arrival.data() + q0);
-        }
-    }
-}
-
-// ---- checkpoints ----
-
-struct Checkpoint {
-    double time = 0.0;
-    long steps = 0;
-    std::size_t next_frame = 0, next_gauge = 0;
-    double volume_start = 0.0;
-    double pump_level = 0.0;
-    bool pump_stopped = false;
-    std::string key;  // restart_key() of the run that wrote it
-};
-
-template <class S>
-void write_checkpoint(const std::string& path, S& s, const Summary& sum, const Checkpoint& c) {
-    AtomicOutput out(path);
-    {
-        nc::File f = nc::File::create(out.temp_path());
-        const auto arrays = s.state_arrays();
-        std::vector<int> vs;
-        for (std::size_t k = 0; k < arrays.size(); ++k) {
-            const int d = f.def_dim("state_" + std::to_string(k) + "_cell", arrays[k]->size());
-            vs.push_back(f.def_var("state_" + std::to_string(k), NC_DOUBLE, {d}));
-        }
-        const int dw = f.def_dim("window_cell", sum.max_depth.size());
-        const int vmd = f.def_var("max_depth", NC_FLOAT, {dw}), vms = f.def_var("max_speed", NC_FLOAT, {dw}),
-                  va = f.def_var("arrival_time", NC_FLOAT, {dw});
-        f.put_att(NC_GLOBAL, "time", c.time);
-        f.put_att(NC_GLOBAL, "steps", double(c.steps));
-        f.put_att(NC_GLOBAL, "next_frame", double(c.next_frame));
-        f.put_att(NC_GLOBAL, "next_gauge", double(c.next_gauge));
-        f.put_att(NC_GLOBAL, "volume_start", c.volume_start);
-        f.put_att(NC_GLOBAL, "pump_level", c.pump_level);
-        f.put_att(NC_GLOBAL, "pump_stopped", c.pump_stopped ? 1 : 0);
-        f.put_att(NC_GLOBAL, "restart_key", c.key);
-        f.enddef();
-        for (std::size_t k = 0; k < arrays.size(); ++k) f.put(vs[k], *arrays[k]);
-        f.put(vmd, sum.max_depth);
-        f.put(vms, sum.max_speed);
-        f.put(va, sum.arrival);
-        f.close();
-    }
-    out.commit();
-}
-
-double read_checkpoint_time(const std::string& path) {
-    const nc::File f = nc::File::open_read(path);
-    return f.att_double(NC_GLOBAL, "time").value_or(-1.0);
-}
-
-std::string read_checkpoint_key(const std::string& path) {
-    const nc::File f = nc::File::open_read(path);
-    const auto key = f.att_text(NC_GLOBAL, "restart_key");
-    if (!key) fail(path, "attribute 'restart_key'", "missing: written by an older flotsam, whose checkpoints cannot be continued");
-    return *key;
-}
-
-template <class S>
-Checkpoint read_checkpoint(const std::string& path, S& s, Summary& sum) {
-    const nc::File f = nc::File::open_read(path);
-    auto need = [&](const char* name) {
-        auto v = f.att_double(NC_GLOBAL, name);
-        if (!v) fail(path, std::string("attribute '") + name + "'", "missing: not a flotsam checkpoint");
-        return *v;
-    };
-    Checkpoint c;
-    c.time = need("time");
-    c.steps = long(need("steps"));
-    c.next_frame = std::size_t(need("next_frame"));
-    c.next_gauge = std::size_t(need("next_gauge"));
-    c.volume_start = need("volume_start");
-    c.pump_level = need("pump_level");
-    c.pump_stopped = need("pump_stopped") != 0.0;
-    c.key = read_checkpoint_key(path);
-    const auto arrays = s.state_arrays();
-    for (std::size_t k = 0; k < arrays.size(); ++k) {
-        const std::string name = "state_" + std::to_string(k);
-        auto v = f.get_double(f.var(name));
-        if (v.size() != arrays[k]->size())
-            fail(path, "variable '" + name + "'", "size does not match this scene's grid and solver");
-        *arrays[k] = std::move(v);
-    }
-    sum.max_depth = f.get_float(f.var("max_depth"));
-    sum.max_speed = f.get_float(f.var("max_speed"));
-    sum.arrival = f.get_float(f.var("arrival_time"));
-    return c;
-}
-
 std::string boundary_files(const PhysicsDef& d) {
     std::string s;
     const BoundaryDef* sides[4] = {&d.west, &d.east, &d.south, &d.north};
     const char* names[4] = {"west", "east", "south", "north"};
     for (int k = 0; k < 4; ++k)
-        if (!sides[k]->series_file.empty()) s += std::string(s.empty() ? "" : "; ") + names[k] + ": " + sides[k]->series_file;
+        for (const std::string& f : {sides[k]->series_file, sides[k]->forcing_file})
+            if (!f.empty()) s += std::string(s.empty() ? "" : "; ") + names[k] + ": " + f;
     return s;
 }
 
 std::string boundary_checksums(const PhysicsDef& d) {
     std::string s;
     for (const BoundaryDef* b : {&d.west, &d.east, &d.south, &d.north})
-        if (!b->series_file.empty()) s += std::string(s.empty() ? "" : "; ") + "sha256:" + sha256_file(b->series_file);
+        for (const std::string& f : {b->series_file, b->forcing_file})
+            if (!f.empty()) s += std::string(s.empty() ? "" : "; ") + "sha256:" + sha256_file(f);
     return s;
 }
 
@@ -630,7 +359,8 @@ RunResult run_hydro(const RunDef& run, const PhysicsDef& physics) {
     if (!(run.duration > 0.0)) fail("", "--duration", "must be positive");
     const Scene scene = read_scene(run.scene_file);
     if (run.restart && !run.boundary_output.file.empty())
-        fail("", "--boundary-output", "is written from the start of a run and not continued by --restart: run it again without --restart");
+        fail("", "--boundary-output",
+             "is written from the start of a run and not continued by --restart: run it again without --restart");
     // Boundary series must cover the whole run (or its start, where the side hands over
     // to a transmissive one when the series ends) before any work starts.
     double highest_level = 0.0;  // [m] of any boundary series

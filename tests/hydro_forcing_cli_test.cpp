@@ -82,6 +82,13 @@ TEST(BoundaryForcingCli, ABoxForcedByTheOutlineOfTheWholeRunReproducesIt) {
     EXPECT_GT(peak, 0.005);
     EXPECT_LT(worst, 0.02 * peak);
     EXPECT_GT(walled, 0.5 * peak);
+    // The forced side is recorded (west = "forced", west-forcing = the file): the flow's
+    // own settings give it again, to the bit.
+    const nc::File flow = nc::File::open_read(dir + "/box-flow.nc");
+    const std::string config = test::write_file(dir, "box.toml", *flow.att_text(NC_GLOBAL, "flotsam_config"));
+    ASSERT_EQ(test::run_cli("hydro --config " + config + " --quiet --out " + dir + "/again.nc", &out), 0) << out;
+    const nc::File again = nc::File::open_read(dir + "/again.nc");
+    EXPECT_EQ(flow.get_float(flow.var("h")), again.get_float(again.var("h")));
 }
 
 // What a user gets wrong is named, and leaves no output.

@@ -13,6 +13,7 @@
 #include "common/netcdf.hpp"
 #include "debris/body.hpp"
 #include "debris/world.hpp"
+#include "hydro/run_settings.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "tests/test_support.hpp"
 
@@ -29,7 +30,7 @@ void expect_sound(const Settings<Def>& table, std::set<std::string>& keys) {
         EXPECT_TRUE(keys.insert(s.key).second) << "key used twice: " << s.key;
         EXPECT_EQ(s.key.find('_'), std::string::npos) << s.key << ": keys are kebab-case";
         EXPECT_FALSE(s.help.empty()) << s.key;
-        if (s.is_number() && !s.is_factor()) {
+        if (s.is_number() && !s.is_factor() && !s.form.no_default) {
             EXPECT_EQ(range_problem(s.number(defaults), s.range), "") << s.key << ": default";
         }
     }
@@ -65,6 +66,25 @@ TEST(Settings, EveryTableSettingIsAnOptionOfFlotsamDebris) {
     for (const auto& s : debris::step_settings()) EXPECT_NE(help.find("--" + s.key), std::string::npos) << s.key;
     EXPECT_NE(help.find("--time-interpolation"), std::string::npos);
     EXPECT_NE(help.find("--cm FLOAT:[1, 100]=2"), std::string::npos) << help;
+}
+
+// The hydro table is sound too, each of its settings is an option of `flotsam hydro`, and
+// the recorded settings (settings_toml) name every one but those left out, the study
+// options last, as their --help section.
+TEST(Settings, EveryHydroTableSettingIsAnOptionOfFlotsamHydro) {
+    std::set<std::string> keys;
+    expect_sound(hydro::hydro_settings(), keys);
+    std::string help;
+    ASSERT_EQ(test::run_cli("hydro --help", &help), 0) << help;
+    for (const auto& s : hydro::hydro_settings())
+        EXPECT_TRUE(help.find("--" + s.key + " ") != std::string::npos || help.find("--" + s.key + "\n") != std::string::npos)
+            << s.key;
+    EXPECT_NE(help.find("--nest-ratio INT:whole numbers in [1, 16]=[1] ..."), std::string::npos) << help;
+    const std::string toml = settings_toml(hydro::hydro_settings(), hydro::HydroDef{}, {"out", "label"});
+    EXPECT_EQ(toml.find("out="), std::string::npos);
+    EXPECT_NE(toml.find("\nnest-ratio=1\nnest-x=-2\n"), std::string::npos) << toml;
+    EXPECT_NE(toml.find("\nlevel-mode=\"\"\nwest-level-mode=\"total\"\n"), std::string::npos) << toml;
+    EXPECT_LT(toml.find("pump-length="), toml.find("friction="));
 }
 
 // A --config file is TOML with the option names as keys: a number, a choice, a list, a
