@@ -289,7 +289,7 @@ TEST(Solver, PuddleInAPitDrainsToItsSillAndStops) {
 // over a free overfall the shelf's depth H falls as d(H^-1/2)/dt = 0.85 / L (weir
 // q = 1.70 H^1.5 over the shelf's length L = 2 cm), to 1.3e-6 m in 20 s, friction
 // slowing it (8.4e-6 m left). When the film's level slope came from the puddle beside it
-// (the ground flat between them, so "monotone" to the first rule, ce4d34a), the film's
+// (the ground flat between them, so "monotone" to a rule on the bed alone), the film's
 // face stood above the puddle's level and held it back (here 1.1e-4 m left at 0.02 m/s;
 // in the 1 cm city flow 4.4 mm at 1.3 m/s for the last 90 s of the run).
 TEST(Solver, PuddleOnAShelfRunsOffItsEdge) {
