@@ -43,11 +43,10 @@ std::vector<double> sweep_output_times(const SweepSpec& spec) {
     return times;
 }
 
-SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunStats* stats) {
-    const auto wall0 = std::chrono::steady_clock::now();
-    const std::vector<Member> all = enumerate_members(spec);
-    const auto range = shard_range(int(all.size()), def.shard);
+namespace {
 
+// The sweep's description, as every shard records it (the members come later).
+SweepResult describe_sweep(const SweepSpec& spec, const SweepRunDef& def, int member_count, const Scene* scene) {
     SweepResult r;
     r.spec_file = spec.path;
     r.spec_sha256 = spec.sha256;
@@ -59,29 +58,26 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
     for (const auto& v : spec.variants) r.variants.push_back(v.name);
     r.params = spec.params;
     r.perturbation = spec.perturbation;
-    r.member_count = int(all.size());
+    r.member_count = member_count;
     r.output_interval = spec.output_interval;
-    debris::WorldDef wdef = spec.world;
     std::vector<debris::BodyDef> shapes;
     for (const auto& b : spec.bodies) shapes.push_back(b.def);
-    wdef = debris::scaled_to_bodies(wdef, shapes, spec.dt_max_given);  // scale-dependent settings follow the bodies
-    r.world = wdef;                                                    // as run (threads are not recorded)
-    wdef.threads = def.threads;
-    wdef.read_ahead = def.read_ahead;
+    r.world = debris::scaled_to_bodies(spec.world, shapes, spec.dt_max_given);  // scale-dependent settings follow the bodies
     r.time = sweep_output_times(spec);
     r.shard = def.shard;
     // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.
     r.crs = cf::read_crs(nc::File::open_read(spec.flows.front()), "h");
-
-    std::unique_ptr<Scene> scene;
-    if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));
-    std::unique_ptr<Scene> ground;
-    if (!spec.ground.empty()) ground = std::make_unique<Scene>(read_scene(spec.ground));
     // The scene every shard records, whichever flows its members are on (merging shards
     // compares it).
     r.scene_buildings_sha256 =
         scene ? scene_buildings_sha256(*scene) : debris::FlowReader(spec.flows.front()).scene_buildings_sha256();
-    // The work of this shard, flow by flow, before any body steps.
+    return r;
+}
+
+// The work of this shard, flow by flow, before any body steps: refused past the bounds
+// (common/checks.hpp) unless allowed.
+void check_shard_work(const SweepSpec& spec, const SweepRunDef& def, const std::vector<Member>& all, std::array<int, 2> range,
+                      const Scene* ground, const SweepResult& r) {
     double body_steps = 0.0;
     for (int f = 0; f < int(spec.flows.size()); ++f) {
         double on_flow = 0;
@@ -89,61 +85,83 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
         if (on_flow == 0) continue;
         const debris::FlowReader probe(spec.flows[std::size_t(f)]);
         const Grid cells = ground && ground->grid.dx < probe.grid().dx ? ground->grid : probe.grid();
-        body_steps += on_flow * debris::check_replay_work(probe, cells, wdef.step, r.time.front(), r.time.back(), on_flow,
+        body_steps += on_flow * debris::check_replay_work(probe, cells, r.world.step, r.time.front(), r.time.back(), on_flow,
                                                           def.allow_large_run, "[sweep] dt-max",
                                                           "[sweep] vertex-step-fraction", spec.path);
     }
     check_work("sweep size", number_text(double(range[1] - range[0])) + " members over " + number_text(double(spec.flows.size())) +
                                  " flows",
                body_steps, max_body_steps, "body steps", def.allow_large_run, spec.path);
+}
+
+// Replays the members on flow f through one World, appending their records to r.
+void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::vector<const Member*>& on_flow,
+              const Scene* scene, const Scene* ground, SweepResult& r, SweepRunStats& st) {
+    const std::string& path = spec.flows[std::size_t(f)];
+    debris::WorldDef wdef = r.world;  // as run (threads are not recorded)
+    wdef.threads = def.threads;
+    wdef.read_ahead = def.read_ahead;
+    std::vector<debris::BodyDef> bodies;
+    for (const Member* m : on_flow) bodies.push_back(m->def);
+    debris::World world = debris::make_world(path, scene, bodies, wdef, ground);
+    debris::TrajectorySeries series;
+    debris::record(world, series);
+    Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +
+                          std::to_string(on_flow.size()) + " members)",
+                      r.time.back(), 10.0, def.quiet);
+    long steps = 0;
+    for (std::size_t k = 1; k < r.time.size(); ++k) {
+        world.advance_to(r.time[k]);
+        debris::record(world, series);
+        steps = 0;
+        for (const auto& s : world.stats()) steps += s.steps;
+        progress.update(r.time[k], spec.output_interval, steps);
+    }
+    progress.finish(r.time.back(), steps);
+    for (std::size_t b = 0; b < on_flow.size(); ++b) {
+        const Member& m = *on_flow[b];
+        MemberRecord rec;
+        static_cast<MemberIndex&>(rec) = m;
+        rec.body_name = m.def.name;
+        rec.start_name = spec.bodies[std::size_t(m.body)].start;
+        rec.variant_name = spec.variants[std::size_t(m.variant)].name;
+        rec.def = m.def;
+        rec.heading0_deg = m.def.heading * 180.0 / std::numbers::pi;
+        const debris::BodyStats& bs = world.stats()[b];
+        rec.collision_steps = int(bs.collisions);
+        rec.unresolved_collisions = int(bs.unresolved);
+        rec.axis_shift_steps = int(bs.axis_shifts);
+        rec.track = std::move(series.tracks[b]);
+        r.members.push_back(std::move(rec));
+        st.steps += bs.steps;
+    }
+    st.flows_opened += 1;
+    st.frames_loaded += world.flow().frames_loaded();
+    st.cells_read += world.flow().cells_read();
+    st.frames_refit += world.flow().frames_refit();
+    st.window_cells += world.flow().window_cells();
+    st.io_seconds += world.flow().load_seconds();
+    st.read_cpu_seconds += world.flow().load_cpu_seconds();
+}
+
+}  // namespace
+
+SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunStats* stats) {
+    const auto wall0 = std::chrono::steady_clock::now();
+    const std::vector<Member> all = enumerate_members(spec);
+    const auto range = shard_range(int(all.size()), def.shard);
+    std::unique_ptr<Scene> scene;
+    if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));
+    std::unique_ptr<Scene> ground;
+    if (!spec.ground.empty()) ground = std::make_unique<Scene>(read_scene(spec.ground));
+    SweepResult r = describe_sweep(spec, def, int(all.size()), scene.get());
+    check_shard_work(spec, def, all, range, ground.get(), r);
     SweepRunStats st;
     for (int f = 0; f < int(spec.flows.size()); ++f) {
         std::vector<const Member*> on_flow;
         for (int id = range[0]; id < range[1]; ++id)
             if (all[std::size_t(id)].flow == f) on_flow.push_back(&all[std::size_t(id)]);
-        if (on_flow.empty()) continue;
-        const std::string& path = spec.flows[std::size_t(f)];
-        std::vector<debris::BodyDef> bodies;
-        for (const Member* m : on_flow) bodies.push_back(m->def);
-        debris::World world = debris::make_world(path, scene.get(), bodies, wdef, ground.get());
-        debris::TrajectorySeries series;
-        debris::record(world, series);
-        Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +
-                              std::to_string(on_flow.size()) + " members)",
-                          r.time.back(), 10.0, def.quiet);
-        long steps = 0;
-        for (std::size_t k = 1; k < r.time.size(); ++k) {
-            world.advance_to(r.time[k]);
-            debris::record(world, series);
-            steps = 0;
-            for (const auto& s : world.stats()) steps += s.steps;
-            progress.update(r.time[k], spec.output_interval, steps);
-        }
-        progress.finish(r.time.back(), steps);
-        for (std::size_t b = 0; b < on_flow.size(); ++b) {
-            const Member& m = *on_flow[b];
-            MemberRecord rec;
-            static_cast<MemberIndex&>(rec) = m;
-            rec.body_name = m.def.name;
-            rec.start_name = spec.bodies[std::size_t(m.body)].start;
-            rec.variant_name = spec.variants[std::size_t(m.variant)].name;
-            rec.def = m.def;
-            rec.heading0_deg = m.def.heading * 180.0 / std::numbers::pi;
-            const debris::BodyStats& bs = world.stats()[b];
-            rec.collision_steps = int(bs.collisions);
-            rec.unresolved_collisions = int(bs.unresolved);
-            rec.axis_shift_steps = int(bs.axis_shifts);
-            rec.track = std::move(series.tracks[b]);
-            r.members.push_back(std::move(rec));
-            st.steps += bs.steps;
-        }
-        st.flows_opened += 1;
-        st.frames_loaded += world.flow().frames_loaded();
-        st.cells_read += world.flow().cells_read();
-        st.frames_refit += world.flow().frames_refit();
-        st.window_cells += world.flow().window_cells();
-        st.io_seconds += world.flow().load_seconds();
-        st.read_cpu_seconds += world.flow().load_cpu_seconds();
+        if (!on_flow.empty()) run_flow(spec, def, f, on_flow, scene.get(), ground.get(), r, st);
     }
     st.members = int(r.members.size());
     st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

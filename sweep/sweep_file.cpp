@@ -61,6 +61,117 @@ void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const st
         f.put(vars.value[p], column<double>(sets, [p](const ParameterSet& s) { return s.values[p]; }));
 }
 
+namespace {
+
+// The per-trajectory string columns, known before they are defined (a character array is
+// as long as its longest string).
+struct MemberText {
+    std::vector<std::string> ids, flows, bodies, starts, variants, contacts, collisions, labels;
+};
+
+MemberText member_text(const SweepResult& r) {
+    const auto& ms = r.members;
+    MemberText t;
+    for (const auto& m : ms) t.ids.push_back(trajectory_label(r, m));
+    t.flows = column<std::string>(ms, [&](const MemberRecord& m) { return r.flows[std::size_t(m.flow)]; });
+    t.bodies = column<std::string>(ms, &MemberRecord::body_name);
+    t.starts = column<std::string>(ms, &MemberRecord::start_name);
+    t.variants = column<std::string>(ms, &MemberRecord::variant_name);
+    t.contacts = column<std::string>(ms, [](const MemberRecord& m) { return std::string(enum_name(m.def.contact)); });
+    t.collisions = column<std::string>(ms, [](const MemberRecord& m) { return std::string(enum_name(m.def.collision)); });
+    t.labels = column<std::string>(ms, [&](const MemberRecord& m) { return r.params[std::size_t(m.param_set)].label; });
+    return t;
+}
+
+// The per-trajectory variables' ids.
+struct MemberVariables {
+    int id, member, flow_index, flow, body, start, perturbation, variant, contact, collision, param_set, label;
+    std::vector<int> coefficients, shape, model;
+    int x0, y0, heading0, collision_steps, unresolved, axis_shift_steps;
+};
+
+MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText& t) {
+    auto var = [&](const char* name, nc_type type, const char* units, const char* long_name) {
+        return cf::def_var(f, {.name = name, .type = type, .dims = {dtraj}, .units = units, .long_name = long_name});
+    };
+    auto text = [&](const char* name, const std::vector<std::string>& values, const char* long_name) {
+        return cf::def_var(
+            f, {.name = name, .type = NC_CHAR, .dims = {dtraj}, .long_name = long_name, .text_length = cf::longest(values)});
+    };
+    MemberVariables v;
+    v.id = text("trajectory_id", t.ids, "body/variant/parameter set/flow/perturbation");
+    f.put_att(v.id, "cf_role", std::string("trajectory_id"));
+    v.member = var("member_id", NC_INT, "", "position in the sweep's full member list");
+    v.flow_index = var("flow_index", NC_INT, "", "index of the flow (dimension flow)");
+    v.flow = text("flow", t.flows, "flow file replayed");
+    v.body = text("body", t.bodies, "body name");
+    v.start = text("start_name", t.starts, "scene start point (empty: given by coordinates)");
+    v.perturbation = var("perturbation", NC_INT, "", "start perturbation: 0 exact start, k > 0 the k-th perturbed start");
+    v.variant = text("variant", t.variants, "model variant: friction + collision (CC+SC, LC+MC)");
+    v.contact = text("contact_model", t.contacts, "friction model: center (CC) or local (LC)");
+    v.collision = text("collision_model", t.collisions, "collision model: single (SC) or multi (MC)");
+    v.param_set = var("param_set", NC_INT, "", "index of the parameter set (dimension param_set)");
+    v.label = text("param_label", t.labels, "label of the parameter set");
+    v.coefficients = def_setting_vars(f, debris::body_coefficient_settings(), {dtraj});
+    v.shape = def_setting_vars(f, debris::body_shape_settings(), {dtraj});
+    v.model = def_setting_vars(f, debris::body_model_settings(), {dtraj});
+    v.x0 = var("x0", NC_DOUBLE, "m", "start x of the centre (perturbation included)");
+    v.y0 = var("y0", NC_DOUBLE, "m", "start y of the centre (perturbation included)");
+    v.heading0 = var("heading0", NC_DOUBLE, "degree", "start heading of the long axis from +x, counter-clockwise");
+    v.collision_steps = var("collision_steps", NC_INT, "", "steps with an obstacle contact");
+    v.unresolved = var("unresolved_collisions", NC_INT, "", "steps whose collision passes left an overlap");
+    v.axis_shift_steps = var("axis_shift_steps", NC_INT, "", "steps rotated about the contact centroid");
+    return v;
+}
+
+void put_member_variables(nc::File& f, const MemberVariables& v, const MemberText& t, const std::vector<MemberRecord>& ms) {
+    f.put(v.id, t.ids);
+    f.put(v.member, column<int>(ms, &MemberRecord::id));
+    f.put(v.flow_index, column<int>(ms, &MemberRecord::flow));
+    f.put(v.flow, t.flows);
+    f.put(v.body, t.bodies);
+    f.put(v.start, t.starts);
+    f.put(v.perturbation, column<int>(ms, &MemberRecord::perturbation));
+    f.put(v.variant, t.variants);
+    f.put(v.contact, t.contacts);
+    f.put(v.collision, t.collisions);
+    f.put(v.param_set, column<int>(ms, &MemberRecord::param_set));
+    f.put(v.label, t.labels);
+    const auto def_of = [](const MemberRecord& m) -> const debris::BodyDef& { return m.def; };
+    put_setting_vars(f, v.coefficients, debris::body_coefficient_settings(), ms, def_of);
+    put_setting_vars(f, v.shape, debris::body_shape_settings(), ms, def_of);
+    put_setting_vars(f, v.model, debris::body_model_settings(), ms, def_of);
+    f.put(v.x0, column<double>(ms, [](const MemberRecord& m) { return m.def.x; }));
+    f.put(v.y0, column<double>(ms, [](const MemberRecord& m) { return m.def.y; }));
+    f.put(v.heading0, column<double>(ms, &MemberRecord::heading0_deg));
+    f.put(v.collision_steps, column<int>(ms, &MemberRecord::collision_steps));
+    f.put(v.unresolved, column<int>(ms, &MemberRecord::unresolved_collisions));
+    f.put(v.axis_shift_steps, column<int>(ms, &MemberRecord::axis_shift_steps));
+}
+
+void put_sweep_attributes(nc::File& f, const SweepResult& r) {
+    cf::put_conventions(f, "trajectory");
+    cf::put_kind(f, "sweep");
+    f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep trajectories"));
+    f.put_att(NC_GLOBAL, "source", std::string("flotsam sweep: rigid boxes replayed through stored shallow-water flows"));
+    f.put_att(NC_GLOBAL, "spec_file", r.spec_file);
+    f.put_att(NC_GLOBAL, "spec_sha256", r.spec_sha256);
+    f.put_att(NC_GLOBAL, "scene_file", r.scene_file);
+    if (!r.scene_buildings_sha256.empty()) f.put_att(NC_GLOBAL, "scene_buildings_sha256", r.scene_buildings_sha256);
+    if (!r.ground_file.empty()) f.put_att(NC_GLOBAL, "ground_file", r.ground_file);
+    f.put_att(NC_GLOBAL, "design", r.design);
+    f.put_att(NC_GLOBAL, "member_count", r.member_count);
+    f.put_att(NC_GLOBAL, "shard", std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count));
+    f.put_att(NC_GLOBAL, "output_interval_s", r.output_interval);
+    debris::put_world_attributes(f, r.world);
+    f.put_att(NC_GLOBAL, "perturbation_count", r.perturbation.count);
+    f.put_att(NC_GLOBAL, "perturbation_position_std_m", r.perturbation.position_std);
+    f.put_att(NC_GLOBAL, "perturbation_heading_std_deg", r.perturbation.heading_std);
+    f.put_att(NC_GLOBAL, "perturbation_seed", double(r.perturbation.seed));
+}
+
+}  // namespace
+
 void write_sweep_file(const std::string& path, const SweepResult& r) {
     ensure_parent_dir(path);
     AtomicOutput out(path);
@@ -70,107 +181,26 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const int dtraj = f.def_dim("trajectory", nm), dtime = f.def_dim("time", nt);
         const int dflow = f.def_dim("flow", r.flows.size()), dset = f.def_dim("param_set", r.params.size());
         const int dbody = f.def_dim("body", r.bodies.size()), dvar = f.def_dim("variant", r.variants.size());
-
         const debris::TrackVariables track_vars = debris::define_track_variables(f, dtraj, dtime, r.crs);
-        auto var = [&](const char* name, nc_type type, std::vector<int> dims, const char* units, const char* long_name) {
-            return cf::def_var(f, {.name = name, .type = type, .dims = std::move(dims), .units = units, .long_name = long_name});
-        };
-        // The string columns, known before they are defined (a character array is as long
-        // as its longest string).
-        const auto& ms = r.members;
-        std::vector<std::string> ids;
-        for (const auto& m : ms) ids.push_back(trajectory_label(r, m));
-        const std::vector<std::string> flows =
-            column<std::string>(ms, [&](const MemberRecord& m) { return r.flows[std::size_t(m.flow)]; });
-        const std::vector<std::string> bodies = column<std::string>(ms, &MemberRecord::body_name),
-                                       starts = column<std::string>(ms, &MemberRecord::start_name),
-                                       variants = column<std::string>(ms, &MemberRecord::variant_name);
-        const std::vector<std::string> contacts =
-            column<std::string>(ms, [](const MemberRecord& m) { return std::string(enum_name(m.def.contact)); });
-        const std::vector<std::string> collisions =
-            column<std::string>(ms, [](const MemberRecord& m) { return std::string(enum_name(m.def.collision)); });
-        const std::vector<std::string> labels =
-            column<std::string>(ms, [&](const MemberRecord& m) { return r.params[std::size_t(m.param_set)].label; });
-        auto text = [&](const char* name, int dim, const std::vector<std::string>& values, const char* long_name) {
+        const MemberText text = member_text(r);
+        const MemberVariables member_vars = define_member_variables(f, dtraj, text);
+        auto table = [&](const char* name, int dim, const std::vector<std::string>& values, const char* long_name) {
             return cf::def_var(
                 f, {.name = name, .type = NC_CHAR, .dims = {dim}, .long_name = long_name, .text_length = cf::longest(values)});
         };
-        const int vid = text("trajectory_id", dtraj, ids, "body/variant/parameter set/flow/perturbation");
-        f.put_att(vid, "cf_role", std::string("trajectory_id"));
-        const int vmember = var("member_id", NC_INT, {dtraj}, "", "position in the sweep's full member list");
-        const int vflowi = var("flow_index", NC_INT, {dtraj}, "", "index of the flow (dimension flow)");
-        const int vflow = text("flow", dtraj, flows, "flow file replayed");
-        const int vbody = text("body", dtraj, bodies, "body name");
-        const int vstart = text("start_name", dtraj, starts, "scene start point (empty: given by coordinates)");
-        const int vpert =
-            var("perturbation", NC_INT, {dtraj}, "", "start perturbation: 0 exact start, k > 0 the k-th perturbed start");
-        const int vvariant = text("variant", dtraj, variants, "model variant: friction + collision (CC+SC, LC+MC)");
-        const int vcontact = text("contact_model", dtraj, contacts, "friction model: center (CC) or local (LC)");
-        const int vcoll = text("collision_model", dtraj, collisions, "collision model: single (SC) or multi (MC)");
-        const int vset = var("param_set", NC_INT, {dtraj}, "", "index of the parameter set (dimension param_set)");
-        const int vlabel = text("param_label", dtraj, labels, "label of the parameter set");
-        const std::vector<int> vcoef = def_setting_vars(f, debris::body_coefficient_settings(), {dtraj});
-        const std::vector<int> vshape = def_setting_vars(f, debris::body_shape_settings(), {dtraj});
-        const std::vector<int> vmodel = def_setting_vars(f, debris::body_model_settings(), {dtraj});
-        const int vx0 = var("x0", NC_DOUBLE, {dtraj}, "m", "start x of the centre (perturbation included)");
-        const int vy0 = var("y0", NC_DOUBLE, {dtraj}, "m", "start y of the centre (perturbation included)");
-        const int vh0 = var("heading0", NC_DOUBLE, {dtraj}, "degree", "start heading of the long axis from +x, counter-clockwise");
-        const int vnc = var("collision_steps", NC_INT, {dtraj}, "", "steps with an obstacle contact");
-        const int vnu = var("unresolved_collisions", NC_INT, {dtraj}, "", "steps whose collision passes left an overlap");
-        const int vns = var("axis_shift_steps", NC_INT, {dtraj}, "", "steps rotated about the contact centroid");
-
-        const int vflowpath = text("flow_path", dflow, r.flows, "flow files of the sweep, in order");
-        const int vbodyname = text("body_name", dbody, r.bodies, "bodies of the sweep, in order");
-        const int vvarname = text("variant_name", dvar, r.variants, "model variants of the sweep, in order");
+        const int vflowpath = table("flow_path", dflow, r.flows, "flow files of the sweep, in order");
+        const int vbodyname = table("body_name", dbody, r.bodies, "bodies of the sweep, in order");
+        const int vvarname = table("variant_name", dvar, r.variants, "model variants of the sweep, in order");
         const ParameterSetVariables set_vars = define_parameter_set_variables(f, dset, r.params);
-
-        cf::put_conventions(f, "trajectory");
-        cf::put_kind(f, "sweep");
-        f.put_att(NC_GLOBAL, "title", std::string("flotsam sweep trajectories"));
-        f.put_att(NC_GLOBAL, "source", std::string("flotsam sweep: rigid boxes replayed through stored shallow-water flows"));
-        f.put_att(NC_GLOBAL, "spec_file", r.spec_file);
-        f.put_att(NC_GLOBAL, "spec_sha256", r.spec_sha256);
-        f.put_att(NC_GLOBAL, "scene_file", r.scene_file);
-        if (!r.scene_buildings_sha256.empty()) f.put_att(NC_GLOBAL, "scene_buildings_sha256", r.scene_buildings_sha256);
-        if (!r.ground_file.empty()) f.put_att(NC_GLOBAL, "ground_file", r.ground_file);
-        f.put_att(NC_GLOBAL, "design", r.design);
-        f.put_att(NC_GLOBAL, "member_count", r.member_count);
-        f.put_att(NC_GLOBAL, "shard", std::to_string(r.shard.index) + "/" + std::to_string(r.shard.count));
-        f.put_att(NC_GLOBAL, "output_interval_s", r.output_interval);
-        debris::put_world_attributes(f, r.world);
-        f.put_att(NC_GLOBAL, "perturbation_count", r.perturbation.count);
-        f.put_att(NC_GLOBAL, "perturbation_position_std_m", r.perturbation.position_std);
-        f.put_att(NC_GLOBAL, "perturbation_heading_std_deg", r.perturbation.heading_std);
-        f.put_att(NC_GLOBAL, "perturbation_seed", double(r.perturbation.seed));
+        put_sweep_attributes(f, r);
         f.enddef();
 
         f.put(track_vars.time, r.time);
-        f.put(vid, ids);
-        f.put(vmember, column<int>(ms, &MemberRecord::id));
-        f.put(vflowi, column<int>(ms, &MemberRecord::flow));
-        f.put(vflow, flows);
-        f.put(vbody, bodies);
-        f.put(vstart, starts);
-        f.put(vpert, column<int>(ms, &MemberRecord::perturbation));
-        f.put(vvariant, variants);
-        f.put(vcontact, contacts);
-        f.put(vcoll, collisions);
-        f.put(vset, column<int>(ms, &MemberRecord::param_set));
-        f.put(vlabel, labels);
-        const auto def_of = [](const MemberRecord& m) -> const debris::BodyDef& { return m.def; };
-        put_setting_vars(f, vcoef, debris::body_coefficient_settings(), ms, def_of);
-        put_setting_vars(f, vshape, debris::body_shape_settings(), ms, def_of);
-        put_setting_vars(f, vmodel, debris::body_model_settings(), ms, def_of);
-        f.put(vx0, column<double>(ms, [](const MemberRecord& m) { return m.def.x; }));
-        f.put(vy0, column<double>(ms, [](const MemberRecord& m) { return m.def.y; }));
-        f.put(vh0, column<double>(ms, &MemberRecord::heading0_deg));
-        f.put(vnc, column<int>(ms, &MemberRecord::collision_steps));
-        f.put(vnu, column<int>(ms, &MemberRecord::unresolved_collisions));
-        f.put(vns, column<int>(ms, &MemberRecord::axis_shift_steps));
+        put_member_variables(f, member_vars, text, r.members);
         for (std::size_t b = 0; b < nm && nt > 0; ++b) {
-            if (ms[b].track.x.size() != nt)
-                fail(path, "member " + std::to_string(ms[b].id), "track length does not match the time axis");
-            debris::put_track(f, track_vars, b, ms[b].track);
+            if (r.members[b].track.x.size() != nt)
+                fail(path, "member " + std::to_string(r.members[b].id), "track length does not match the time axis");
+            debris::put_track(f, track_vars, b, r.members[b].track);
         }
         f.put(vflowpath, r.flows);
         f.put(vbodyname, r.bodies);
