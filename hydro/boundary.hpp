@@ -113,7 +113,8 @@ struct SideForcing {
     LevelMode mode = LevelMode::incident;
     double given = 0.0;  // level [m], or discharge per unit length of the side [m^2/s]
     // A forced side: per edge cell (south to north, or west to east) the level [m] and,
-    // where the record has them, u and v [m s-1] (empty otherwise).
+    // where the record has them, u and v [m s-1] (null otherwise). They point into
+    // Forcing's buffers: valid until the next Forcing::at for the same side.
     const std::vector<double>* level = nullptr;
     const std::vector<double>* u = nullptr;
     const std::vector<double>* v = nullptr;

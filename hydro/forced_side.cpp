@@ -97,7 +97,8 @@ void ForcedSide::sample(double t, std::vector<double>& level, std::vector<double
     const std::size_t n = r.points(), cells = point_.size();
     // The record's points at t, then along the side to each cell.
     auto at_cells = [&](const std::vector<double>& series, std::vector<double>& out) {
-        std::vector<double> now(n, 0.0);
+        std::vector<double>& now = points_now_;
+        now.assign(n, 0.0);
         for (const auto& [i, wi] : w)
             if (wi != 0.0)
                 for (std::size_t p = 0; p < n; ++p) now[p] += wi * series[i * n + p];

@@ -57,6 +57,7 @@ private:
     std::vector<std::size_t> point_;  // per cell: the record point at or before it
     std::vector<double> weight_;      // per cell: the weight of the point after it
     ForcingTime time_;
+    mutable std::vector<double> points_now_;  // scratch: the record's points at the time sampled
 };
 
 // The ghost state of a side forced with level and velocity (above). Inputs: the edge
