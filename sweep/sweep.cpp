@@ -120,6 +120,7 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
             progress.update(r.time[k], spec.output_interval, steps);
         }
         progress.finish(r.time.back(), steps);
+        const std::vector<Impact> impacts = world.impacts();  // by body, then time
         for (std::size_t b = 0; b < on_flow.size(); ++b) {
             const Member& m = *on_flow[b];
             MemberRecord rec;
@@ -134,6 +135,8 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
             rec.unresolved_collisions = int(bs.unresolved);
             rec.axis_shift_steps = int(bs.axis_shifts);
             rec.track = std::move(series.tracks[b]);
+            for (const Impact& i : impacts)
+                if (std::size_t(i.trajectory) == b) rec.impacts.push_back(i);
             r.members.push_back(std::move(rec));
             st.steps += bs.steps;
         }
