@@ -212,12 +212,11 @@ Scene read_scene(const std::string& path) {
             if (!(ids[k] >= 0.0 && ids[k] < 2e9 && ids[k] == std::floor(ids[k])))
                 fail(path, "variable 'building_id'",
                      "must be a whole number >= 0, found " + number_text(ids[k]) + " at flat index " + std::to_string(k));
-            if ((ids[k] > 0.0) != (s.building[k] != 0))
-                fail(path, "variable 'building_id'",
-                     "is " + number_text(ids[k]) + " at flat index " + std::to_string(k) + " where 'building' is " +
-                         std::to_string(int(s.building[k])) + " (an id > 0 exactly on building cells)");
             s.building_id[k] = std::int32_t(ids[k]);
         }
+        // A mask edited without its ids (another tool): the ids no longer say which cells
+        // are buildings, so the mask's components replace them.
+        s.building_id = scene_building_ids(s);
     } else if (!s.building.empty()) {
         s.building_id = building_components(s.grid.nx, s.grid.ny, s.building);  // a scene written before the ids
     }

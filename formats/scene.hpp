@@ -91,7 +91,9 @@ std::vector<std::int32_t> scene_building_ids(const Scene& scene);
 // (a flow), missing x/y/z, non-uniform or non-monotonic coordinates, NaN or fill values,
 // a bed outside [-11000, 9000] m, shapes that do not match (y, x), non-positive Manning n,
 // a building mask with values other than 0/1 or with no open cell, a building_id without
-// a mask, negative or not 0 exactly where the mask is 0, a point kind other
+// a mask or with values that are not whole numbers >= 0 (ids that are not > 0 exactly on
+// the mask's cells, a mask edited without them, give way to the mask's components), a
+// point kind other
 // than gauge or start, empty or repeated names, a section with y_min >= y_max. Lengths
 // in other units (km, ft: the units attribute) are converted to metres, a z with
 // positive = "down" is negated; units flotsam cannot convert are refused by name.

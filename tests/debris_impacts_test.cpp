@@ -132,7 +132,7 @@ TEST(DebrisImpacts, ConnectedComponentIdsAreStable) {
     s.building_id[0 * 5 + 2] = 5;
     write_scene(dir + "/footprints.nc", s, "test");
     EXPECT_EQ(read_scene(dir + "/footprints.nc").building_id, s.building_id);
-    // Ids that disagree with the mask are refused by name.
+    // Ids that disagree with the mask give way to its components.
     s.building_id[0] = 9;
     write_scene(dir + "/bad.nc", s, "test");  // written as components: the ids do not fit the mask
     EXPECT_EQ(read_scene(dir + "/bad.nc").building_id, expected);
