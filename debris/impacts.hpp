@@ -61,8 +61,9 @@ inline constexpr const char* impact_force_formula =
     "speed along the contact normal, k the body's stiffness, m_d its mass";
 
 // An approach slower than this (for the paper's 0.25 m box; × √(L / 0.25 m) by Froude) is
-// a touch, not an impact: 1 cm/s, below the median impact speeds of the box on the 4 cm
-// real layout (0.03 to 0.07 m/s per building; docs/debris.md, "Impacts on buildings") [m/s].
+// a touch, not an impact: 1 cm/s, a third of the typical impact speed of the box on the 4 cm
+// real layout (the buildings' median impact speeds: 0.011 to 0.13 m/s, 0.031 m/s in the
+// middle; docs/debris.md, "Impacts on buildings") [m/s].
 inline constexpr double impact_speed_threshold = 0.01;
 // An episode of contact with a building ends once the body is this many body lengths
 // clear of it (1 %: 2.5 mm for the box, a thousand times the micrometre of a resting
