@@ -18,6 +18,7 @@
 #include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
+#include "formats/impact_file.hpp"
 #include "formats/scene.hpp"
 
 namespace flotsam {
@@ -26,6 +27,7 @@ namespace {
 
 struct DebrisOptions {
     std::string flow, scene, ground, out = "trajectories.nc";
+    std::string impacts_csv;  // "": no CSV of the impacts
     std::vector<std::string> starts, ats;
     debris::BodyDef body = debris::default_body_def();     // every body's settings
     debris::WorldDef world = debris::default_world_def();  // step, flow replay, threads
@@ -53,6 +55,7 @@ void apply_catalogue(DebrisOptions& o, const CLI::App* sub) {
     take("--cm", o.body.cm, c.cm);
     take("--mu", o.body.mu, c.mu);
     take("--restitution", o.body.restitution, c.restitution);
+    o.body.impact_stiffness = c.impact_stiffness;
 }
 
 void print_catalogue() {
@@ -89,7 +92,9 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
 
 void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
     const debris::BodyDef& base = o.body;
-    const OutputGuard guard({{"--out", o.out}}, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}});
+    std::vector<NamedPath> outputs = {{"--out", o.out}};
+    if (!o.impacts_csv.empty()) outputs.push_back({"--impacts", o.impacts_csv});
+    const OutputGuard guard(outputs, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}});
     if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
 
     std::unique_ptr<Scene> scene;
@@ -154,6 +159,17 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
     debris::write_trajectory_file(o.out, world, series,
                                   {command_line, o.flow, start_names, world.flow().crs(), world.flow().scene_buildings_sha256()});
+    if (!o.impacts_csv.empty()) {
+        std::vector<std::string> names;
+        for (const auto& p : world.params()) names.push_back(p.def.name);
+        write_impacts_csv(o.impacts_csv, world.impacts(), names);
+    }
+    if (!o.quiet) {
+        const auto impacts = world.impacts();
+        double largest = 0.0;
+        for (const auto& i : impacts) largest = std::max(largest, i.force);
+        if (!impacts.empty()) std::fprintf(stderr, "impacts on buildings: %zu (largest force %.4g N)\n", impacts.size(), largest);
+    }
 }
 
 }  // namespace
@@ -171,6 +187,8 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
     sub->add_option("--out", opts->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
+    sub->add_option("--impacts", opts->impacts_csv,
+                    "also write the impacts on buildings as CSV, one row each (docs/debris.md, \"Impacts on buildings\")");
     add_setting_options(sub, debris::body_variant_settings(), opts->body);
     add_setting_options(sub, debris::body_coefficient_settings(), opts->body);
     add_setting_options(sub, debris::body_model_settings(), opts->body);

@@ -17,7 +17,7 @@ namespace flotsam {
 namespace {
 
 struct ExportOptions {
-    std::string stats, out_dir = "gis";
+    std::string stats, scene, out_dir = "gis";
     std::vector<std::string> flows, trajectories;
     std::string tracks_format = "gpkg";
 };
@@ -83,6 +83,12 @@ void run_export(const ExportOptions& o) {
         const std::size_t n = gis::write_tracks(t, path);
         std::printf("export: %s (%zu tracks)\n", path.c_str(), n);
     }
+    if (!o.scene.empty()) {
+        if (o.stats.empty()) fail("--scene", o.scene, "needs --stats (the buildings layer carries its impact statistics)");
+        const std::string path = (std::filesystem::path(o.out_dir) / "buildings.gpkg").string();
+        const std::size_t n = gis::write_building_footprints(o.scene, o.stats, path);
+        std::printf("export: %s (%zu building footprints with their impact statistics)\n", path.c_str(), n);
+    }
 }
 
 }  // namespace
@@ -98,6 +104,9 @@ void register_export_commands(CLI::App& app) {
     sub->add_option("--stats", o->stats, "statistics file (flotsam stats)")->check(CLI::ExistingFile);
     sub->add_option("--flow", o->flows, "flow file (repeatable: the envelope of an ensemble)")->check(CLI::ExistingFile);
     sub->add_option("--trajectories", o->trajectories, "trajectory or sweep file (repeatable)")->check(CLI::ExistingFile);
+    sub->add_option("--scene", o->scene,
+                    "scene of --stats: also write buildings.gpkg, its building footprints with their impact statistics")
+        ->check(CLI::ExistingFile);
     sub->add_option("--out-dir", o->out_dir, "folder for the GeoTIFFs and track files")->capture_default_str();
     sub->add_option("--tracks-format", o->tracks_format, "gpkg (GeoPackage), geojson or shp")
         ->check(CLI::IsMember({"gpkg", "geojson", "shp"}))

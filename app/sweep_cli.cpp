@@ -113,6 +113,12 @@ const Settings<StatsOptions>& stats_settings() {
     return table;
 }
 
+// The impacts on buildings beside the summary (summary name with _impacts.csv), where there are any.
+void write_impacts_beside(const std::string& summary, const sweep::SweepResult& r) {
+    for (const auto& m : r.members)
+        if (!m.impacts.empty()) return sweep::write_impacts_summary_csv(sweep::impacts_path_for(summary), r);
+}
+
 void run_sweep_command(const SweepOptions& o) {
     if (o.spec.empty()) fail("sweep", "--spec", "required (or use `flotsam sweep merge`)");
     sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, o.scene, o.flows);
@@ -131,6 +137,7 @@ void run_sweep_command(const SweepOptions& o) {
     const sweep::SweepResult r = sweep::run_sweep(spec, def, &st);
     sweep::write_sweep_file(o.out, r);
     sweep::write_summary_csv(summary, r);
+    write_impacts_beside(summary, r);
     if (!o.quiet)
         std::fprintf(stderr,
                      "sweep: %d of %d members (shard %s) over %zu flows, %zu frames read (%.1f s), %.1f s wall; wrote %s and %s\n",
@@ -148,6 +155,7 @@ void run_merge_command(const MergeOptions& o) {
     const sweep::SweepResult r = sweep::merge_sweeps(parts, o.parts);
     sweep::write_sweep_file(o.out, r);
     sweep::write_summary_csv(summary, r);
+    write_impacts_beside(summary, r);
 }
 
 void run_stats_command(const StatsOptions& o, const std::string& command_line) {

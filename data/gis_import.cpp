@@ -402,11 +402,13 @@ std::string burn_building_footprints(Scene& s, const GisImportDef& gis) {
                  "footprint " + std::to_string(f) + " has a negative height");
     }
     s.building.assign(s.grid.size(), 0);
+    s.building_id.assign(s.grid.size(), 0);  // each cell's footprint: its place in the layer, from 1
     std::size_t burnt = 0;
     for (std::size_t k = 0; k < id.size(); ++k) {
         if (id[k] <= 0) continue;
         const std::size_t f = std::size_t(id[k] - 1);
         s.building[k] = 1;
+        s.building_id[k] = id[k];
         ++burnt;
         const double h = std::isnan(p.value[f]) ? gis.building_height.value_or(std::nan("")) : p.value[f];
         if (!std::isnan(h) && ground[f] + h > s.z[k]) {

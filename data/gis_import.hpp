@@ -61,7 +61,8 @@ cf::GridMapping sidecar_or_assigned_crs(const std::string& dem_path, const GisIm
 // Crops a DEM to gis.extent and applies the datum offset (for the DEMs read without GDAL).
 void apply_extent_and_datum(Dem& dem, const GisImportDef& gis);
 
-// Burns gis.buildings into s.building (replacing the mask) and, where a footprint has a
+// Burns gis.buildings into s.building (replacing the mask) and s.building_id (each cell the
+// number of its footprint: its place in the layer, from 1) and, where a footprint has a
 // height, raises z to the footprint's lowest ground plus that height. Returns a line
 // for the user (what was burnt, any reprojection).
 std::string burn_building_footprints(Scene& s, const GisImportDef& gis);

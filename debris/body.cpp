@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "debris/impacts.hpp"
 
 namespace flotsam::debris {
 
@@ -95,6 +96,9 @@ BodyParams make_body_params(const BodyDef& def, double water_density) {
     p.inertia = p.mass * p.radius_sq;
     p.step_height = def.step_tolerance * p.draft;
     p.half_diagonal = 0.5 * std::hypot(def.length, def.width);
+    p.impact_stiffness = def.impact_stiffness > 0.0 ? def.impact_stiffness : default_impact_stiffness(def.length);
+    p.impact_threshold = impact_speed_threshold * std::sqrt(def.length / 0.25);
+    p.impact_separation = impact_separation_lengths * def.length;
     return p;
 }
 

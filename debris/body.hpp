@@ -76,6 +76,10 @@ struct BodyDef {
     PivotRate pivot_rate = PivotRate::carried;  // LC only: the axis shift's rate from step to step
     BlockingGround blocking_ground = BlockingGround::land;  // ground that can block (docs/debris.md, "Ground and obstacles")
     int samples_per_face = 4;        // drag sample points along each side face, 1 to max_samples_per_face [-]
+    // The body's crushing stiffness for the impact-force estimate (debris/impacts.hpp); not a
+    // setting of the motion, set by the catalogue entry. 0: Froude-scaled from the paper's
+    // box (default_impact_stiffness) [N/m].
+    double impact_stiffness = 0.0;
     double step_tolerance =
         0.2;  // a cell the body moves into blocks where its ground rises above the body's bottom by more than this × draft (docs/debris.md, "Ground and obstacles") [-]
 };
@@ -102,6 +106,9 @@ struct BodyParams {
     double radius_sq = 0.0;      // (L² + B²) / 12, I / m [m²]
     double step_height = 0.0;    // step_tolerance × draft [m]
     double half_diagonal = 0.0;  // ½ √(L² + B²): the farthest a corner is from the centre [m]
+    double impact_stiffness = 0.0;  // k of the impact force, def's or the Froude default [N/m]
+    double impact_threshold = 0.0;  // approach speed below which a contact is no impact [m/s]
+    double impact_separation = 0.0; // clearance that ends a contact episode [m]
 };
 BodyParams make_body_params(const BodyDef& def, double water_density);  // throws on bad values
 

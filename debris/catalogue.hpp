@@ -24,6 +24,8 @@ struct CatalogueBody {
     double mu = 0.4;           // friction coefficient with the ground [-]
     double restitution = 0.5;  // against obstacles [-]
     std::string source;        // where the numbers come from
+    double impact_stiffness = 0.0;  // k of the impact-force estimate (debris/impacts.hpp) [N/m]
+    std::string stiffness_source;   // where k comes from
 };
 
 // All entries, in a fixed order.
@@ -33,7 +35,7 @@ const std::vector<CatalogueBody>& catalogue();
 const CatalogueBody* find_catalogue_body(const std::string& name);
 
 // A body definition from the entry called `name`: its dimensions, its specific gravity
-// m / (ρw L B D), its coefficients; the rest (contact and collision models, samples,
+// m / (ρw L B D), its coefficients and impact stiffness; the rest (contact and collision models, samples,
 // step tolerance) as in default_body_def(). Errors name `where` and list the known names.
 BodyDef catalogue_body_def(const std::string& name, const std::string& where, double water_density = 1000.0);
 

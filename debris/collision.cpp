@@ -26,6 +26,24 @@ void apply_impulse(const ObstacleContact& c, const BodyParams& b, double mass, d
     s.omega += j * cross(r, c.normal) / inertia;
 }
 
+// The buildings among `contacts` not yet in `touches`, each with its fastest approach
+// (before any impulse of this pass) and that contact's point.
+void note_buildings(const std::vector<ObstacleContact>& contacts, const BodyState& s, std::vector<BuildingTouch>& touches) {
+    const std::size_t seen_before = touches.size();
+    for (const auto& c : contacts) {
+        if (c.building <= 0) continue;
+        const Vec2 r = c.point - Vec2{s.x, s.y};
+        const double approach = -dot(Vec2{s.vx, s.vy} + spin(s.omega, r), c.normal);
+        std::size_t k = 0;
+        while (k < touches.size() && touches[k].building != c.building) ++k;
+        if (k < seen_before) continue;  // seen at an earlier pass
+        if (k == touches.size())
+            touches.push_back({c.building, approach, c.point});
+        else if (approach > touches[k].speed)
+            touches[k] = {c.building, approach, c.point};
+    }
+}
+
 double deepest(const std::vector<ObstacleContact>& cs) {
     double d = 0.0;
     for (const auto& c : cs) d = std::max(d, c.depth);
@@ -167,7 +185,8 @@ SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 
 
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
                                     double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
-                                    const Box& footprint, std::vector<ObstacleContact>& contacts) {
+                                    const Box& footprint, std::vector<ObstacleContact>& contacts,
+                                    std::vector<BuildingTouch>* touches) {
     const BlockingGround rule = body.def.blocking_ground;
     const auto detect = [&](const Box& box) {
         contacts.clear();
@@ -192,6 +211,7 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
     auto by_depth = [](const ObstacleContact& a, const ObstacleContact& b) { return a.depth > b.depth; };
 
     if (model == CollisionModel::single) {
+        if (touches) note_buildings(contacts, state, *touches);
         const auto& c = *std::min_element(contacts.begin(), contacts.end(), by_depth);
         apply_impulse(c, body, mass, inertia, state);
         state.x += (c.depth + separation_slop) * c.normal.x;
@@ -216,6 +236,7 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
     };
     for (; out.passes < max_passes && !contacts.empty(); ++out.passes) {
         std::sort(contacts.begin(), contacts.end(), by_depth);
+        if (touches) note_buildings(contacts, state, *touches);
         for (const auto& c : contacts) apply_impulse(c, body, mass, inertia, state);
         place();  // advanced again from the start of the step with the corrected momentum
         if (contacts.empty()) break;

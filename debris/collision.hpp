@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "debris/body.hpp"
+#include "debris/impacts.hpp"
 #include "debris/obstacles.hpp"
 
 namespace flotsam::debris {
@@ -53,8 +54,11 @@ struct StepMove {
 //           whose impulses undo each other in a wedge), the least move out of all of them
 //           at once: the smallest M |Δx|² + I Δθ² that clears every contact to first
 //           order, so a body wedged across a gap turns and slides out of it}.
+// With `touches`, appends each building contacted (debris/impacts.hpp, BuildingTouch):
+// nothing of the motion depends on it.
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
                                     double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
-                                    const Box& footprint, std::vector<ObstacleContact>& scratch);
+                                    const Box& footprint, std::vector<ObstacleContact>& scratch,
+                                    std::vector<BuildingTouch>* touches = nullptr);
 
 }  // namespace flotsam::debris

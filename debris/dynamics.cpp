@@ -120,6 +120,38 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
     return travel;
 }
 
+// The contact episodes with buildings after a step (debris/impacts.hpp): a building
+// touched with no episode open opens one, an impact where the approach was fast enough;
+// an open episode whose building is neither touched nor within the separation of the
+// body's pose after the step ends.
+void track_impacts(const StepContext& ctx, const BodyParams& b, const BodyState& s, double t, StepScratch& scratch,
+                   BodyImpacts& impacts) {
+    if (scratch.touches.empty() && impacts.open.empty()) return;
+    const auto is_open = [&](std::int32_t id) { return std::find(impacts.open.begin(), impacts.open.end(), id) != impacts.open.end(); };
+    const auto touched = [&](std::int32_t id) {
+        return std::any_of(scratch.touches.begin(), scratch.touches.end(), [&](const BuildingTouch& k) { return k.building == id; });
+    };
+    // Open episodes that this step did not touch: still near (within the separation)?
+    if (std::any_of(impacts.open.begin(), impacts.open.end(), [&](std::int32_t id) { return !touched(id); })) {
+        Box near = Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width);
+        near.half_length += b.impact_separation;
+        near.half_width += b.impact_separation;
+        std::vector<ObstacleContact>& found = scratch.contacts;
+        found.clear();
+        ctx.obstacles.find_contacts(near, 1e30, 0.0, found, 0.0, BlockingGround::none);  // only buildings block at that bottom
+        std::erase_if(impacts.open, [&](std::int32_t id) {
+            return !touched(id) && std::none_of(found.begin(), found.end(), [&](const ObstacleContact& c) { return c.building == id; });
+        });
+    }
+    for (const BuildingTouch& k : scratch.touches) {
+        if (is_open(k.building)) continue;
+        impacts.open.push_back(k.building);
+        if (!(k.speed > b.impact_threshold)) continue;
+        impacts.events.push_back(
+            {t, 0, k.building, k.point.x, k.point.y, k.speed, impact_force(k.speed, b.mass, b.impact_stiffness), b.mass});
+    }
+}
+
 // Collisions with the obstacles at the committed pose (SC or MC, debris/collision.hpp).
 // Ground blocks only where ground that can block (BlockingGround) rises more than the
 // step height above the bottom where the body rested at the start of the step (MODEL.md,
@@ -128,7 +160,7 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
 // Where no such ground within reach is above η_c − d + step, the resting height cannot
 // change the outcome and is not computed.
 void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start, const Box& pose,
-             double dt, StepScratch& scratch) {
+             double dt, StepScratch& scratch, BodyImpacts* impacts) {
     const double afloat = ctx.obstacles.ground(start.now.centre.x, start.now.centre.y) + start.centre.depth - b.draft;
     double bottom = afloat;
     if (ctx.obstacles.ground_above(pose, afloat + b.step_height, b.def.blocking_ground))
@@ -137,8 +169,11 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
     const Grid& g = ctx.obstacles.grid();
     const StepMove move{dt, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0,
                         unresolved_overlap_cells * std::min(g.dx, g.dy)};
+    scratch.touches.clear();
     const CollisionOutcome hit = resolve_collisions(ctx.obstacles, b, b.def.collision, eff.mass, eff.inertia, bottom,
-                                                    ctx.def.max_collision_passes, move, s, pose, scratch.contacts);
+                                                    ctx.def.max_collision_passes, move, s, pose, scratch.contacts,
+                                                    impacts ? &scratch.touches : nullptr);
+    if (impacts) track_impacts(ctx, b, s, s.time + dt, scratch, *impacts);
     if (!hit.touched) return;
     s.flags |= flag_colliding;
     ++stats.collisions;
@@ -148,7 +183,8 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
 
 }  // namespace
 
-double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch) {
+double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch,
+                 BodyImpacts* impacts) {
     const double t = s.time, x0 = s.x, y0 = s.y;
     const FlowPointAccel centre = ctx.flow.sample_accel(s.x, s.y, t);
     ++stats.steps;
@@ -169,7 +205,7 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;
     Box pose;
     const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt, pose);
-    collide(ctx, b, s, stats, st, pose, dt, scratch);
+    collide(ctx, b, s, stats, st, pose, dt, scratch, impacts);
     s.centre_vx = (s.x - x0) / dt;
     s.centre_vy = (s.y - y0) / dt;
     s.time = t + dt;
@@ -192,7 +228,8 @@ double window_pad(const StepContext& ctx, const BodyParams& b) {
     return b.half_diagonal + 2.0 * reach + 2.0 * std::max(g.dx, g.dy);
 }
 
-bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double t_end, StepScratch& scratch) {
+bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double t_end, StepScratch& scratch,
+                  BodyImpacts* impacts) {
     const Grid& g = ctx.obstacles.grid();
     const double reach = ctx.def.vertex_step_fraction * std::min(g.dx, g.dy);
     const double pad = window_pad(ctx, b);
@@ -206,11 +243,18 @@ bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Bod
         // redo it shorter (tunnelling through a one-cell wall needs a whole cell).
         const BodyState saved = s;
         const BodyStats saved_stats = stats;
+        // A step that is redone records nothing: its impacts and episodes are undone too.
+        const std::size_t saved_events = impacts ? impacts->events.size() : 0;
+        if (impacts) scratch.open_saved = impacts->open;
         for (int attempt = 0;; ++attempt) {
-            const double travel = step_body(ctx, b, s, stats, dt, scratch);
+            const double travel = step_body(ctx, b, s, stats, dt, scratch, impacts);
             if (travel <= 2.0 * reach || attempt >= 20) break;
             s = saved;
             stats = saved_stats;
+            if (impacts) {
+                impacts->events.resize(saved_events);
+                impacts->open = scratch.open_saved;
+            }
             dt *= 0.5;
         }
         if (s.time > t_end || t_end - s.time < 1e-12) s.time = t_end;

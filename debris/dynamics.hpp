@@ -10,6 +10,7 @@
 #include "debris/contact.hpp"
 #include "debris/flow_sampler.hpp"
 #include "debris/footprint.hpp"
+#include "debris/impacts.hpp"
 #include "debris/obstacles.hpp"
 
 namespace flotsam::debris {
@@ -38,6 +39,8 @@ struct StepScratch {
     FootprintCache footprint;
     std::vector<ContactPatch> patches;
     std::vector<ObstacleContact> contacts;
+    std::vector<BuildingTouch> touches;
+    std::vector<std::int32_t> open_saved;  // a body's open contact episodes before a step that may be redone
 };
 
 struct StepContext {
@@ -48,8 +51,10 @@ struct StepContext {
 
 // One step of length dt from state.time. Returns the largest displacement of a corner
 // by the free motion (before collisions) [m], which the caller checks against the cell.
+// With `impacts`, the impacts on buildings are recorded there (debris/impacts.hpp);
+// nothing of the motion depends on it.
 double step_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double dt,
-                 StepScratch& scratch);
+                 StepScratch& scratch, BodyImpacts* impacts = nullptr);
 
 // The step the vertex-speed limit allows at this state [s] (≤ def.dt_max).
 double stable_step(const StepContext& ctx, const BodyParams& body, const BodyState& state);
@@ -61,6 +66,6 @@ double window_pad(const StepContext& ctx, const BodyParams& body);
 // Steps the body to t_end. Returns false, early, when the body would need flow outside
 // the reader's loaded window (the caller moves the window and calls again).
 bool advance_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double t_end,
-                  StepScratch& scratch);
+                  StepScratch& scratch, BodyImpacts* impacts = nullptr);
 
 }  // namespace flotsam::debris

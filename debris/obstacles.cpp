@@ -5,10 +5,14 @@
 #include <cmath>
 #include <limits>
 
+#include "formats/scene.hpp"
+
 namespace flotsam::debris {
 
 ObstacleMap::ObstacleMap(const Grid& grid, std::vector<float> bed, std::vector<std::uint8_t> building)
     : grid_(grid), bed_(std::move(bed)), open_ground_(bed_) {
+    if (std::find(building.begin(), building.end(), 1) != building.end() && building.size() == bed_.size())
+        building_id_ = building_components(grid_.nx, grid_.ny, building);
     constexpr float inf = std::numeric_limits<float>::infinity();
     const auto is_building = [&](std::size_t c) { return c < building.size() && building[c]; };
     for (std::size_t c = 0; c < bed_.size(); ++c)
@@ -249,6 +253,7 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
                     ++count;
                 }
             best.point = count ? (1.0 / count) * sum : 0.5 * (box.centre + c);
+            best.building = building_id(i, j);
             out.push_back(best);
         }
     }

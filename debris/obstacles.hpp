@@ -37,13 +37,25 @@ struct ObstacleContact {
     Vec2 normal;         // unit, from the obstacle into the body (the direction that separates) [-]
     double depth = 0.0;  // penetration along normal [m]
     Vec2 point;          // where the impulse acts [m]
+    std::int32_t building = 0;  // the building of the blocked cell (ObstacleMap::building_id); 0: ground or the grid's edge
 };
 
 class ObstacleMap {
 public:
     ObstacleMap() = default;
     // bed: ground elevation z per cell [m]; building: 1 where a building stands (empty: none).
+    // The buildings are numbered as the mask's connected components (building_components)
+    // until set_building_ids gives the scene's numbers.
     ObstacleMap(const Grid& grid, std::vector<float> bed, std::vector<std::uint8_t> building);
+
+    // The building of each cell (0: none; size grid().size(), nonzero on the mask's cells).
+    void set_building_ids(std::vector<std::int32_t> ids) { building_id_ = std::move(ids); }
+    // The building of cell (i, j); 0 off the grid or where none stands.
+    std::int32_t building_id(int i, int j) const {
+        if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny || building_id_.empty()) return 0;
+        return building_id_[grid_.index(i, j)];
+    }
+    bool has_buildings() const { return !building_id_.empty(); }
 
     const Grid& grid() const { return grid_; }
     // Ground elevation of the cell holding (x, y) [m] (clamped to the grid).
@@ -72,6 +84,7 @@ private:
 
     Grid grid_;
     std::vector<float> bed_;
+    std::vector<std::int32_t> building_id_;  // per cell, 0: none; empty: no building at all
     // The questions the scans ask of a cell, one number each so that a row is one
     // vectorised max: its ground where no building stands (−inf under a building: the
     // resting height), and per BlockingGround rule the top of what blocks there (+inf

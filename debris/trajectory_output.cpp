@@ -9,6 +9,8 @@
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/settings_nc.hpp"
+#include "debris/impacts.hpp"
+#include "formats/impact_file.hpp"
 
 namespace flotsam::debris {
 
@@ -88,6 +90,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vnc = per_int("collision_steps", "steps with an obstacle contact");
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
+        const std::vector<Impact> impacts = world.impacts();
+        const std::vector<int> vimpact = define_impact_variables(f, impacts.size(), def.crs, impact_force_formula);
 
         cf::put_conventions(f, "trajectory");
         cf::put_kind(f, "trajectories");
@@ -113,6 +117,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(vnu, column<int>(stats, &BodyStats::unresolved));
         f.put(vns, column<int>(stats, &BodyStats::axis_shifts));
         for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, series.tracks[b]);
+        put_impacts(f, vimpact, impacts);
         f.close();
     }
     out.commit();

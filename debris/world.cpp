@@ -85,6 +85,30 @@ std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid
     return out;
 }
 
+std::vector<std::int32_t> building_ids_on_grid(const Scene& scene, const Grid& grid, const std::vector<std::uint8_t>& mask) {
+    if (mask.empty() || scene.building.empty()) return {};
+    const std::vector<std::int32_t> ids = scene_building_ids(scene);
+    const Grid& s = scene.grid;
+    std::vector<std::int32_t> out(grid.size(), 0);
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            if (!mask[grid.index(i, j)]) continue;
+            const double x = grid.x(i), y = grid.y(j);
+            const int si = s.cell_i(x), sj = s.cell_j(y);
+            std::int32_t id = s.contains(x, y) ? ids[s.index(si, sj)] : 0;
+            double best = 1e300;
+            for (int dj = -1; id == 0 && dj <= 1; ++dj)  // nearest building cell of the neighbours
+                for (int di = -1; di <= 1; ++di) {
+                    const int ni = si + di, nj = sj + dj;
+                    if (ni < 0 || nj < 0 || ni >= s.nx || nj >= s.ny || ids[s.index(ni, nj)] == 0) continue;
+                    const double d = std::hypot(s.x(ni) - x, s.y(nj) - y);
+                    if (d < best) best = d, out[grid.index(i, j)] = ids[s.index(ni, nj)];
+                }
+            if (id != 0) out[grid.index(i, j)] = id;
+        }
+    return out;
+}
+
 Ground ground_from_scene(const Scene& scene, const FlowReader& flow) {
     const Grid& f = flow.grid();
     const Grid& s = scene.grid;
@@ -162,6 +186,7 @@ World make_world(const std::string& flow_path, const Scene* scene, const std::ve
                  const Scene* ground) {
     std::vector<std::uint8_t> building;
     std::optional<Ground> fine;
+    std::vector<std::int32_t> ids;
     {
         const FlowReader probe(flow_path, def.flow);  // only for its grid
         if (scene) {
@@ -176,8 +201,15 @@ World make_world(const std::string& flow_path, const Scene* scene, const std::ve
             check_body_start(b, probe, scene);
             if (ground) check_body_start(b, probe, ground);
         }
+        // The buildings are numbered as the scene numbers them (a finer ground's cells take
+        // the id of the scene's building there), so that impacts name the scene's buildings.
+        const Scene* numbering = scene ? scene : ground;
+        if (numbering)
+            ids = fine ? building_ids_on_grid(*numbering, fine->grid, fine->building)
+                       : building_ids_on_grid(*numbering, probe.grid(), building);
     }
     World world(flow_path, std::move(building), def, fine ? &*fine : nullptr);
+    if (!ids.empty()) world.set_building_ids(std::move(ids));
     for (const BodyDef& b : bodies) world.add_body(b);
     return world;
 }
@@ -190,7 +222,20 @@ std::size_t World::add_body(const BodyDef& def) {
     states_.push_back(initial_state(local, time_));
     window_fitted_ = false;
     stats_.push_back({});
+    impacts_.push_back({});
     return states_.size() - 1;
+}
+
+std::vector<Impact> World::impacts() const {
+    std::vector<Impact> out;
+    for (std::size_t b = 0; b < impacts_.size(); ++b)
+        for (Impact i : impacts_[b].events) {
+            i.trajectory = int(b);
+            i.x += origin_x_;
+            i.y += origin_y_;
+            out.push_back(i);
+        }
+    return out;
 }
 
 void World::clear_event_flags() {
@@ -230,7 +275,9 @@ void World::advance_to(double t) {
 #pragma omp for schedule(dynamic, 1)
                 for (long b = 0; b < n; ++b) {
                     if (!active[b]) continue;
-                    if (advance_body(ctx, params_[b], states_[b], stats_[b], t_next, scratch)) active[b] = 0;
+                    if (advance_body(ctx, params_[b], states_[b], stats_[b], t_next, scratch,
+                                     obstacles_.has_buildings() ? &impacts_[std::size_t(b)] : nullptr))
+                        active[b] = 0;
                 }
             }
             if (std::none_of(active.begin(), active.end(), [](char a) { return a != 0; })) break;

@@ -61,6 +61,11 @@ double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDe
 
 // The scene's building mask sampled at the flow grid's cell centres (empty: none).
 std::vector<std::uint8_t> buildings_on_grid(const Scene& scene, const Grid& grid);
+// The scene's building ids (formats/scene.hpp, scene_building_ids) on the cells of `grid`
+// where `mask` marks a building: the id of the scene cell holding the centre, or where
+// that one holds none (a finer ground's building cell beside the scene's), of the nearest
+// scene building cell among its eight neighbours; 0 where none is (empty: no mask).
+std::vector<std::int32_t> building_ids_on_grid(const Scene& scene, const Grid& grid, const std::vector<std::uint8_t>& mask);
 
 // The ground the bodies stand on where it is finer than the flow's bed (docs/debris.md,
 // "Ground finer than the flow"): ground contact, the resting height, steps and
@@ -106,6 +111,11 @@ public:
     std::vector<BodyState>& states() { return states_; }  // tests set initial conditions
     const std::vector<BodyParams>& params() const { return params_; }
     const std::vector<BodyStats>& stats() const { return stats_; }
+    // The buildings' ids on the obstacle grid (default: the mask's connected components).
+    void set_building_ids(std::vector<std::int32_t> ids) { obstacles_.set_building_ids(std::move(ids)); }
+    // Every impact on a building so far, by body and then time, in the flow's own
+    // coordinates, with Impact::trajectory the body's index (debris/impacts.hpp).
+    std::vector<Impact> impacts() const;
     // Clears the "colliding since the last output" bit of every body.
     void clear_event_flags();
 
@@ -121,10 +131,11 @@ private:
     std::vector<BodyState> states_;   // hot, per step
     std::vector<BodyParams> params_;  // cold, read only
     std::vector<BodyStats> stats_;
+    std::vector<BodyImpacts> impacts_;  // cold, written on events
 };
 
-// The world of one flow: the scene's building mask on the flow's grid (scene null: no
-// buildings), and the bodies. The flow must have been computed on the scene, and each
+// The world of one flow: the scene's building mask and ids on the flow's grid (scene null:
+// no buildings), and the bodies. The flow must have been computed on the scene, and each
 // body must start on the grid and off the buildings (debris/scene_match.hpp: the errors
 // name the files or the body). With `ground` (a finer scene of the same place, null:
 // none) the bodies stand on its ground and keep off its buildings too. Used by

@@ -1,10 +1,15 @@
 #include "export/gis_export.hpp"
 
+#include <gdal_alg.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <memory>
+#include <optional>
 
 #include "common/atomic_file.hpp"
 #include "common/checks.hpp"
@@ -12,6 +17,7 @@
 #include "common/netcdf.hpp"
 #include "common/units.hpp"
 #include "data/gdal_support.hpp"
+#include "formats/scene.hpp"
 #include "formats/stats_file.hpp"
 #include "sweep/sweep_file.hpp"
 
@@ -412,6 +418,120 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
             feature.SetGeometry(&line);
             if (layer->CreateFeature(&feature) != OGRERR_NONE)
                 fail(out_path, "trajectory " + std::to_string(b), "cannot write: " + gdal::last_error());
+            ++written;
+        }
+    } catch (...) {
+        remove_with_sidecars(temp);
+        throw;
+    }
+    remove_with_sidecars(out_path);
+    rename_with_sidecars(temp, out_path);
+    return written;
+}
+
+std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path) {
+    gdal::init();
+    const Scene scene = read_scene(scene_path);
+    const std::vector<std::int32_t> ids = scene_building_ids(scene);
+    if (ids.empty()) fail(scene_path, "variable 'building'", "the scene has no buildings to export");
+    const nc::File st = nc::File::open_read(stats_path);
+    cf::require_kind(st, {stats_file::kind});
+    const std::string fingerprint = st.att_text(NC_GLOBAL, stats_file::attribute::scene_buildings_sha256).value_or("");
+    if (!fingerprint.empty() && fingerprint != scene_buildings_sha256(scene))
+        fail(stats_path, "scene_buildings_sha256", "comes from another scene than " + scene_path + " (grid or building mask differ)");
+    if (!st.has_var(stats_file::building_id.name))
+        fail(stats_path, "variable 'building_id'", "missing: statistics written before impacts were recorded (run flotsam stats again)");
+    const std::vector<int> stat_ids = st.get_int(st.var(stats_file::building_id.name));
+    const stats_file::BuildingVariables& b = stats_file::building_all;
+    const stats_file::Variable* columns[] = {&b.hit_probability, &b.first_hit_time, &b.impact_count, &b.speed_median, &b.speed_p90,
+                                             &b.speed_max,       &b.force_median,   &b.force_p90,    &b.force_max};
+    const char* field_names[] = {"hit_probability", "first_hit_time_s", "impacts",      "speed_median_m_s", "speed_p90_m_s",
+                                 "speed_max_m_s",   "force_median_N",   "force_p90_N", "force_max_N"};
+    std::vector<std::vector<double>> values;
+    for (const auto* c : columns) {
+        values.push_back(st.get_double(st.var(c->name)));
+        if (values.back().size() != stat_ids.size())
+            fail(stats_path, std::string("variable '") + c->name + "'", "is not on dimension 'building'");
+    }
+
+    // The ids as a north-up Int32 raster, polygonised (4-connected pieces of one value),
+    // then the pieces of each id joined.
+    const Grid& g = scene.grid;
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    if (!mem) fail(out_path, "GDAL", "the MEM driver is missing");
+    gdal::Dataset raster(mem->Create("", g.nx, g.ny, 1, GDT_Int32, nullptr));
+    double gt[6];
+    gdal::geotransform(g, gt);
+    raster->SetGeoTransform(gt);
+    std::vector<std::int32_t> rows(ids.size());
+    for (int j = 0; j < g.ny; ++j)
+        std::copy_n(ids.begin() + std::ptrdiff_t(j) * g.nx, g.nx, rows.begin() + std::ptrdiff_t(g.ny - 1 - j) * g.nx);
+    GDALRasterBand* band = raster->GetRasterBand(1);
+    if (band->RasterIO(GF_Write, 0, 0, g.nx, g.ny, rows.data(), g.nx, g.ny, GDT_Int32, 0, 0, nullptr) != CE_None)
+        fail(out_path, "buildings", "cannot fill the raster: " + gdal::last_error());
+    band->SetNoDataValue(0.0);
+    GDALDriver* memory = GetGDALDriverManager()->GetDriverByName("Memory");  // vector, in memory
+    if (!memory) memory = mem;
+    gdal::Dataset pieces(memory->Create("", 0, 0, 0, GDT_Unknown, nullptr));
+    OGRLayer* piece_layer = pieces ? pieces->CreateLayer("pieces", nullptr, wkbPolygon, nullptr) : nullptr;
+    if (!piece_layer) fail(out_path, "GDAL", "cannot create an in-memory vector layer: " + gdal::last_error());
+    OGRFieldDefn id_field("id", OFTInteger);
+    piece_layer->CreateField(&id_field);
+    if (GDALPolygonize(GDALRasterBand::ToHandle(band), GDALRasterBand::ToHandle(band->GetMaskBand()), OGRLayer::ToHandle(piece_layer), 0,
+                       nullptr, nullptr, nullptr) != CE_None)
+        fail(out_path, "buildings", "GDAL could not polygonise the building ids: " + gdal::last_error());
+    std::map<int, OGRMultiPolygon> by_id;
+    piece_layer->ResetReading();
+    for (OGRFeature* raw; (raw = piece_layer->GetNextFeature()) != nullptr;) {
+        std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(raw, OGRFeature::DestroyFeature);
+        if (const OGRGeometry* geom = f->GetGeometryRef()) by_id[f->GetFieldAsInteger(0)].addGeometry(geom);
+    }
+    std::map<int, int> cells;
+    for (std::int32_t id : ids)
+        if (id > 0) ++cells[id];
+
+    ensure_parent_dir(out_path);
+    const std::string temp = partial_name(out_path);
+    remove_with_sidecars(temp);
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+    if (!driver) fail(out_path, "GDAL", "no GPKG driver");
+    std::size_t written = 0;
+    try {
+        gdal::Dataset ds(driver->Create(temp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+        if (!ds) fail(out_path, "GDAL", "cannot create: " + gdal::last_error());
+        std::optional<OGRSpatialReference> srs;
+        if (!scene.crs.empty()) srs = gdal::spatial_ref(scene.crs, scene_path);
+        OGRLayer* layer = ds->CreateLayer("buildings", srs ? &*srs : nullptr, wkbMultiPolygon, nullptr);
+        if (!layer) fail(out_path, "layer 'buildings'", "cannot create: " + gdal::last_error());
+        auto add_field = [&](const char* name, OGRFieldType t) {
+            OGRFieldDefn d(name, t);
+            if (layer->CreateField(&d) != OGRERR_NONE) fail(out_path, std::string("field '") + name + "'", "cannot create: " + gdal::last_error());
+        };
+        add_field("building_id", OFTInteger);
+        add_field("cells", OFTInteger);
+        add_field("area_m2", OFTReal);
+        for (std::size_t c = 0; c < 9; ++c) add_field(field_names[c], c == 2 ? OFTInteger : OFTReal);
+        for (auto& [id, parts] : by_id) {
+            std::unique_ptr<OGRGeometry> joined(parts.UnionCascaded());
+            if (!joined) fail(out_path, "building " + std::to_string(id), "GDAL could not join its cells: " + gdal::last_error());
+            std::unique_ptr<OGRGeometry> multi(OGRGeometryFactory::forceToMultiPolygon(joined.release()));
+            OGRFeature feature(layer->GetLayerDefn());
+            feature.SetField("building_id", id);
+            feature.SetField("cells", cells[id]);
+            feature.SetField("area_m2", double(cells[id]) * g.dx * g.dy);
+            const auto k = std::find(stat_ids.begin(), stat_ids.end(), id);
+            for (std::size_t c = 0; c < 9; ++c) {
+                const double v = k == stat_ids.end() ? std::nan("") : values[c][std::size_t(k - stat_ids.begin())];
+                if (c == 0 || c == 2)
+                    feature.SetField(field_names[c], std::isnan(v) ? 0.0 : v);  // never hit: 0 and no impacts
+                else if (std::isfinite(v) && std::fabs(v) < 0.5 * cf::fill_value)
+                    feature.SetField(field_names[c], v);
+                else
+                    feature.SetFieldNull(feature.GetFieldIndex(field_names[c]));
+            }
+            feature.SetGeometry(multi.get());
+            if (layer->CreateFeature(&feature) != OGRERR_NONE)
+                fail(out_path, "building " + std::to_string(id), "cannot write: " + gdal::last_error());
             ++written;
         }
     } catch (...) {

@@ -64,6 +64,15 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
 std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path, SceneOf* scene = nullptr,
                          bool check_only = false);
 
+// The scene's buildings as a GeoPackage layer `buildings`: one (multi)polygon per
+// building_id, the union of its cells, in the scene's CRS, with its id, cells, area and
+// the impact statistics over all trajectories of `stats_path` (flotsam stats; formats/
+// stats_file.hpp: building_*_all): hit_probability, first_hit_time_s, impacts,
+// speed_median/p90/max_m_s, force_median/p90/max_N (null where never hit). The statistics
+// must come from this scene (scene_buildings_sha256). Returns the number of buildings.
+// Atomic as above.
+std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path);
+
 // File name part for a group label: letters, digits, '-', '_' kept, '+' becomes '-'.
 std::string file_safe(const std::string& label);
 

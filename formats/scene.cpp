@@ -26,6 +26,46 @@ bool Region::contains(double x, double y) const {
     return inside;
 }
 
+template <class Cell>
+std::vector<std::int32_t> building_components(int nx, int ny, const std::vector<Cell>& mask) {
+    std::vector<std::int32_t> id(mask.size(), 0);
+    if (mask.size() != std::size_t(nx) * std::size_t(ny)) return id;
+    std::vector<std::size_t> stack;
+    std::int32_t next = 0;
+    for (std::size_t start = 0; start < mask.size(); ++start) {
+        if (!mask[start] || id[start]) continue;
+        id[start] = ++next;  // a new component, numbered by its first cell in the row-major scan
+        stack.push_back(start);
+        while (!stack.empty()) {
+            const std::size_t k = stack.back();
+            stack.pop_back();
+            const int i = int(k % std::size_t(nx)), j = int(k / std::size_t(nx));
+            const auto visit = [&](int ii, int jj) {
+                if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) return;
+                const std::size_t n = std::size_t(jj) * std::size_t(nx) + std::size_t(ii);
+                if (mask[n] && !id[n]) {
+                    id[n] = next;
+                    stack.push_back(n);
+                }
+            };
+            visit(i - 1, j);
+            visit(i + 1, j);
+            visit(i, j - 1);
+            visit(i, j + 1);
+        }
+    }
+    return id;
+}
+template std::vector<std::int32_t> building_components(int, int, const std::vector<std::int8_t>&);
+template std::vector<std::int32_t> building_components(int, int, const std::vector<std::uint8_t>&);
+
+std::vector<std::int32_t> scene_building_ids(const Scene& s) {
+    if (s.building.empty()) return {};
+    bool matches = s.building_id.size() == s.building.size();
+    for (std::size_t k = 0; matches && k < s.building.size(); ++k) matches = (s.building[k] != 0) == (s.building_id[k] > 0);
+    return matches ? s.building_id : building_components(s.grid.nx, s.grid.ny, s.building);
+}
+
 const ScenePoint* Scene::find_point(const std::string& name) const {
     for (const auto& p : points)
         if (p.name == name) return &p;
@@ -164,6 +204,22 @@ Scene read_scene(const std::string& path) {
             s.building[k] = std::int8_t(b[k]);
         }
     }
+    if (f.has_var("building_id")) {
+        if (s.building.empty()) fail(path, "variable 'building_id'", "given without the variable 'building' (the mask)");
+        const auto ids = read_field(f, "building_id", s.grid);
+        s.building_id.resize(ids.size());
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            if (!(ids[k] >= 0.0 && ids[k] < 2e9 && ids[k] == std::floor(ids[k])))
+                fail(path, "variable 'building_id'",
+                     "must be a whole number >= 0, found " + number_text(ids[k]) + " at flat index " + std::to_string(k));
+            s.building_id[k] = std::int32_t(ids[k]);
+        }
+        // A mask edited without its ids (another tool): the ids no longer say which cells
+        // are buildings, so the mask's components replace them.
+        s.building_id = scene_building_ids(s);
+    } else if (!s.building.empty()) {
+        s.building_id = building_components(s.grid.nx, s.grid.ny, s.building);  // a scene written before the ids
+    }
     const bool has_eta0 = f.has_var("eta0"), has_u0 = f.has_var("u0"), has_v0 = f.has_var("v0");
     if (has_eta0) {
         const int v = f.var("eta0");
@@ -269,6 +325,10 @@ public:
             vb_ = field("building", NC_BYTE, "", "", "building mask (1 = building)");
             f.put_att(vb_, "flag_values", std::vector<std::int8_t>{0, 1});
             f.put_att(vb_, "flag_meanings", std::string("open building"));
+            vid_ = field("building_id", NC_INT, "", "", "building each cell belongs to (0 = none)");
+            f.put_att(vid_, "comment",
+                      std::string("a footprint's number when imported with footprints, else the 4-connected components of "
+                                  "the mask numbered by their first cell, row by row from the south-west"));
         }
         if (!s.eta0.empty()) ve_ = field("eta0", NC_FLOAT, "m", "sea_surface_height_above_mean_sea_level", "initial water level");
         if (!s.u0.empty()) {
@@ -281,6 +341,7 @@ public:
         f_.put(vz_, as_float(s_.z));
         if (vn_ >= 0) f_.put(vn_, as_float(s_.manning_n));
         if (vb_ >= 0) f_.put(vb_, s_.building);
+        if (vid_ >= 0) f_.put(vid_, scene_building_ids(s_));
         if (ve_ >= 0) f_.put(ve_, as_float(s_.eta0));
         if (vu_ >= 0) {
             f_.put(vu_, as_float(s_.u0));
@@ -291,7 +352,7 @@ public:
 private:
     nc::File& f_;
     const Scene& s_;
-    int vz_ = -1, vn_ = -1, vb_ = -1, ve_ = -1, vu_ = -1, vv_ = -1;
+    int vz_ = -1, vn_ = -1, vb_ = -1, vid_ = -1, ve_ = -1, vu_ = -1, vv_ = -1;
 };
 
 // The named points: gauges and debris starts.

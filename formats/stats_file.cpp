@@ -11,11 +11,12 @@ const Dims param_time = {dim::group, dim::param_set, dim::time};
 const Dims member_section = {dim::member, dim::section}, group_yaw_bin = {dim::group, dim::yaw_bin};
 const Dims group_region = {dim::group, dim::region}, param_region = {dim::group, dim::param_set, dim::region};
 const Dims group_map = {dim::group, dim::y, dim::x}, map = {dim::y, dim::x};
+const Dims group_building = {dim::group, dim::building}, per_building = {dim::building};
 }  // namespace
 
 const std::vector<std::string>& dimension_names() {
     static const std::vector<std::string> names = {dim::group, dim::param_set, dim::section, dim::region, dim::speed, dim::yaw_bin,
-                                                   dim::bnds,  dim::time,      dim::member,  dim::x,      dim::y};
+                                                   dim::bnds,  dim::time,      dim::member,  dim::building, dim::x,      dim::y};
     return names;
 }
 
@@ -190,6 +191,30 @@ const Variable relative_error{"relative_error",
                               "R(t) = (distance_mean - distance_mean of the control set) / distance_mean of the control set",
                               true};
 
+const Variable building_id{"building_id", NC_INT, per_building, "", "the scene's building_id of the building", false};
+const BuildingVariables building{
+    {"building_hit_probability", NC_FLOAT, group_building, "1", "fraction of the group's trajectories that hit the building", false},
+    {"building_first_hit_time", NC_DOUBLE, group_building, "s", "earliest impact on the building over the group", true},
+    {"building_impact_count", NC_INT, group_building, "", "impacts on the building over the group", false},
+    {"building_impact_speed_median", NC_DOUBLE, group_building, "m s-1", "median impact speed over the group's impacts", true},
+    {"building_impact_speed_p90", NC_DOUBLE, group_building, "m s-1", "90th percentile of the impact speed (type 7)", true},
+    {"building_impact_speed_max", NC_DOUBLE, group_building, "m s-1", "largest impact speed over the group's impacts", true},
+    {"building_impact_force_median", NC_DOUBLE, group_building, "N", "median impact force over the group's impacts", true},
+    {"building_impact_force_p90", NC_DOUBLE, group_building, "N", "90th percentile of the impact force (type 7)", true},
+    {"building_impact_force_max", NC_DOUBLE, group_building, "N", "largest impact force over the group's impacts", true},
+};
+const BuildingVariables building_all{
+    {"building_hit_probability_all", NC_FLOAT, per_building, "1", "fraction of all trajectories that hit the building", false},
+    {"building_first_hit_time_all", NC_DOUBLE, per_building, "s", "earliest impact on the building", true},
+    {"building_impact_count_all", NC_INT, per_building, "", "impacts on the building", false},
+    {"building_impact_speed_median_all", NC_DOUBLE, per_building, "m s-1", "median impact speed", true},
+    {"building_impact_speed_p90_all", NC_DOUBLE, per_building, "m s-1", "90th percentile of the impact speed (type 7)", true},
+    {"building_impact_speed_max_all", NC_DOUBLE, per_building, "m s-1", "largest impact speed", true},
+    {"building_impact_force_median_all", NC_DOUBLE, per_building, "N", "median impact force", true},
+    {"building_impact_force_p90_all", NC_DOUBLE, per_building, "N", "90th percentile of the impact force (type 7)", true},
+    {"building_impact_force_max_all", NC_DOUBLE, per_building, "N", "largest impact force", true},
+};
+
 const Variable pass_probability{
     "pass_probability", NC_FLOAT, group_map, "1", "fraction of the group's trajectories whose centre passes the cell", false};
 const Variable max_debris_speed{
@@ -235,6 +260,13 @@ std::vector<Entry> entries() {
     add({&member_region, &region_count, &region_count_by_param});
     add_names({time});
     add({&distance_mean, &distance_std, &relative_error});
+    add({&building_id});
+    auto add_buildings = [&](const BuildingVariables& b) {
+        add({&b.hit_probability, &b.first_hit_time, &b.impact_count, &b.speed_median, &b.speed_p90, &b.speed_max, &b.force_median,
+             &b.force_p90, &b.force_max});
+    };
+    add_buildings(building);
+    add_buildings(building_all);
     add_names({x, y});
     add({&pass_probability, &max_debris_speed, &pass_probability_all, &max_debris_speed_all});
     return e;

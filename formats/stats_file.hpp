@@ -15,6 +15,9 @@
 //   max_rotation_from_start_*(group), rotation_direction_correlation(group)
 //   region_count[_by_param](group, [param_set,] region)
 //   time(time), distance_*(group, param_set, time), relative_error  R(t)
+//   building_id(building), building_*(group, building) and building_*_all(building)
+//                                           impacts on the scene's buildings: hit
+//                                           probability, first hit, speed and force
 //   x(x), y(y), pass_probability, max_debris_speed (group, y, x) and *_all (y, x): maps
 //                                           that name the scene's CF grid mapping (crs)
 //                                           when it has one
@@ -41,6 +44,7 @@ inline constexpr const char* yaw_bin = "yaw_bin";
 inline constexpr const char* bnds = "bnds";  // the two edges of a yaw bin
 inline constexpr const char* time = "time";
 inline constexpr const char* member = "member";  // one trajectory of the sweep
+inline constexpr const char* building = "building";  // one building of the scene (building_id)
 inline constexpr const char* x = "x";            // map columns
 inline constexpr const char* y = "y";            // map rows
 }  // namespace dim
@@ -103,6 +107,18 @@ extern const Variable member_region, region_count, region_count_by_param;
 // Distance from the start and R(t), on the sweep's output times.
 inline constexpr const char* time = "time";  // [s] (common/cf.hpp, def_time)
 extern const Variable distance_mean, distance_std, relative_error;
+
+// Impacts on the scene's buildings (formats/impact_file.hpp), per (group, building) and
+// over all trajectories per building (the same names with "_all").
+extern const Variable building_id;
+struct BuildingVariables {
+    Variable hit_probability;                          // share of the trajectories that hit it at least once
+    Variable first_hit_time;                           // earliest impact [s]
+    Variable impact_count;                             // impacts
+    Variable speed_median, speed_p90, speed_max;       // impact speed [m s-1]
+    Variable force_median, force_p90, force_max;       // impact force [N]
+};
+extern const BuildingVariables building, building_all;
 
 // The maps, on the map cells' centres x and y [m] (common/cf.hpp, def_xy).
 inline constexpr const char* x = "x";

@@ -13,6 +13,8 @@
 //                   restitution, length, width, height, specific_gravity (double),
 //                   added_yaw_inertia, collision_steps, unresolved_collisions,
 //                   axis_shift_steps (int)
+//   impact_*(impact)           the impacts on buildings, where there were any
+//                              (formats/impact_file.hpp)
 //   crs                        the flow's CF grid mapping, when it has one (yaw ... status
 //                              name it: x and y are then projection coordinates)
 // No time stamps anywhere: the same inputs give the same bytes.

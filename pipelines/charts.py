@@ -16,6 +16,8 @@ Writes PNGs into DIR (each skipped, with a line saying why, when its input is mi
   relative_error.png    R(t) per parameter against the control
   probability.png       probability that debris passes each cell
   max_speed.png         largest debris speed per cell
+  buildings.png         building footprints coloured by the share of trajectories that hit them,
+                        the 90th-percentile impact force written on the most loaded ones
 
 Uses only Debian's python3-matplotlib, python3-xarray and python3-netcdf4.
 """
@@ -356,9 +358,59 @@ def chart_map(scene, st, out, var, name, label, cmap, scale=1.0, vmax=None):
     save(fig, out, name)
 
 
+def building_ids(scene):
+    """The scene's building_id (y, x), or the mask's 4-connected components numbered as flotsam numbers them."""
+    if "building_id" in scene:
+        return scene["building_id"].values.astype(int)
+    if "building" not in scene:
+        return None
+    try:
+        from scipy import ndimage
+    except ImportError:
+        return None
+    ids, _ = ndimage.label(scene["building"].values != 0)  # 4-connected, numbered in row-major scan order
+    return ids
+
+
+def chart_buildings(scene, st, out, annotate=15):
+    if S.BUILDING_ID not in st:
+        print("charts.py: buildings.png skipped (statistics written before impacts were recorded)")
+        return
+    ids = building_ids(scene)
+    if ids is None:
+        print("charts.py: buildings.png skipped (the scene has no buildings, or no building_id and no scipy)")
+        return
+    stat_ids = st[S.BUILDING_ID].values.astype(int)
+    prob = st[S.BUILDING_HIT_PROBABILITY + S.ALL].values.astype(float)
+    p90 = st[S.BUILDING_IMPACT_FORCE_P90 + S.ALL].values.astype(float)
+    p90[~np.isfinite(p90) | (p90 > 1e30)] = np.nan
+    lookup = np.full(ids.max() + 1, np.nan)
+    lookup[stat_ids] = prob
+    field = np.where(ids > 0, lookup[np.clip(ids, 0, None)], np.nan)
+    x, y = scene["x"].values, scene["y"].values
+    fig, ax = plt.subplots(figsize=(12, 4.2))
+    scene_background(ax, scene, city_extent(scene))
+    hit = np.ma.masked_where(~(field > 0), field)
+    never = np.ma.masked_where(~(field == 0), np.ones_like(field))
+    ext = [x[0], x[-1], y[0], y[-1]]
+    ax.imshow(never, origin="lower", extent=ext, cmap="Greys", vmin=0, vmax=3, aspect="equal")
+    im = ax.imshow(hit, origin="lower", extent=ext, cmap="YlOrRd", vmin=0, vmax=1, aspect="equal")
+    fig.colorbar(im, ax=ax, shrink=0.85, label="share of trajectories that hit the building [-]")
+    order = [k for k in np.argsort(-np.nan_to_num(p90, nan=-1.0)) if np.isfinite(p90[k])][:annotate]
+    for k in order:
+        jj, ii = np.nonzero(ids == stat_ids[k])
+        ax.annotate(f"{p90[k]:.3g} N", (x[ii].mean(), y[jj].mean()), fontsize=7, ha="center", va="center",
+                    bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.75))
+    members = int(st.sizes.get(S.MEMBER_ID, st[S.MEMBER_ID].size)) if S.MEMBER_ID in st else 0
+    ax.set_title(f"impacts on buildings over {members} trajectories: hit probability (colour), 90th-percentile impact force "
+                 f"(labels, the {len(order)} largest; ASCE 7-16 Sec. 6.11 estimate)", fontsize=9)
+    fig.tight_layout()
+    save(fig, out, "buildings.png")
+
+
 def charts_from_stats(scene, stats_path, out):
     if not stats_path:
-        print("charts.py: sections, speed_density, yaw, relative_error, probability, max_speed skipped (no --stats)")
+        print("charts.py: sections, speed_density, yaw, relative_error, probability, max_speed, buildings skipped (no --stats)")
         return
     st = xr.open_dataset(stats_path, decode_times=False)
     chart_sections(st, out)
@@ -368,6 +420,7 @@ def charts_from_stats(scene, stats_path, out):
     chart_map(scene, st, out, S.PASS_PROBABILITY, "probability.png", "probability that debris passes the cell [-]", "magma_r",
               vmax=1.0)
     chart_map(scene, st, out, S.MAX_DEBRIS_SPEED, "max_speed.png", "largest debris speed in the cell [cm/s]", "viridis", scale=100.0)
+    chart_buildings(scene, st, out)
 
 
 def point_positions(scene):

@@ -76,6 +76,22 @@ DISTANCE_MEAN = "distance_mean"
 DISTANCE_STD = "distance_std"
 RELATIVE_ERROR = "relative_error"
 
+# Impacts on the scene's buildings, per (group, building) and, with ALL appended, per building.
+BUILDING_ID = "building_id"
+BUILDING_HIT_PROBABILITY = "building_hit_probability"
+BUILDING_FIRST_HIT_TIME = "building_first_hit_time"
+BUILDING_IMPACT_COUNT = "building_impact_count"
+BUILDING_IMPACT_SPEED_MEDIAN = "building_impact_speed_median"
+BUILDING_IMPACT_SPEED_P90 = "building_impact_speed_p90"
+BUILDING_IMPACT_SPEED_MAX = "building_impact_speed_max"
+BUILDING_IMPACT_FORCE_MEDIAN = "building_impact_force_median"
+BUILDING_IMPACT_FORCE_P90 = "building_impact_force_p90"
+BUILDING_IMPACT_FORCE_MAX = "building_impact_force_max"
+ALL = "_all"
+BUILDING = (BUILDING_HIT_PROBABILITY, BUILDING_FIRST_HIT_TIME, BUILDING_IMPACT_COUNT, BUILDING_IMPACT_SPEED_MEDIAN,
+            BUILDING_IMPACT_SPEED_P90, BUILDING_IMPACT_SPEED_MAX, BUILDING_IMPACT_FORCE_MEDIAN, BUILDING_IMPACT_FORCE_P90,
+            BUILDING_IMPACT_FORCE_MAX)
+
 # The maps, over (group, y, x) and (y, x).
 X = "x"
 Y = "y"
@@ -98,10 +114,12 @@ VARIABLES = (
        MAX_ROTATION_FROM_START_COUNT, MAX_ROTATION_FROM_START_MEDIAN, MAX_ROTATION_FROM_START_MEAN,
        MAX_ROTATION_FROM_START_MIN, MAX_ROTATION_FROM_START_MAX, ROTATION_DIRECTION_CORRELATION,
        MEMBER_REGION, REGION_COUNT, REGION_COUNT_BY_PARAM,
-       TIME, DISTANCE_MEAN, DISTANCE_STD, RELATIVE_ERROR,
-       X, Y, PASS_PROBABILITY, MAX_DEBRIS_SPEED, PASS_PROBABILITY_ALL, MAX_DEBRIS_SPEED_ALL))
+       TIME, DISTANCE_MEAN, DISTANCE_STD, RELATIVE_ERROR, BUILDING_ID)
+    + BUILDING + tuple(name + ALL for name in BUILDING)
+    + (X, Y, PASS_PROBABILITY, MAX_DEBRIS_SPEED, PASS_PROBABILITY_ALL, MAX_DEBRIS_SPEED_ALL))
 
-DIMENSIONS = ("group", "param_set", "section", "region", "speed", "yaw_bin", "bnds", "time", "member", "x", "y")
+DIMENSIONS = ("group", "param_set", "section", "region", "speed", "yaw_bin", "bnds", "time", "member", "building", "x",
+              "y")
 
 # The global attributes (after Conventions and flotsam_file_kind); units in the names.
 YAW_WINDOW = "yaw_window_s"

@@ -118,6 +118,7 @@ void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::v
         progress.update(r.time[k], spec.output_interval, steps);
     }
     progress.finish(r.time.back(), steps);
+    const std::vector<Impact> impacts = world.impacts();  // by body, then time
     for (std::size_t b = 0; b < on_flow.size(); ++b) {
         const Member& m = *on_flow[b];
         MemberRecord rec;
@@ -132,6 +133,8 @@ void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::v
         rec.unresolved_collisions = int(bs.unresolved);
         rec.axis_shift_steps = int(bs.axis_shifts);
         rec.track = std::move(series.tracks[b]);
+        for (const Impact& i : impacts)
+            if (std::size_t(i.trajectory) == b) rec.impacts.push_back(i);
         r.members.push_back(std::move(rec));
         st.steps += bs.steps;
     }

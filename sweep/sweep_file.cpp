@@ -14,6 +14,7 @@
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/settings_nc.hpp"
+#include "debris/impacts.hpp"
 #include "debris/trajectory_output.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
@@ -36,6 +37,29 @@ std::string csv_field(const std::string& s) {
 }
 
 }  // namespace
+
+std::string impacts_path_for(const std::string& nc_path) {
+    std::filesystem::path p(nc_path);
+    p.replace_extension("");
+    return p.string() + "_impacts.csv";
+}
+
+// Every member's impacts, in member order, each naming its member's index in the file.
+std::vector<Impact> file_impacts(const SweepResult& r) {
+    std::vector<Impact> out;
+    for (std::size_t b = 0; b < r.members.size(); ++b)
+        for (Impact i : r.members[b].impacts) {
+            i.trajectory = int(b);
+            out.push_back(i);
+        }
+    return out;
+}
+
+void write_impacts_summary_csv(const std::string& path, const SweepResult& r) {
+    std::vector<std::string> labels;
+    for (const auto& m : r.members) labels.push_back(trajectory_label(r, m));
+    write_impacts_csv(path, file_impacts(r), labels);
+}
 
 std::string summary_path_for(const std::string& nc_path) {
     std::filesystem::path p(nc_path);
@@ -184,6 +208,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         const debris::TrackVariables track_vars = debris::define_track_variables(f, dtraj, dtime, r.crs);
         const MemberText text = member_text(r);
         const MemberVariables member_vars = define_member_variables(f, dtraj, text);
+        const std::vector<Impact> impacts = file_impacts(r);
+        const std::vector<int> vimpact = define_impact_variables(f, impacts.size(), r.crs, debris::impact_force_formula);
         auto table = [&](const char* name, int dim, const std::vector<std::string>& values, const char* long_name) {
             return cf::def_var(
                 f, {.name = name, .type = NC_CHAR, .dims = {dim}, .long_name = long_name, .text_length = cf::longest(values)});
@@ -206,6 +232,7 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         f.put(vbodyname, r.bodies);
         f.put(vvarname, r.variants);
         put_parameter_sets(f, set_vars, r.params);
+        put_impacts(f, vimpact, impacts);
         f.close();
     }
     out.commit();
@@ -417,6 +444,7 @@ SweepResult read_sweep_file(const std::string& path) {
         tracks.read(b, m.track);
         r.members.push_back(std::move(m));
     }
+    for (const Impact& i : read_impacts(f, nm)) r.members[std::size_t(i.trajectory)].impacts.push_back(i);
     return r;
 }
 

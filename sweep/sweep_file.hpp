@@ -15,6 +15,7 @@
 #include "common/cf.hpp"
 #include "common/netcdf.hpp"
 #include "debris/world.hpp"
+#include "formats/impact_file.hpp"
 #include "formats/trajectory_file.hpp"
 #include "sweep/sweep_spec.hpp"
 
@@ -26,6 +27,7 @@ struct MemberRecord : MemberIndex {
     double heading0_deg = 0;  // start heading [degree] (def.heading, as written in the file)
     int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
     debris::Track track;  // on SweepResult::time
+    std::vector<Impact> impacts;  // on buildings, by time (Impact::trajectory: unused here, the file's index when written)
 };
 
 struct SweepResult {
@@ -67,8 +69,13 @@ SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vecto
 
 // One row per trajectory (columns in docs/sweep.md); written atomically.
 void write_summary_csv(const std::string& path, const SweepResult& r);
+// One row per impact on a building (formats/impact_file.hpp; the trajectory's index in the
+// file and its label); written atomically.
+void write_impacts_summary_csv(const std::string& path, const SweepResult& r);
 
 // out.nc → out.csv
 std::string summary_path_for(const std::string& nc_path);
+// out.nc → out_impacts.csv
+std::string impacts_path_for(const std::string& nc_path);
 
 }  // namespace flotsam::sweep

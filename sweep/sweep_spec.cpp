@@ -244,6 +244,7 @@ BodySpec read_body(const TomlDoc& doc, const TomlTable& t, SweepSpec& spec, cons
         const debris::BodyDef entry = debris::catalogue_body_def(b.type, doc.path);
         for (const auto* table : {&debris::body_shape_settings(), &debris::body_coefficient_settings()})
             for (const auto& setting : *table) setting.set_number(b.def, setting.number(entry));
+        b.def.impact_stiffness = entry.impact_stiffness;
     }
     if (has(t, "start") == has(t, "at"))
         toml_fail(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");

@@ -347,6 +347,57 @@ void pass_maps(SweepStats& s, const SweepResult& sw, const Scene& scene, const S
     for (std::size_t k = 0; k < ncell; ++k) s.pass_probability_all[k] = float(double(count_all[k]) / double(sw.members.size()));
 }
 
+// Impacts per building: over the members given, the share that hit it, the first impact,
+// and the median, 90th percentile and largest speed and force of its impacts.
+std::vector<SweepStats::BuildingSummary> building_summaries(const SweepResult& sw, const std::vector<int>& members,
+                                                           const std::vector<std::int32_t>& ids) {
+    const double nan = std::nan("");
+    std::vector<SweepStats::BuildingSummary> out(ids.size());
+    std::vector<std::vector<double>> speeds(ids.size()), forces(ids.size());
+    std::vector<int> hit(ids.size(), 0);
+    std::vector<double> first(ids.size(), nan);
+    for (int m : members) {
+        std::vector<char> hit_here(ids.size(), 0);
+        for (const Impact& i : sw.members[std::size_t(m)].impacts) {
+            const auto it = std::lower_bound(ids.begin(), ids.end(), i.building);
+            if (it == ids.end() || *it != i.building) continue;  // not a building of this scene
+            const std::size_t b = std::size_t(it - ids.begin());
+            speeds[b].push_back(i.speed);
+            forces[b].push_back(i.force);
+            hit_here[b] = 1;
+            if (std::isnan(first[b]) || i.time < first[b]) first[b] = i.time;
+        }
+        for (std::size_t b = 0; b < ids.size(); ++b) hit[b] += hit_here[b];
+    }
+    for (std::size_t b = 0; b < ids.size(); ++b) {
+        auto& q = out[b];
+        q.hit_probability = members.empty() ? 0.0 : double(hit[b]) / double(members.size());
+        q.first_hit_time = first[b];
+        q.impacts = int(speeds[b].size());
+        std::sort(speeds[b].begin(), speeds[b].end());
+        std::sort(forces[b].begin(), forces[b].end());
+        q.speed_median = quantile_sorted(speeds[b], 0.5);
+        q.speed_p90 = quantile_sorted(speeds[b], 0.9);
+        q.speed_max = speeds[b].empty() ? nan : speeds[b].back();
+        q.force_median = quantile_sorted(forces[b], 0.5);
+        q.force_p90 = quantile_sorted(forces[b], 0.9);
+        q.force_max = forces[b].empty() ? nan : forces[b].back();
+    }
+    return out;
+}
+
+void building_impacts(SweepStats& s, const SweepResult& sw, const Scene& scene) {
+    const std::vector<std::int32_t> ids = scene_building_ids(scene);
+    s.building_ids.assign(ids.begin(), ids.end());
+    std::sort(s.building_ids.begin(), s.building_ids.end());
+    s.building_ids.erase(std::unique(s.building_ids.begin(), s.building_ids.end()), s.building_ids.end());
+    if (!s.building_ids.empty() && s.building_ids.front() == 0) s.building_ids.erase(s.building_ids.begin());
+    for (const auto& g : s.groups) s.building.push_back(building_summaries(sw, g.members, s.building_ids));
+    std::vector<int> all(sw.members.size());
+    for (std::size_t m = 0; m < all.size(); ++m) all[m] = int(m);
+    s.building_all = building_summaries(sw, all, s.building_ids);
+}
+
 }  // namespace
 
 SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsDef& def) {
@@ -379,6 +430,7 @@ SweepStats compute_stats(const SweepResult& sw, const Scene& scene, const StatsD
     region_counts(s, sw);
     distance_statistics(s, sw, def);
     pass_maps(s, sw, scene, def);
+    building_impacts(s, sw, scene);
     return s;
 }
 

@@ -80,6 +80,19 @@ struct SweepStats {
     std::vector<std::vector<std::vector<double>>> distance_mean, distance_std, relative_error;  // [group][param][time]
     std::vector<std::vector<int>> param_members;                                                // [group][param]: members averaged
 
+    // Impacts on the scene's buildings (formats/impact_file.hpp), per group and over all
+    // trajectories; NaN where the building was not hit.
+    struct BuildingSummary {
+        double hit_probability = 0.0;               // share of the trajectories with an impact on it [-]
+        double first_hit_time = 0.0;                // [s]
+        int impacts = 0;                            // impacts on it
+        double speed_median = 0, speed_p90 = 0, speed_max = 0;  // impact speed [m/s]
+        double force_median = 0, force_p90 = 0, force_max = 0;  // impact force [N]
+    };
+    std::vector<std::int32_t> building_ids;                   // the scene's ids, increasing
+    std::vector<std::vector<BuildingSummary>> building;       // [group][building]
+    std::vector<BuildingSummary> building_all;                // [building]
+
     Grid map;                                                     // the map grid
     std::vector<std::vector<float>> pass_probability, max_speed;  // [group][cell]; max_speed NaN: never passed
     std::vector<float> pass_probability_all, max_speed_all;       // all members

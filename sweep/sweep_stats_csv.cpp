@@ -121,6 +121,23 @@ void write_members_csv(const std::string& dir, const SweepStats& s, const SweepR
 
 }  // namespace
 
+// buildings.csv: one row per group × building hit, then per building over all
+// trajectories (body and variant "all").
+void write_buildings_csv(const std::string& dir, const SweepStats& s) {
+    std::string t = "body,variant,building,hit_probability,first_hit_time_s,impacts,speed_median_m_s,speed_p90_m_s,speed_max_m_s,"
+                    "force_median_N,force_p90_N,force_max_N\n";
+    auto row = [&](const std::string& key, std::size_t b, const SweepStats::BuildingSummary& q) {
+        if (q.impacts == 0) return;
+        t += key + "," + std::to_string(s.building_ids[b]) + "," + num(q.hit_probability) + "," + num(q.first_hit_time) + "," +
+             std::to_string(q.impacts) + "," + num(q.speed_median) + "," + num(q.speed_p90) + "," + num(q.speed_max) + "," +
+             num(q.force_median) + "," + num(q.force_p90) + "," + num(q.force_max) + "\n";
+    };
+    for (std::size_t g = 0; g < s.groups.size(); ++g)
+        for (std::size_t b = 0; b < s.building_ids.size(); ++b) row(group_key(s.groups[g]), b, s.building[g][b]);
+    for (std::size_t b = 0; b < s.building_ids.size(); ++b) row("all,all", b, s.building_all[b]);
+    write_text_atomic(dir + "/buildings.csv", t);
+}
+
 void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepResult& sw) {
     std::filesystem::create_directories(dir);
     write_sections_csv(dir, s);
@@ -129,6 +146,7 @@ void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepRes
     write_regions_csv(dir, s);
     write_distance_csv(dir, s);
     write_members_csv(dir, s, sw);
+    write_buildings_csv(dir, s);
 }
 
 }  // namespace flotsam::sweep

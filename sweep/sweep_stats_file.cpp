@@ -225,6 +225,41 @@ PutValues define_distance(nc::File& f, const StatsDims& d, const SweepStats& s) 
     };
 }
 
+// Impacts per building: per (group, building) and over all trajectories per building.
+PutValues define_buildings(nc::File& f, const StatsDims& d, const SweepStats& s) {
+    const int vid = def(f, d, schema::building_id);
+    struct Ids {
+        int v[9];
+    };
+    const auto define = [&](const schema::BuildingVariables& b) {
+        Ids ids{};
+        const schema::Variable* vars[] = {&b.hit_probability, &b.first_hit_time, &b.impact_count, &b.speed_median, &b.speed_p90,
+                                          &b.speed_max,       &b.force_median,   &b.force_p90,    &b.force_max};
+        for (int k = 0; k < 9; ++k) ids.v[k] = def(f, d, *vars[k]);
+        return ids;
+    };
+    const Ids per_group = define(schema::building), all = define(schema::building_all);
+    const auto put = [&f](const Ids& ids, const std::vector<SweepStats::BuildingSummary>& q) {
+        using B = SweepStats::BuildingSummary;
+        f.put(ids.v[0], column<float>(q, [](const B& b) { return float(b.hit_probability); }));
+        f.put(ids.v[1], cf::filled(column<double>(q, &B::first_hit_time)));
+        f.put(ids.v[2], column<int>(q, &B::impacts));
+        f.put(ids.v[3], cf::filled(column<double>(q, &B::speed_median)));
+        f.put(ids.v[4], cf::filled(column<double>(q, &B::speed_p90)));
+        f.put(ids.v[5], cf::filled(column<double>(q, &B::speed_max)));
+        f.put(ids.v[6], cf::filled(column<double>(q, &B::force_median)));
+        f.put(ids.v[7], cf::filled(column<double>(q, &B::force_p90)));
+        f.put(ids.v[8], cf::filled(column<double>(q, &B::force_max)));
+    };
+    return [=, &f, &s] {
+        f.put(vid, std::vector<int>(s.building_ids.begin(), s.building_ids.end()));
+        std::vector<SweepStats::BuildingSummary> flat;  // (group, building), building fastest
+        for (const auto& g : s.building) flat.insert(flat.end(), g.begin(), g.end());
+        put(per_group, flat);
+        put(all, s.building_all);
+    };
+}
+
 // The probability and largest-speed maps.
 PutValues define_maps(nc::File& f, const StatsDims& d, const SweepStats& s) {
     const cf::XYAxes axes = cf::def_xy(f, d.id.at(schema::dim::x), d.id.at(schema::dim::y), "map cell centre");
@@ -283,6 +318,7 @@ StatsDims define_dimensions(nc::File& f, const SweepStats& s) {
                                                            {dim::bnds, 2},
                                                            {dim::time, s.time.size()},
                                                            {dim::member, s.member_group.size()},
+                                                           {dim::building, s.building_ids.size()},
                                                            {dim::x, std::size_t(s.map.nx)},
                                                            {dim::y, std::size_t(s.map.ny)}};
     for (const auto& [name, length] : lengths) d.id[name] = f.def_dim(name, length);
@@ -301,7 +337,8 @@ void write_stats_file(const std::string& path, const SweepStats& s, const StatsD
         const std::vector<PutValues> puts = {
             define_tables(f, d, s),       define_passages(f, d, s),   define_yaw_histograms(f, d, s),
             define_member_table(f, d, s), define_member_yaw(f, d, s), define_rotation_from_start(f, d, s),
-            define_regions(f, d, s),      define_distance(f, d, s),   define_maps(f, d, s)};
+            define_regions(f, d, s),      define_distance(f, d, s),   define_buildings(f, d, s),
+            define_maps(f, d, s)};
         put_settings(f, s, def, sweep_file, scene_file, history);
         f.enddef();
         for (const PutValues& put : puts) put();
