@@ -67,7 +67,12 @@ SweepResult read_sweep_file(const std::string& path);
 // once). Errors name the offending part.
 SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vector<std::string>& paths);
 
-// One row per trajectory (columns in docs/sweep.md); written atomically.
+// A member's trajectory_id: body/variant/parameter set/flow/perturbation.
+std::string trajectory_label(const SweepResult& r, const MemberRecord& m);
+// Every member's impacts, in member order, each naming its member's index in the file.
+std::vector<Impact> file_impacts(const SweepResult& r);
+
+// One row per trajectory (columns in docs/sweep.md); written atomically (sweep_csv.cpp).
 void write_summary_csv(const std::string& path, const SweepResult& r);
 // One row per impact on a building (formats/impact_file.hpp; the trajectory's index in the
 // file and its label); written atomically.
