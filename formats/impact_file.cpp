@@ -4,21 +4,10 @@
 #include <cstdio>
 
 #include "common/atomic_file.hpp"
+#include "common/csv.hpp"
 #include "common/error.hpp"
 
 namespace flotsam {
-
-namespace {
-
-// A CSV field: quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
-}  // namespace
 
 const std::vector<std::string>& impact_variable_names() {
     static const std::vector<std::string> names = {"impact_time",  "impact_trajectory", "impact_building", "impact_x",

@@ -5,23 +5,12 @@
 #include <filesystem>
 
 #include "common/atomic_file.hpp"
+#include "common/csv.hpp"
 #include "debris/impacts.hpp"
 #include "sweep/sweep_file.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
-
-namespace {
-
-// A CSV field: quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
-}  // namespace
 
 std::string impacts_path_for(const std::string& nc_path) {
     std::filesystem::path p(nc_path);
