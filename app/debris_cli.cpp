@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
+#include "app/debris_sources.hpp"
 #include "app/settings_cli.hpp"
 #include "common/cf.hpp"
 #include "common/error.hpp"
@@ -29,6 +30,8 @@ struct DebrisOptions {
     std::string flow, scene, ground, out = "trajectories.nc";
     std::string impacts_csv;  // "": no CSV of the impacts
     std::vector<std::string> starts, ats;
+    std::string sources;                     // GIS layer file of debris sources; "": none
+    std::vector<std::string> source_layers;  // its layers to read; empty: all
     debris::BodyDef body = debris::default_body_def();     // every body's settings
     debris::WorldDef world = debris::default_world_def();  // step, flow replay, threads
     double output_interval = 0.5;                          // [s]
@@ -95,14 +98,16 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     std::vector<NamedPath> outputs = {{"--out", o.out}};
     if (!o.impacts_csv.empty()) outputs.push_back({"--impacts", o.impacts_csv});
     const OutputGuard guard(outputs, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}});
-    if (o.starts.empty() && o.ats.empty()) fail("debris", "bodies", "give at least one --start NAME or --at x,y,heading_deg");
+    if (o.starts.empty() && o.ats.empty() && o.sources.empty())
+        fail("debris", "bodies", "give at least one --start NAME, --at x,y,heading_deg or --sources FILE");
+    if (!o.source_layers.empty() && o.sources.empty()) fail("--source-layer", o.source_layers.front(), "needs --sources FILE");
 
     std::unique_ptr<Scene> scene;
     if (!o.scene.empty()) scene = std::make_unique<Scene>(read_scene(o.scene));
     std::unique_ptr<Scene> ground;
     if (!o.ground.empty()) ground = std::make_unique<Scene>(read_scene(o.ground));
     std::vector<debris::BodyDef> bodies;
-    std::vector<std::string> start_names;
+    std::vector<std::string> start_names, sources, types;
     for (const auto& name : o.starts) {
         if (!scene) fail("--start", name, "needs --scene (the start points are named there)");
         const ScenePoint* p = scene->find_point(name);
@@ -118,6 +123,18 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     for (const auto& at : o.ats) {
         bodies.push_back(parse_at(at, base, int(bodies.size())));
         start_names.emplace_back();
+    }
+    types.assign(bodies.size(), o.body_type);
+    sources.assign(bodies.size(), "");
+    if (!o.sources.empty()) {
+        if (!scene) fail("--sources", o.sources, "needs --scene (its CRS places the layers, its buildings check the starts)");
+        for (const SourcedBody& s : bodies_from_sources(o.sources, o.source_layers, *scene, base)) {
+            bodies.push_back(s.def);
+            start_names.emplace_back();
+            sources.push_back(s.source);
+            types.push_back(s.type);
+        }
+        if (!o.quiet) std::fprintf(stderr, "debris: %zu bodies from %s\n", bodies.size() - o.starts.size() - o.ats.size(), o.sources.c_str());
     }
 
     debris::WorldDef wdef = debris::scaled_to_bodies(o.world, bodies, !dt_max_default);
@@ -158,7 +175,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     }
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
     debris::write_trajectory_file(o.out, world, series,
-                                  {command_line, o.flow, start_names, world.flow().crs(), world.flow().scene_buildings_sha256()});
+                                  {command_line, o.flow, start_names, sources, types, world.flow().crs(),
+                                   world.flow().scene_buildings_sha256()});
     if (!o.impacts_csv.empty()) {
         std::vector<std::string> names;
         for (const auto& p : world.params()) names.push_back(p.def.name);
@@ -186,6 +204,11 @@ void register_debris_commands(CLI::App& app, const std::string& command_line) {
         ->check(CLI::ExistingFile);
     sub->add_option("--start", opts->starts, "a body at this scene start point (repeatable)");
     sub->add_option("--at", opts->ats, "a body at x,y,heading_deg [m, m, degrees] (repeatable)");
+    sub->add_option("--sources", opts->sources,
+                    "debris sources from a GIS vector file: points (a body each) and yard polygons (filled with bodies); "
+                    "attributes in docs/gis.md, \"Debris sources\"; needs --scene")
+        ->check(CLI::ExistingFile);
+    sub->add_option("--source-layer", opts->source_layers, "a layer of the --sources file to read (repeatable; default: all)");
     sub->add_option("--out", opts->out, "trajectory file to write (CF trajectory NetCDF)")->capture_default_str();
     sub->add_option("--impacts", opts->impacts_csv,
                     "also write the impacts on buildings as CSV, one row each (docs/debris.md, \"Impacts on buildings\")");

@@ -3,8 +3,10 @@
 // table (common/settings.hpp).
 #include <cstdio>
 #include <memory>
+#include <numbers>
 
 #include "app/commands.hpp"
+#include "app/debris_sources.hpp"
 #include "app/settings_cli.hpp"
 #include "common/cf.hpp"
 #include "common/error.hpp"
@@ -119,13 +121,39 @@ void write_impacts_beside(const std::string& summary, const sweep::SweepResult& 
         if (!m.impacts.empty()) return sweep::write_impacts_summary_csv(sweep::impacts_path_for(summary), r);
 }
 
+// The spec's [[sources]] as bodies (after its [[body]] tables), named by their features.
+void expand_sources(sweep::SweepSpec& spec) {
+    if (spec.sources.empty()) return;
+    const Scene scene = read_scene(spec.scene);
+    for (const sweep::SourceFileSpec& file : spec.sources)
+        for (const SourcedBody& s : bodies_from_sources(file.file, file.layers, scene, file.model)) {
+            for (const auto& other : spec.bodies)
+                if (other.name == s.def.name)
+                    fail(spec.path, "line " + std::to_string(file.line), "body name '" + s.def.name + "' used twice ([[body]] name = ...)");
+            sweep::BodySpec b;
+            b.name = s.def.name;
+            b.x = s.def.x;
+            b.y = s.def.y;
+            b.heading_deg = s.def.heading * 180.0 / std::numbers::pi;
+            b.def = s.def;
+            b.type = s.type;
+            b.source = s.source;
+            spec.bodies.push_back(b);
+        }
+    spec.sources.clear();
+}
+
 void run_sweep_command(const SweepOptions& o) {
     if (o.spec.empty()) fail("sweep", "--spec", "required (or use `flotsam sweep merge`)");
     sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, o.scene, o.flows);
+    std::vector<NamedPath> inputs_of_sources;
     if (!o.ground.empty()) spec.ground = o.ground;
+    for (const auto& s : spec.sources) inputs_of_sources.push_back({"[[sources]] file", s.file});
+    expand_sources(spec);
     const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
     std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}, {"--ground", spec.ground}};
     for (const auto& f : spec.flows) inputs.push_back({"--flow", f});
+    inputs.insert(inputs.end(), inputs_of_sources.begin(), inputs_of_sources.end());
     const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;
     def.shard = sweep::parse_shard(o.shard);

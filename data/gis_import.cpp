@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "data/dem_import.hpp"
 #include "data/gdal_support.hpp"
+#include "data/vector_layer.hpp"
 
 namespace flotsam {
 
@@ -129,11 +130,6 @@ void check_projected_metres(const OGRSpatialReference& crs, const std::string& f
                  " m), not metres: give --target-crs to reproject");
 }
 
-std::optional<OGRSpatialReference> scene_spatial_ref(const Scene& s) {
-    if (s.crs.empty()) return std::nullopt;
-    return gdal::spatial_ref(s.crs, s.path.empty() ? std::string("scene") : s.path);
-}
-
 // An in-memory raster on the scene grid (north-up), one band of `type`, filled with `init`.
 gdal::Dataset scene_raster(const Scene& s, GDALDataType type, double init) {
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
@@ -166,70 +162,29 @@ struct Polygons {
 
 Polygons read_polygons(const std::string& path, const std::string& layer_name, const std::string& field, const Scene& s,
                        const std::string& option) {
-    gdal::Dataset ds = gdal::open_vector(path);
-    OGRLayer* layer =
-        layer_name.empty() ? (ds->GetLayerCount() > 0 ? ds->GetLayer(0) : nullptr) : ds->GetLayerByName(layer_name.c_str());
-    if (!layer) {
-        std::string names;
-        for (int k = 0; k < ds->GetLayerCount(); ++k) names += (k ? ", " : "") + std::string(ds->GetLayer(k)->GetName());
-        fail(path, layer_name.empty() ? "layers" : "layer '" + layer_name + "'",
-             names.empty() ? "none in the file" : "not found (layers: " + names + ")");
-    }
-    const std::string where = path + (layer_name.empty() ? "" : ":" + layer_name);
+    const VectorLayer v = open_vector_layer(path, layer_name, s);
     int field_index = -1;
     if (!field.empty()) {
-        field_index = layer->GetLayerDefn()->GetFieldIndex(field.c_str());
-        if (field_index < 0) {
-            std::string names;
-            for (int k = 0; k < layer->GetLayerDefn()->GetFieldCount(); ++k)
-                names += (k ? ", " : "") + std::string(layer->GetLayerDefn()->GetFieldDefn(k)->GetNameRef());
-            fail(where, "field '" + field + "'",
-                 "not in the layer (fields: " + (names.empty() ? std::string("none") : names) + ")");
-        }
+        field_index = v.field_index(field);
+        if (field_index < 0) fail(v.where, "field '" + field + "'", "not in the layer (fields: " + v.field_names() + ")");
     }
     Polygons out;
-    const OGRSpatialReference* layer_crs = layer->GetSpatialRef();
-    const auto scene_crs = scene_spatial_ref(s);
-    std::unique_ptr<OGRCoordinateTransformation> transform;
-    if (scene_crs && !layer_crs)
-        fail(
-            where, "coordinate reference system",
-            "none, while the scene is in " + gdal::label(*scene_crs) + ": assign the footprints' CRS (e.g. ogr2ogr -a_srs EPSG:n)");
-    if (!scene_crs && layer_crs)
-        fail(where, "coordinate reference system " + gdal::label(*layer_crs),
-             "the scene is in local metres (no CRS), so map coordinates cannot be placed in it: import the DEM with its CRS "
-             "(--crs) first");
-    if (scene_crs && layer_crs) {
-        OGRSpatialReference from = *layer_crs;
-        from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        if (!from.IsSame(&*scene_crs)) {
-            transform.reset(OGRCreateCoordinateTransformation(&from, &*scene_crs));
-            if (!transform)
-                fail(where, "coordinate reference system " + gdal::label(from),
-                     "cannot be transformed to the scene's " + gdal::label(*scene_crs) + ": " + gdal::last_error());
-            out.note = "reprojected from " + gdal::label(from) + " to the scene's " + gdal::label(*scene_crs);
-        }
-    }
-    layer->ResetReading();
-    for (OGRFeature* raw; (raw = layer->GetNextFeature()) != nullptr;) {
+    out.note = v.note;
+    for (OGRFeature* raw; (raw = v.layer->GetNextFeature()) != nullptr;) {
         std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> feature(raw, OGRFeature::DestroyFeature);
         const OGRGeometry* g = feature->GetGeometryRef();
-        const std::string fid = "feature " + std::to_string(feature->GetFID());
         if (!g) continue;
         const auto type = wkbFlatten(g->getGeometryType());
         if (type != wkbPolygon && type != wkbMultiPolygon)
-            fail(where, fid,
+            fail(v.where, "feature " + std::to_string(feature->GetFID()),
                  std::string("is a ") + OGRGeometryTypeToName(g->getGeometryType()) + ", not a polygon (" + option +
                      " needs polygons)");
-        std::unique_ptr<OGRGeometry> copy(g->clone());
-        if (transform && copy->transform(transform.get()) != OGRERR_NONE)
-            fail(where, fid, "cannot be reprojected: " + gdal::last_error());
         double value = std::nan("");
         if (field_index >= 0 && feature->IsFieldSetAndNotNull(field_index)) value = feature->GetFieldAsDouble(field_index);
-        out.geometry.push_back(std::move(copy));
+        out.geometry.push_back(v.geometry_in_scene(*feature));
         out.value.push_back(value);
     }
-    if (out.geometry.empty()) fail(where, "features", "no polygons in the layer");
+    if (out.geometry.empty()) fail(v.where, "features", "no polygons in the layer");
     return out;
 }
 

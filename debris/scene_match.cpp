@@ -14,6 +14,15 @@ std::string fmt(double v) {
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
 }
+// A coordinate to the millimetre: map coordinates (UTM northings) have seven digits before the point.
+std::string coordinate(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.3f", v);
+    std::string s = buf;
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+    return s;
+}
 }  // namespace
 
 void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
@@ -57,18 +66,21 @@ void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
 }
 
 void check_body_start(const BodyDef& b, const FlowReader& flow, const Scene* scene) {
-    const Grid& g = flow.grid();
+    check_body_start(b, flow.grid(), "flow " + flow.path(), scene);
+}
+
+void check_body_start(const BodyDef& b, const Grid& g, const std::string& domain, const Scene* scene) {
     const std::string who = "body '" + b.name + "'";
-    const std::string at = "at x = " + fmt(b.x) + " m, y = " + fmt(b.y) + " m";
+    const std::string at = "at x = " + coordinate(b.x) + " m, y = " + coordinate(b.y) + " m";
     if (!std::isfinite(b.x) || !std::isfinite(b.y) || !g.contains(b.x, b.y))
         fail(who, "start",
-             at + " is outside the domain of flow " + flow.path() + " (x " + fmt(g.x_min_edge()) + " to " + fmt(g.x_max_edge()) +
-                 ", y " + fmt(g.y_min_edge()) + " to " + fmt(g.y_max_edge()) + " m)");
+             at + " is outside the domain of " + domain + " (x " + coordinate(g.x_min_edge()) + " to " + coordinate(g.x_max_edge()) +
+                 ", y " + coordinate(g.y_min_edge()) + " to " + coordinate(g.y_max_edge()) + " m)");
     const double diagonal = std::hypot(b.length, b.width);
     const double extent = std::hypot(g.x_max_edge() - g.x_min_edge(), g.y_max_edge() - g.y_min_edge());
     if (!(diagonal < extent))
         fail(who, "size",
-             "a " + fmt(b.length) + " x " + fmt(b.width) + " m body does not fit in the domain of flow " + flow.path() +
+             "a " + fmt(b.length) + " x " + fmt(b.width) + " m body does not fit in the domain of " + domain +
                  " (diagonal " + fmt(extent) + " m)");
     if (!scene || scene->building.empty()) return;
     // The centre and the four corners: none on a building cell.
@@ -82,7 +94,7 @@ void check_body_start(const BodyDef& b, const FlowReader& flow, const Scene* sce
             fail(who, "start",
                  at +
                      (k == 0 ? std::string(": its centre")
-                             : std::string(": a corner at x = " + fmt(px[k]) + " m, y = " + fmt(py[k]) + " m")) +
+                             : std::string(": a corner at x = " + coordinate(px[k]) + " m, y = " + coordinate(py[k]) + " m")) +
                      " is inside a building of scene " + scene->path + "; move the start into open ground or water");
     }
 }

@@ -22,5 +22,7 @@ void check_flow_matches_scene(const FlowReader& flow, const Scene& scene);
 // The body's centre must lie in the flow's grid, its footprint off the scene's building
 // cells (when `scene` is given), and its diagonal shorter than the grid.
 void check_body_start(const BodyDef& body, const FlowReader& flow, const Scene* scene);
+// The same on any grid; `domain` names it in messages ("flow F", "scene S").
+void check_body_start(const BodyDef& body, const Grid& grid, const std::string& domain, const Scene* scene);
 
 }  // namespace flotsam::debris

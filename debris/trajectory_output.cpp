@@ -63,8 +63,10 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const TrackVariables track_vars = define_track_variables(f, dtraj, dtime, def.crs);
         // The strings, known before they are defined (character arrays are as long as the longest).
         const std::vector<BodyParams>& bodies = world.params();
-        std::vector<std::string> starts = def.start_names;
+        std::vector<std::string> starts = def.start_names, sources = def.sources, types = def.body_types;
         starts.resize(nb);
+        sources.resize(nb);
+        types.resize(nb);
         const std::vector<std::string> ids = column<std::string>(bodies, [](const BodyParams& p) { return p.def.name; });
         const std::vector<std::string> contacts =
             column<std::string>(bodies, [](const BodyParams& p) { return std::string(enum_name(p.def.contact)); });
@@ -82,6 +84,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
             return cf::def_var(f, {.name = name, .type = NC_INT, .dims = {dtraj}, .long_name = long_name});
         };
         const int vstart = per_string("start_name", "scene start point of the body (empty: given by coordinates)", starts);
+        const int vsource = per_string("source", "GIS feature the body came from, layer/feature id (empty: none)", sources);
+        const int vtype = per_string("body_type", "debris catalogue entry of the body (empty: none)", types);
         const int vcontact = per_string("contact_model", "friction model: center (CC) or local (LC, with axis shift)", contacts);
         const int vcoll = per_string("collision_model", "collision model: single (SC) or multi (MC)", collisions);
         const std::vector<int> vcoef = def_setting_vars(f, body_coefficient_settings(), {dtraj});
@@ -108,6 +112,8 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const std::vector<BodyStats>& stats = world.stats();
         f.put(vid, ids);
         f.put(vstart, starts);
+        f.put(vsource, sources);
+        f.put(vtype, types);
         f.put(vcontact, contacts);
         f.put(vcoll, collisions);
         put_setting_vars(f, vcoef, body_coefficient_settings(), bodies, def_of);

@@ -22,6 +22,8 @@ struct TrajectoryFileDef {
     std::string history;                   // the command line
     std::string flow_file;                 // the replayed flow
     std::vector<std::string> start_names;  // per body: the scene point, or "" for --at
+    std::vector<std::string> sources;      // per body: the GIS feature "layer/fid" it came from, or ""
+    std::vector<std::string> body_types;   // per body: its debris catalogue entry, or ""
     cf::GridMapping crs;                   // the flow's CRS; empty: local metres
     std::string scene_buildings_sha256;         // the flow's scene (formats/scene.hpp); empty: not recorded
 };

@@ -9,7 +9,7 @@
 //                              and collision moves included)
 //   omega (trajectory, time)   double [rad s-1] yaw rate (about the contact centroid while pivoting)
 //   status (trajectory, time)  byte flags: released moving grounded colliding pivoting
-//   per trajectory: start_name, contact_model, collision_model (strings), cd1, cd2, cm, mu,
+//   per trajectory: start_name, source, body_type, contact_model, collision_model (strings), cd1, cd2, cm, mu,
 //                   restitution, length, width, height, specific_gravity (double),
 //                   added_yaw_inertia, collision_steps, unresolved_collisions,
 //                   axis_shift_steps (int)

@@ -54,7 +54,11 @@ SweepResult describe_sweep(const SweepSpec& spec, const SweepRunDef& def, int me
     r.ground_file = spec.ground;
     r.design = spec.design;
     r.flows = spec.flows;
-    for (const auto& b : spec.bodies) r.bodies.push_back(b.name);
+    for (const auto& b : spec.bodies) {
+        r.bodies.push_back(b.name);
+        r.body_types.push_back(b.type);
+        r.body_sources.push_back(b.source);
+    }
     for (const auto& v : spec.variants) r.variants.push_back(v.name);
     r.params = spec.params;
     r.perturbation = spec.perturbation;

@@ -186,6 +186,12 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         };
         const int vflowpath = table("flow_path", dflow, r.flows, "flow files of the sweep, in order");
         const int vbodyname = table("body_name", dbody, r.bodies, "bodies of the sweep, in order");
+        std::vector<std::string> types = r.body_types, sources = r.body_sources;  // "" where not set
+        types.resize(r.bodies.size());
+        sources.resize(r.bodies.size());
+        const int vbodytype = table("body_type", dbody, types, "debris catalogue entry of each body (empty: none)");
+        const int vbodysource =
+            table("body_source", dbody, sources, "GIS feature each body came from, layer/feature id (empty: none)");
         const int vvarname = table("variant_name", dvar, r.variants, "model variants of the sweep, in order");
         const ParameterSetVariables set_vars = define_parameter_set_variables(f, dset, r.params);
         put_sweep_attributes(f, r);
@@ -200,6 +206,8 @@ void write_sweep_file(const std::string& path, const SweepResult& r) {
         }
         f.put(vflowpath, r.flows);
         f.put(vbodyname, r.bodies);
+        f.put(vbodytype, types);
+        f.put(vbodysource, sources);
         f.put(vvarname, r.variants);
         put_parameter_sets(f, set_vars, r.params);
         put_impacts(f, vimpact, impacts);
@@ -257,6 +265,9 @@ void read_sweep_tables(nc::File& f, const std::string& path, SweepResult& r) {
         if (!(r.time[k] > r.time[k - 1])) fail(path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
     r.flows = f.get_strings(column_var(f, path, "flow_path", "flow"));
     r.bodies = f.get_strings(column_var(f, path, "body_name", "body"));
+    // Optional: a file without them reads as empty entries.
+    for (auto [name, column] : {std::pair{"body_type", &r.body_types}, std::pair{"body_source", &r.body_sources}})
+        *column = f.has_var(name) ? f.get_strings(column_var(f, path, name, "body")) : std::vector<std::string>(r.bodies.size());
     r.variants = f.get_strings(column_var(f, path, "variant_name", "variant"));
     const auto labels = f.get_strings(column_var(f, path, "param_set_label", "param_set"));
     const auto ctrl = f.get_int(column_var(f, path, "param_set_is_control", "param_set"));
@@ -429,7 +440,7 @@ SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vecto
         const std::string& name = paths[k];
         if (p.spec_sha256 != out.spec_sha256) fail(name, "spec_sha256", "comes from another spec than " + paths[0]);
         if (p.member_count != out.member_count || p.time != out.time || p.flows != out.flows || p.bodies != out.bodies ||
-            p.variants != out.variants || p.params.size() != out.params.size() || p.scene_file != out.scene_file ||
+            p.body_types != out.body_types || p.body_sources != out.body_sources || p.variants != out.variants || p.params.size() != out.params.size() || p.scene_file != out.scene_file ||
             p.ground_file != out.ground_file || p.scene_buildings_sha256 != out.scene_buildings_sha256)
             fail(name, "sweep tables", "differ from those of " + paths[0] + " (not shards of one sweep)");
         for (const auto& m : p.members)

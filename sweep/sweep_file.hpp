@@ -35,6 +35,7 @@ struct SweepResult {
     std::string spec_file, spec_sha256, scene_file, design;
     std::string ground_file;  // the bodies' finer ground (debris::Ground; "": the flows' beds)
     std::vector<std::string> flows, bodies, variants;
+    std::vector<std::string> body_types, body_sources;  // per body: catalogue entry, GIS feature "layer/fid" ("" : none)
     std::vector<ParameterSet> params;
     PerturbationDef perturbation;
     int member_count = 0;          // members in the whole sweep

@@ -276,6 +276,21 @@ BodySpec read_body(const TomlDoc& doc, const TomlTable& t, SweepSpec& spec, cons
     return b;
 }
 
+// One [[sources]]: a GIS file of debris sources, its layers, and model settings over [sweep]'s.
+SourceFileSpec read_sources(const TomlDoc& doc, const TomlTable& t, const SweepSpec& spec, const debris::BodyDef& body_model) {
+    toml_allow_only(doc, t, keys_with({"file", "layers"}, setting_keys(debris::body_model_settings())));
+    SourceFileSpec s;
+    s.line = t.line;
+    s.model = body_model;
+    if (!has(t, "file")) toml_fail(doc, t, "file", "missing: the GIS file of debris sources (points and yard polygons)");
+    s.file = toml_string(doc, t, "file");
+    if (!std::filesystem::exists(s.file)) toml_fail(doc, t, "file", "'" + s.file + "' does not exist");
+    if (has(t, "layers")) s.layers = toml_strings(doc, t, "layers");
+    if (spec.scene.empty()) toml_fail(doc, t, "file", "sources need a scene ([sweep] scene = \"...\" or --scene): its CRS places them");
+    read_settings(doc, t, debris::body_model_settings(), s.model);
+    return s;
+}
+
 }  // namespace
 
 ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const ParamValues& set) {
@@ -339,10 +354,10 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
     spec.path = path;
     spec.sha256 = sha256_file(path);
     for (const auto& t : doc.tables)
-        if (t.name != "" && t.name != "sweep" && t.name != "flows" && t.name != "body" && t.name != "variants" &&
-            t.name != "parameters" && t.name != "perturbation")
+        if (t.name != "" && t.name != "sweep" && t.name != "flows" && t.name != "body" && t.name != "sources" &&
+            t.name != "variants" && t.name != "parameters" && t.name != "perturbation")
             fail(path, "line " + std::to_string(t.line),
-                 "unknown table [" + t.name + "] (sweep, flows, [[body]], variants, parameters, perturbation)");
+                 "unknown table [" + t.name + "] (sweep, flows, [[body]], [[sources]], variants, parameters, perturbation)");
     toml_allow_only(doc, doc.tables.front(), {});
 
     debris::BodyDef body_model = debris::default_body_def();
@@ -353,10 +368,14 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
     else
         read_flows(doc, find_table(doc, "flows"), spec);
     std::unique_ptr<Scene> scene;
-    for (const auto& t : doc.tables)
+    for (const auto& t : doc.tables) {
         if (t.name == "body") spec.bodies.push_back(read_body(doc, t, spec, body_model, scene));
-    if (spec.bodies.empty())
-        fail(path, "[[body]]", "missing: give at least one [[body]] with start = \"FD\" or at = [x, y, heading_deg]");
+        if (t.name == "sources") spec.sources.push_back(read_sources(doc, t, spec, body_model));
+    }
+    if (spec.bodies.empty() && spec.sources.empty())
+        fail(path, "[[body]]",
+             "missing: give at least one [[body]] with start = \"FD\" or at = [x, y, heading_deg], or [[sources]] with file = "
+             "\"layers.gpkg\"");
     read_variants(doc, find_table(doc, "variants"), spec);
     read_parameters(doc, find_table(doc, "parameters"), spec);
     read_perturbation(doc, find_table(doc, "perturbation"), spec);

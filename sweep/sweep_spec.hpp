@@ -86,6 +86,17 @@ struct BodySpec {
     // coefficients as its own control: a parameter set multiplies them by the set's
     // value over the spec's control value (so "cd1x1.5" is 1.5 x the body's own cd1).
     std::string type;
+    std::string source;  // the GIS feature "layer/fid" it came from ([[sources]]), or ""
+};
+
+// A [[sources]] table: a GIS file of debris sources (data/debris_sources.hpp), expanded
+// into bodies by the command line (app/debris_sources.hpp, which reads GIS) before the
+// sweep runs. `model` holds the [sweep] model settings and the table's own.
+struct SourceFileSpec {
+    std::string file;                 // vector file (GeoPackage, shapefile, GeoJSON, ...)
+    std::vector<std::string> layers;  // its layers to read; empty: all
+    debris::BodyDef model = debris::default_body_def();
+    int line = 0;                     // of the [[sources]] header, for messages
 };
 
 struct PerturbationDef {
@@ -102,6 +113,7 @@ struct SweepSpec {
     std::string ground;              // a finer scene the bodies stand on (debris::Ground; "" : the flows' beds)
     std::vector<std::string> flows;  // flow files, in order
     std::vector<BodySpec> bodies;
+    std::vector<SourceFileSpec> sources;  // not yet expanded into `bodies`
     std::vector<Variant> variants;
     std::vector<ParameterSet> params;
     ParamValues control = paper_control();  // the [parameters] control values

@@ -1,0 +1,89 @@
+#include "app/debris_sources.hpp"
+
+#include <numbers>
+
+#include "common/checks.hpp"
+#include "common/error.hpp"
+#include "data/debris_sources.hpp"
+#include "debris/catalogue.hpp"
+#include "debris/scene_match.hpp"
+#include "debris/source_layout.hpp"
+
+namespace flotsam {
+
+namespace {
+
+constexpr double water_density = 1000.0;  // [kg/m³], as the catalogue's specific gravities
+
+// The feature's body: the entry's shape and coefficients, the attributes over them.
+debris::BodyDef body_of(const SourceFeature& f, const debris::BodyDef& model) {
+    const debris::CatalogueBody* entry = debris::find_catalogue_body(f.type);
+    if (!entry)
+        fail(f.where, "attribute 'type' = '" + f.type + "'", "not in the debris catalogue (" + debris::catalogue_names() + ")");
+    const debris::BodyDef c = debris::catalogue_body_def(f.type, f.where, water_density);
+    debris::BodyDef b = model;
+    b.length = std::isnan(f.length) ? c.length : f.length;
+    b.width = std::isnan(f.width) ? c.width : f.width;
+    b.height = std::isnan(f.height) ? c.height : f.height;
+    const double mass = std::isnan(f.mass) ? entry->mass : f.mass;
+    b.specific_gravity = mass / (water_density * b.length * b.width * b.height);
+    if (!(b.specific_gravity < 1.0))
+        fail(f.where, "mass " + number_text(mass) + " kg",
+             "a " + number_text(b.length) + " x " + number_text(b.width) + " x " + number_text(b.height) +
+                 " m box this heavy never floats (specific gravity " + number_text(b.specific_gravity) + ")");
+    b.cd1 = c.cd1;
+    b.cd2 = c.cd2;
+    b.cm = c.cm;
+    b.mu = c.mu;
+    b.restitution = c.restitution;
+    b.impact_stiffness = c.impact_stiffness;
+    return b;
+}
+
+}  // namespace
+
+std::vector<SourcedBody> bodies_from_sources(const std::string& path, const std::vector<std::string>& layers,
+                                             const Scene& scene, const debris::BodyDef& model) {
+    std::vector<SourcedBody> out;
+    // On the scene's grid, off its buildings; the error names the feature (and its file).
+    auto check_start = [&](const SourceFeature& f, const debris::BodyDef& b) {
+        try {
+            debris::check_body_start(b, scene.grid, "scene " + scene.path, &scene);
+        } catch (const Error& e) {
+            throw Error(f.where + ": " + e.what());
+        }
+    };
+    for (const SourceFeature& f : read_debris_sources(path, layers, scene)) {
+        const debris::BodyDef b = body_of(f, model);
+        const std::string source = f.layer + "/" + std::to_string(f.fid);
+        if (!f.is_yard) {
+            SourcedBody s{b, source, f.type};
+            s.def.name = source;
+            s.def.x = f.x;
+            s.def.y = f.y;
+            s.def.heading = (std::isnan(f.heading_deg) ? 0.0 : f.heading_deg) * std::numbers::pi / 180.0;
+            check_start(f, s.def);
+            out.push_back(s);
+            continue;
+        }
+        const debris::YardLayout layout = debris::lay_out_yard({f.rings, f.heading_deg, f.gap, f.count}, b.length, b.width);
+        if (layout.poses.empty() || (f.count > 0 && int(layout.poses.size()) < f.count))
+            fail(f.where, "yard",
+                 "a yard of " + number_text(debris::polygon_area(f.rings)) + " m² holds " + std::to_string(layout.poses.size()) +
+                     " bodies of type " + f.type + " (" + number_text(b.length) + " x " + number_text(b.width) + " m) at gap " +
+                     number_text(std::isnan(f.gap) ? 0.0 : f.gap) + " m, heading " + number_text(layout.heading_deg) +
+                     " degrees" + (f.count > 0 ? "; count asks for " + std::to_string(f.count) : std::string()));
+        for (std::size_t k = 0; k < layout.poses.size(); ++k) {
+            SourcedBody s{b, source, f.type};
+            s.def.name = source + "/" + std::to_string(k + 1);
+            s.def.x = layout.poses[k].x;
+            s.def.y = layout.poses[k].y;
+            s.def.heading = layout.poses[k].heading;
+            check_start(f, s.def);
+            out.push_back(s);
+        }
+    }
+    return out;
+}
+
+}  // namespace flotsam
