@@ -1,17 +1,22 @@
 // Debris benchmark: FD-like and LD-like bodies (local contact, multi collision) through
 // a 420 s synthetic flow at 2 cm on a port-sized window with building blocks. Prints
 // steps per second and the compute time of one 420 s body-run, with frame reading
-// (I/O and decompression) reported apart. Not a test: timings belong here.
+// (I/O and decompression) reported apart. Then many bodies in one run (a yard's worth):
+// body steps per second of wall and of processor time at each count of --bodies, over
+// the first --seconds of the flow. Not a test: timings belong here.
 //
-//   build/debris_bench [scratch_dir]
+//   build/debris_bench [scratch_dir] [--bodies 100,1000,5000] [--threads 2] [--seconds 180]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "debris/world.hpp"
 #include "formats/flow_file.hpp"
+#include "formats/trajectory_file.hpp"
 
 using namespace flotsam;
 using namespace flotsam::debris;
@@ -63,10 +68,67 @@ std::string make_flow(const std::string& path) {
     return path;
 }
 
+// N paper boxes at seeded places on the open ground and water of the window (headings
+// spread), in one world: the cost of a yard's worth of bodies. Bodies do not meet each
+// other (the paper's model), so their overlap costs nothing and changes nothing.
+void many_bodies(const std::string& path, const std::vector<std::uint8_t>& mask, int count, int threads, double seconds) {
+    WorldDef def = default_world_def();
+    def.threads = threads;
+    World w(path, mask, def);
+    std::uint64_t state = 12345;
+    auto uniform = [&] {  // SplitMix64
+        std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+    };
+    for (int n = 0; n < count;) {
+        BodyDef b = default_body_def();
+        b.x = window.x(0) + 0.2 + uniform() * (window.nx * window.dx - 0.4);
+        b.y = window.y(0) + 0.2 + uniform() * (window.ny * window.dy - 0.4);
+        b.heading = uniform() * M_PI;
+        bool clear = true;  // the centre and a margin off the buildings
+        for (double dx : {-0.15, 0.0, 0.15})
+            for (double dy : {-0.15, 0.0, 0.15}) clear = clear && !building(b.x + dx, b.y + dy);
+        if (!clear) continue;
+        b.name = "b" + std::to_string(n++);
+        w.add_body(b);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    w.advance_to(seconds);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+    long steps = 0, released = 0;
+    for (std::size_t k = 0; k < w.size(); ++k) {
+        steps += w.stats()[k].steps;
+        released += (w.states()[k].flags & flag_released) ? 1 : 0;
+    }
+    std::printf("%5d bodies, %d threads, 0-%.0f s: %ld body steps (%ld released) in %.2f s wall, %.2f s processor: "
+                "%.3g body steps per wall s, %.3g per processor s\n",
+                count, threads, seconds, steps, released, wall, cpu, double(steps) / wall, double(steps) / cpu);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    const std::string dir = argc > 1 ? argv[1] : (std::filesystem::temp_directory_path() / "flotsam-debris-bench").string();
+    std::string dir = (std::filesystem::temp_directory_path() / "flotsam-debris-bench").string();
+    std::vector<int> counts;
+    int threads = 2;
+    double seconds = 180.0;
+    for (int k = 1; k < argc; ++k) {
+        const std::string a = argv[k];
+        if (a == "--bodies" && k + 1 < argc) {
+            std::stringstream ss(argv[++k]);
+            for (std::string n; std::getline(ss, n, ',');) counts.push_back(std::stoi(n));
+        } else if (a == "--threads" && k + 1 < argc) {
+            threads = std::stoi(argv[++k]);
+        } else if (a == "--seconds" && k + 1 < argc) {
+            seconds = std::stod(argv[++k]);
+        } else {
+            dir = a;
+        }
+    }
     std::filesystem::create_directories(dir);
     const std::string path = dir + "/port-2cm.nc";
     if (!std::filesystem::exists(path)) {
@@ -107,5 +169,6 @@ int main(int argc, char** argv) {
                 s.theta * 180 / M_PI, st.collisions, st.unresolved, st.axis_shifts);
         }
     }
+    for (const int n : counts) many_bodies(path, mask, n, threads, seconds);
     return 0;
 }
