@@ -20,7 +20,7 @@ const std::vector<std::string>& dimension_names() {
     return names;
 }
 
-const Variable group_body{"group_body", NC_CHAR, {dim::group}, "", "body of the group", false};
+const Variable group_body{"group_body", NC_CHAR, {dim::group}, "", "body of the group, or the GIS source (layer/feature id) of its bodies", false};
 const Variable group_variant{
     "group_variant", NC_CHAR, {dim::group}, "", "model variant of the group (friction + collision)", false};
 const Variable group_members{"group_members", NC_INT, {dim::group}, "", "trajectories in the group", false};

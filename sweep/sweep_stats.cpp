@@ -71,16 +71,22 @@ void rasterise(const debris::Track& t, const Grid& g, int stamp, std::vector<int
 // The statistics, one function each. Each fills its part of SweepStats from the sweep
 // (and the parts filled before it: the groups, and the per-member values).
 
-// Groups (body × variant, in the sweep's table order), the per-member table and the
-// members per (group, parameter set).
+// Groups (source × variant, in the sweep's table order), the per-member table and the
+// members per (group, parameter set). A source is the GIS feature the bodies came from
+// (a yard's bodies are one group, named "layer/fid"), else the body itself.
 void group_members(SweepStats& s, const SweepResult& sw) {
     const std::size_t nm = sw.members.size();
     s.member_group.assign(nm, -1);
-    for (std::size_t b = 0; b < sw.bodies.size(); ++b)
+    std::vector<std::string> source_of(sw.bodies), sources;
+    for (std::size_t b = 0; b < sw.bodies.size(); ++b) {
+        if (b < sw.body_sources.size() && !sw.body_sources[b].empty()) source_of[b] = sw.body_sources[b];
+        if (std::find(sources.begin(), sources.end(), source_of[b]) == sources.end()) sources.push_back(source_of[b]);
+    }
+    for (const std::string& source : sources)
         for (std::size_t v = 0; v < sw.variants.size(); ++v) {
-            SweepStats::Group g{sw.bodies[b], sw.variants[v], {}};
+            SweepStats::Group g{source, sw.variants[v], {}};
             for (std::size_t m = 0; m < nm; ++m)
-                if (sw.members[m].body == int(b) && sw.members[m].variant == int(v)) {
+                if (source_of[std::size_t(sw.members[m].body)] == source && sw.members[m].variant == int(v)) {
                     g.members.push_back(int(m));
                     s.member_group[m] = int(s.groups.size());
                 }

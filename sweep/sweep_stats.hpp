@@ -38,7 +38,8 @@ struct SectionSummary {
 
 struct SweepStats {
     struct Group {
-        std::string body, variant;
+        std::string body;  // the body's name, or the GIS source "layer/fid" its bodies came from
+        std::string variant;
         std::vector<int> members;  // indices into SweepResult::members
     };
     std::vector<Group> groups;

@@ -236,7 +236,8 @@ TEST(DebrisSourcesCli, BadSourcesAreNamedByFeature) {
 }
 
 // A sweep spec's [[sources]]: the yard's bodies become the sweep's bodies, their feature
-// and type recorded per body, and shards merge to the bytes of the whole sweep.
+// and type recorded per body, their statistics one group per variant, and shards merge
+// to the bytes of the whole sweep.
 TEST(DebrisSourcesCli, ASweepTakesItsBodiesFromSourceLayers) {
     const UtmPort port("sources_sweep");
     const std::string layer = port.layer(
@@ -264,7 +265,11 @@ TEST(DebrisSourcesCli, ASweepTakesItsBodiesFromSourceLayers) {
         EXPECT_EQ(sources[k], "yards/0");
         EXPECT_EQ(types[k], "car");
     }
-    EXPECT_EQ(test::run_cli("stats --sweep " + port.dir + "/whole.nc --out " + port.dir + "/stats.nc", &out), 0) << out;
+    // The statistics group a yard's bodies as one source, per variant.
+    ASSERT_EQ(test::run_cli("stats --sweep " + port.dir + "/whole.nc --out " + port.dir + "/stats.nc", &out), 0) << out;
+    nc::File st = nc::File::open_read(port.dir + "/stats.nc");
+    EXPECT_EQ(st.get_strings(st.var("group_body")), (std::vector<std::string>{"yards/0", "yards/0"}));
+    EXPECT_EQ(st.get_int(st.var("group_members")), (std::vector<int>{6, 6}));
     std::ifstream a(port.dir + "/whole.nc", std::ios::binary), b(port.dir + "/merged.nc", std::ios::binary);
     EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {}));
 }
