@@ -135,6 +135,7 @@ void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::v
         const debris::BodyStats& bs = world.stats()[b];
         rec.collision_steps = int(bs.collisions);
         rec.unresolved_collisions = int(bs.unresolved);
+        rec.largest_residual_overlap = bs.max_residual_overlap;
         rec.axis_shift_steps = int(bs.axis_shifts);
         rec.track = std::move(series.tracks[b]);
         for (const Impact& i : impacts)

@@ -26,6 +26,7 @@ struct MemberRecord : MemberIndex {
     debris::BodyDef def;      // the body as run: start x, y [m], shape, coefficients, model, variant
     double heading0_deg = 0;  // start heading [degree] (def.heading, as written in the file)
     int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
+    double largest_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
     debris::Track track;  // on SweepResult::time
     std::vector<Impact> impacts;  // on buildings, by time (Impact::trajectory: unused here, the file's index when written)
 };
