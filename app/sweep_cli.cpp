@@ -2,6 +2,7 @@
 // and the statistics over them (docs/sweep.md); each command's options from a settings
 // table (common/settings.hpp).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 
@@ -125,7 +126,9 @@ void write_impacts_beside(const std::string& summary, const sweep::SweepResult& 
 void expand_sources(sweep::SweepSpec& spec) {
     if (spec.sources.empty()) return;
     const Scene scene = read_scene(spec.scene);
-    for (const sweep::SourceFileSpec& file : spec.sources)
+    for (const sweep::SourceFileSpec& file : spec.sources) {
+        if (!std::filesystem::exists(file.file))
+            fail(spec.path, "line " + std::to_string(file.line) + ": [[sources]] file", "'" + file.file + "' does not exist");
         for (const SourcedBody& s : bodies_from_sources(file.file, file.layers, scene, file.model)) {
             for (const auto& other : spec.bodies)
                 if (other.name == s.def.name)
@@ -140,6 +143,7 @@ void expand_sources(sweep::SweepSpec& spec) {
             b.source = s.source;
             spec.bodies.push_back(b);
         }
+    }
     spec.sources.clear();
 }
 

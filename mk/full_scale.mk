@@ -50,7 +50,13 @@ $(FULL)/flows/flow_r%.nc: $(FULL)/bc/wg1_r%.csv $(FULL)/scene.nc | tool
 	$(FLOTSAM) hydro --scene $(FULL)/scene.nc --west level --west-series $< --realisation $$((10#$*)) \
 	  --duration $(FULL_DURATION) --threads $(THREADS) --label "full-scale r$*" --out $@
 
-$(FULL)/sweep.nc: $(FULL_FLOWS) $(FULL_SPEC) | tool
+# The port's debris sources: a container yard and a car park as GeoPackage layers in the
+# port's survey CRS (EPSG:6674), read by the spec's [[sources]].
+$(FULL)/port_layers.gpkg: pipelines/port_layers.py
+	@mkdir -p $(@D)
+	$(PYTHON) -m pipelines.port_layers --out $@
+
+$(FULL)/sweep.nc: $(FULL_FLOWS) $(FULL_SPEC) $(FULL)/port_layers.gpkg | tool
 	$(FLOTSAM) sweep --spec $(FULL_SPEC) --scene $(FULL)/scene.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) \
 	  --threads $(JOBS) --out $@
 
@@ -62,10 +68,11 @@ $(FULL)/stats.nc: $(FULL)/sweep.nc
 real-scale-scene: $(FULL)/scene.nc
 ## real-scale-flows  the full-scale flows
 real-scale-flows: $(FULL_FLOWS)
-## real-scale-maps   sweep, statistics, Cloud-Optimised GeoTIFF maps, GeoPackage tracks, chart
+## real-scale-maps   sweep, statistics, GeoTIFF maps, GeoPackage tracks and building impacts, hazard regions, charts
 real-scale-maps: $(FULL)/stats.nc
-	$(FLOTSAM) export --stats $(FULL)/stats.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) --trajectories $(FULL)/sweep.nc \
-	  --out-dir $(FULL)/gis
+	$(FLOTSAM) export --stats $(FULL)/stats.nc --scene $(FULL)/scene.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) \
+	  --trajectories $(FULL)/sweep.nc --out-dir $(FULL)/gis
+	$(PYTHON) -m pipelines.hazard_region --sweep $(FULL)/sweep.nc --scene $(FULL)/scene.nc --out $(FULL)/hazard
 	gdalinfo $(FULL)/gis/pass_probability_all.tif | grep -E "^(Size|Origin|Pixel Size)|LAYOUT|ID\[\"EPSG\",32653\]\]$$"
 	$(PYTHON) -m pipelines.charts_full_scale --scene $(FULL)/scene.nc --stats $(FULL)/stats.nc --sweep $(FULL)/sweep.nc \
 	  --flows $(FULL_FLOWS) --out $(FULL)/kainan_full_scale.png
@@ -108,4 +115,4 @@ real-scale-demo: setup
 	$(MAKE) -f Makefile.pipeline -j$(JOBS) real-scale-flows && \
 	$(MAKE) -f Makefile.pipeline real-scale-maps && \
 	$(MAKE) -f Makefile.pipeline real-scale-nested && \
-	echo "real-scale-demo: done in $$(( $$(date +%s) - start )) s: GeoTIFFs in $(FULL)/gis, chart $(FULL)/kainan_full_scale.png"
+	echo "real-scale-demo: done in $$(( $$(date +%s) - start )) s: GeoTIFFs and GeoPackages in $(FULL)/gis, hazard regions in $(FULL)/hazard, chart $(FULL)/kainan_full_scale.png"

@@ -6,7 +6,7 @@
 
 Two panels over the port and city, axes in the scene's projected coordinates (UTM zone
 53N eastings and northings, from the files' CF grid mapping): (a) the probability that a
-body's centre passes each cell, one colour per body type, with every track drawn thin;
+body's centre passes each cell, one colour per source (a body, or a yard's bodies), with every track drawn thin;
 (b) the largest debris speed per cell over all trajectories, with the flows' largest
 depth (envelope) as contours. Uses only Debian's python3-matplotlib, -xarray, -netcdf4.
 """
@@ -85,16 +85,24 @@ def main():
         cmap = LinearSegmentedColormap.from_list("p", [(0, 0, 0, 0), colour])
         ax.imshow(np.ma.masked_where(pp <= 0, pp), origin="lower", extent=ext_map, cmap=cmap, vmin=0, vmax=1, alpha=0.75,
                   aspect="equal")
-    for k, body in enumerate(sweep["body"].values):
-        colour = BODY_COLOURS[bodies.index(str(body)) % len(BODY_COLOURS)] if str(body) in bodies else "k"
+    # Each trajectory's group: the GIS source its body came from (a yard), else the body.
+    names = [str(n) for n in sweep["body_name"].values]
+    sources = [str(v) for v in sweep["body_source"].values] if "body_source" in sweep else [""] * len(names)
+    group_of = {n: (src if src else n) for n, src in zip(names, sources)}
+    track_group = [group_of[str(b)] for b in sweep["body"].values]
+    for k, group in enumerate(track_group):
+        colour = BODY_COLOURS[bodies.index(group) % len(BODY_COLOURS)] if group in bodies else "k"
         ax.plot(sweep["x"].values[k], sweep["y"].values[k], color=colour, lw=0.6, alpha=0.8)
     for b in bodies:
-        k = list(map(str, sweep["body"].values)).index(b)
+        k = track_group.index(b)
+        colour = BODY_COLOURS[bodies.index(b) % len(BODY_COLOURS)]
         length = float(sweep["length"].values[k])
-        handles.append(plt.Line2D([], [], color=BODY_COLOURS[bodies.index(b) % len(BODY_COLOURS)], lw=3,
-                                  label=f"{b} ({length:g} m long)"))
-        ax.plot(sweep["x0"].values[k], sweep["y0"].values[k], "o", mfc="white",
-                mec=BODY_COLOURS[bodies.index(b) % len(BODY_COLOURS)], ms=5)
+        count = len({str(sweep["body"].values[j]) for j, g in enumerate(track_group) if g == b})
+        label = f"{b} ({length:g} m long)" if count == 1 else f"{b} ({count} bodies, {length:g} m long)"
+        handles.append(plt.Line2D([], [], color=colour, lw=3, label=label))
+        for j, g in enumerate(track_group):
+            if g == b and int(sweep["perturbation"].values[j]) == 0:
+                ax.plot(sweep["x0"].values[j], sweep["y0"].values[j], "o", mfc="white", mec=colour, ms=4)
     ax.legend(handles=handles, loc="lower right", fontsize=9, framealpha=0.9)
     members = sweep.sizes["trajectory"]
     flows = int(stats[S.MEMBER_FLOW].max()) + 1 if S.MEMBER_FLOW in stats else 0
@@ -119,8 +127,8 @@ def main():
     ax.set_title("(b) largest debris speed per cell; contours: largest water depth over the flows [m]", fontsize=11,
                  loc="left")
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    fig.suptitle("Kainan port at the prototype scale (the 1/250 flume x250): debris from the paper's box, a 40 ft "
-                 "container and a car", fontsize=12)
+    fig.suptitle("Kainan port at the prototype scale (the 1/250 flume x250): debris from the paper's box, a container "
+                 "yard and a car park", fontsize=12)
     fig.savefig(a.out + ".part.png", dpi=150)
     os.replace(a.out + ".part.png", a.out)
     print(f"chart: {a.out}")

@@ -226,7 +226,7 @@ def analyse(sweep, scene, wet, source, half_angle):
             hits.setdefault(int(b), set()).add(int(t))
     hit_probability = {b: len(ms) / len(members) for b, ms in hits.items()}
     return {
-        "source": source, "bodies": len(origins), "members": len(members), "origin": (cx, cy),
+        "source": source, "origins": len(origins), "members": len(members), "origin": (cx, cy),
         "inflow": inflow, "outflow": outflow, "share": share,
         "final_inside": final_inside / max(1, len(members)),
         "region_in": region_in, "region_out": region_out, "passes": passes.reshape(region.shape) / max(1, len(members)),
@@ -243,12 +243,12 @@ def degrees(a):
 def write_tables(results, out):
     with open(os.path.join(out, "hazard_regions.csv"), "w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")
-        w.writerow(["source", "bodies", "members", "origin_x_m", "origin_y_m", "inflow_direction_deg",
+        w.writerow(["source", "origins", "members", "origin_x_m", "origin_y_m", "inflow_direction_deg",
                     "outflow_direction_deg", "passage_share_inflow_wedge", "passage_share_outflow_wedge",
                     "passage_share_region", "members_ending_inside", "buildings_in_region", "buildings_hit",
                     "buildings_hit_outside_region", "buildings_in_region_never_hit"])
         for r in results:
-            w.writerow([r["source"], r["bodies"], r["members"], f"{r['origin'][0]:.3f}", f"{r['origin'][1]:.3f}",
+            w.writerow([r["source"], r["origins"], r["members"], f"{r['origin'][0]:.3f}", f"{r['origin'][1]:.3f}",
                         degrees(r["inflow"]), degrees(r["outflow"]), f"{r['share']['inflow']:.4f}",
                         f"{r['share']['outflow']:.4f}", f"{r['share']['region']:.4f}", f"{r['final_inside']:.4f}",
                         len(r["buildings_in_region"]), len(r["hit_probability"]),
@@ -290,36 +290,46 @@ def write_masks(results, scene, path):
 
 
 def chart(r, scene, path):
+    """The source's passage shares over the ground, the regions' outlines, the buildings that differ."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    x, y = scene["x"], scene["y"]
+    x, y, z = scene["x"], scene["y"], scene["z"]
     d = x[1] - x[0]
     ext = [x[0] - d / 2, x[-1] + d / 2, y[0] - d / 2, y[-1] + d / 2]
-    fig, ax = plt.subplots(figsize=(9, 6.5))
+    shown = (r["passes"] > 0) | r["region_in"] | r["region_out"]
+    jj, ii = np.nonzero(shown)
+    margin = 10 * d
+    box = [x[ii.min()] - margin, x[ii.max()] + margin, y[jj.min()] - margin, y[jj.max()] + margin]
+    aspect = (box[3] - box[2]) / max(box[1] - box[0], d)
+    fig, ax = plt.subplots(figsize=(10, min(9, max(4.5, 10 * aspect + 1.5))))
+    from matplotlib.colors import ListedColormap
+    ax.imshow((z >= 0).astype(int), origin="lower", extent=ext, cmap=ListedColormap(["#d6e6f2", "#e4e1da"]), vmin=0, vmax=1,
+              aspect="equal")
     bid = scene["building_id"]
-    ax.imshow(np.ma.masked_where(bid == 0, bid > 0), origin="lower", extent=ext, cmap="Greys", vmin=0, vmax=1.6,
+    ax.imshow(np.ma.masked_where(bid == 0, bid > 0), origin="lower", extent=ext, cmap=ListedColormap(["#6b6b6b"]),
               aspect="equal")
     p = np.ma.masked_where(r["passes"] <= 0, r["passes"])
-    im = ax.imshow(p, origin="lower", extent=ext, cmap="viridis", vmin=0, vmax=1, aspect="equal")
-    fig.colorbar(im, ax=ax, shrink=0.8, label="share of the source's members passing the cell")
-    for region, colour, label in ((r["region_in"], "tab:red", "inflow"), (r["region_out"], "tab:orange", "outflow")):
+    im = ax.imshow(p, origin="lower", extent=ext, cmap="viridis", vmin=0, vmax=max(0.05, float(p.max())), aspect="equal")
+    fig.colorbar(im, ax=ax, orientation="horizontal", fraction=0.05, pad=0.12,
+                 label="share of the source's members whose centre passes the cell")
+    for region, colour, label in ((r["region_in"], "tab:red", "inflow"), (r["region_out"], "tab:orange", "return flow")):
         if region.any():
             ax.contour(x, y, region.astype(float), levels=[0.5], colors=colour, linewidths=1.4)
-            ax.plot([], [], color=colour, label=f"±22.5° {label} region")
-    for b in r["hit_outside"]:
-        jj, ii = np.nonzero(bid == b)
-        ax.plot(x[ii].mean(), y[jj].mean(), "x", color="tab:red", ms=7)
-    for b in r["never_reached"]:
-        jj, ii = np.nonzero(bid == b)
-        ax.plot(x[ii].mean(), y[jj].mean(), "o", mfc="none", color="tab:orange", ms=6)
-    ax.plot([], [], "x", color="tab:red", label="building hit outside the region")
-    ax.plot([], [], "o", mfc="none", color="tab:orange", label="building in the region, never hit")
-    ax.plot(*r["origin"], "*", color="white", mec="black", ms=12, label="source")
-    ax.legend(loc="lower right", fontsize=8)
+            ax.plot([], [], color=colour, label=f"±22.5° of the {label}, flooded")
+    for ids, marker, colour, label in ((r["hit_outside"], "x", "tab:red", "building hit outside the region"),
+                                       (r["never_reached"], "o", "tab:orange", "building in the region, never hit")):
+        for b in ids:
+            bj, bi = np.nonzero(bid == b)
+            ax.plot(x[bi].mean(), y[bj].mean(), marker, mfc="none", color=colour, ms=5)
+        ax.plot([], [], marker, mfc="none", color=colour, label=f"{label} ({len(ids)})")
+    ax.plot(*r["origin"], "*", color="white", mec="black", ms=13, label="source")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+    ax.set_xlim(box[0], box[1])
+    ax.set_ylim(box[2], box[3])
     s = r["share"]
     ax.set_title(f"{r['source']}: {r['members']} members; passages in the region {100 * s['region']:.1f} % "
-                 f"(inflow {100 * s['inflow']:.1f} %, outflow {100 * s['outflow']:.1f} %)", fontsize=10)
+                 f"(inflow {100 * s['inflow']:.1f} %, return flow {100 * s['outflow']:.1f} %)", fontsize=10)
     ax.ticklabel_format(useOffset=False, style="plain")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")

@@ -284,7 +284,6 @@ SourceFileSpec read_sources(const TomlDoc& doc, const TomlTable& t, const SweepS
     s.model = body_model;
     if (!has(t, "file")) toml_fail(doc, t, "file", "missing: the GIS file of debris sources (points and yard polygons)");
     s.file = toml_string(doc, t, "file");
-    if (!std::filesystem::exists(s.file)) toml_fail(doc, t, "file", "'" + s.file + "' does not exist");
     if (has(t, "layers")) s.layers = toml_strings(doc, t, "layers");
     if (spec.scene.empty()) toml_fail(doc, t, "file", "sources need a scene ([sweep] scene = \"...\" or --scene): its CRS places them");
     read_settings(doc, t, debris::body_model_settings(), s.model);

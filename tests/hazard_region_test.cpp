@@ -76,7 +76,7 @@ TEST(HazardRegion, APointSourceInAUniformCurrentGetsTheWedgeByHand) {
     std::string header, row;
     std::getline(rows, header);
     std::getline(rows, row);
-    // source, bodies, members, origin x, y, inflow, outflow, shares (3), ending inside, in region, hit, hit outside, never hit
+    // source, origins (start positions), members, origin x, y, inflow, outflow, shares (3), ending inside, in region, hit, hit outside, never hit
     EXPECT_EQ(row, "P,1,1,0.210,0.150,30.00,,0.9474,0.0000,0.9474,1.0000,1,0,,2");
     const std::string buildings = read_text(dir + "/hazard/hazard_buildings.csv");
     EXPECT_NE(buildings.find("P,2,1,0.0000"), std::string::npos) << buildings;

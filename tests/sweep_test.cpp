@@ -220,12 +220,11 @@ TEST(SweepSpec, FullScaleExampleReads) {
     const auto dir = test::scratch_dir("sweep_full_scale_example");
     const auto flows = two_flows(dir);
     const SweepSpec spec = read_example_spec("kainan_full_scale", dir, flows,
-                                             {{"FD", "start", 0.3, 0.3, 0.0},
-                                              {"LD", "start", 0.6, 0.5, 90.0},
-                                              {"CONTAINER", "start", 0.3, 0.5, 0.0},
-                                              {"CAR", "start", 0.5, 0.3, 0.0}});
-    ASSERT_EQ(spec.bodies.size(), 4u);
-    EXPECT_EQ(spec.bodies[2].name, "CONTAINER");
+                                             {{"FD", "start", 0.3, 0.3, 0.0}, {"LD", "start", 0.6, 0.5, 90.0}});
+    ASSERT_EQ(spec.bodies.size(), 2u);  // and the port's layers, expanded when the sweep runs
+    ASSERT_EQ(spec.sources.size(), 1u);
+    EXPECT_EQ(spec.sources[0].file, "runs/kainan-full/port_layers.gpkg");
+    EXPECT_TRUE(spec.sources[0].layers.empty());
     EXPECT_EQ(spec.perturbation.count, 4);
     EXPECT_DOUBLE_EQ(spec.perturbation.position_std, 5.0);
     EXPECT_DOUBLE_EQ(spec.end_time, 6640.0);
