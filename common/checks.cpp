@@ -28,6 +28,12 @@ std::string num(double v) {
 
 std::string number_text(double v) { return num(v); }
 
+std::string coordinate_text(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.10g", std::round(v * 1000.0) / 1000.0);
+    return buf;
+}
+
 Range Range::positive(std::string unit) { return {0.0, inf, true, false, false, std::move(unit)}; }
 Range Range::non_negative(std::string unit) { return {0.0, inf, false, false, false, std::move(unit)}; }
 Range Range::at_least(double a, std::string unit) { return {a, inf, false, false, false, std::move(unit)}; }

@@ -42,6 +42,9 @@ struct Range {
 
 // A number for messages: "1e-09", "0.45", "1e+12" (6 significant digits).
 std::string number_text(double v);
+// A coordinate for messages, to the millimetre: "3779500.25", "1.375" (UTM northings
+// have seven digits before the point, which number_text would round to metres).
+std::string coordinate_text(double v);
 
 // "(0, 0.5] s", "whole numbers in [1, 16]", "any finite number".
 std::string describe(const Range& r);

@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 #include "data/dem_import.hpp"
 #include "data/gdal_support.hpp"
@@ -21,22 +22,9 @@ namespace flotsam {
 
 namespace {
 
-std::string number_text(double v) {
+std::string exact_text(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-}
-
-std::string short_number(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
-
-// A map coordinate to the centimetre (UTM northings have seven digits before the point).
-std::string coordinate_text(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.10g", std::round(v * 100.0) / 100.0);
     return buf;
 }
 
@@ -83,7 +71,7 @@ Dem dem_from_dataset(GDALDataset& ds, const std::string& path) {
              "no geotransform: the grid's coordinates are missing or not uniformly spaced (a regular north-up grid is needed)");
     if (gt[2] != 0.0 || gt[4] != 0.0)
         fail(path, "geotransform",
-             "a rotated or sheared grid (row/column terms " + short_number(gt[2]) + ", " + short_number(gt[4]) +
+             "a rotated or sheared grid (row/column terms " + number_text(gt[2]) + ", " + number_text(gt[4]) +
                  "): warp it north-up first, e.g. gdalwarp -t_srs EPSG:n in.tif north_up.tif");
     if (!(gt[1] > 0.0) || gt[5] == 0.0) fail(path, "geotransform", "pixel size must be positive along x and non-zero along y");
     GDALRasterBand* band = ds.GetRasterBand(1);
@@ -126,7 +114,7 @@ void check_projected_metres(const OGRSpatialReference& crs, const std::string& f
     const double to_metre = crs.GetLinearUnits(&unit);
     if (to_metre != 1.0)
         fail(file, what + " " + gdal::label(crs),
-             std::string("linear unit is '") + (unit ? unit : "?") + "' (" + short_number(to_metre) +
+             std::string("linear unit is '") + (unit ? unit : "?") + "' (" + number_text(to_metre) +
                  " m), not metres: give --target-crs to reproject");
 }
 
@@ -263,8 +251,8 @@ Dem read_gis_dem(const std::string& path, const GisImportDef& gis, double resolu
                                                    "-t_srs",
                                                    wkt_out,
                                                    "-tr",
-                                                   number_text(resolution),
-                                                   number_text(resolution),
+                                                   exact_text(resolution),
+                                                   exact_text(resolution),
                                                    "-tap",
                                                    "-r",
                                                    coarser ? "average" : "bilinear",
@@ -279,7 +267,7 @@ Dem read_gis_dem(const std::string& path, const GisImportDef& gis, double resolu
             warped = warp(*ds, args, path, "reprojection to " + gdal::label(target));
             use = warped.get();
             std::fprintf(stderr, "scene import: %s reprojected from %s to %s at %s m\n", path.c_str(), gdal::label(*source).c_str(),
-                         gdal::label(target).c_str(), short_number(resolution).c_str());
+                         gdal::label(target).c_str(), number_text(resolution).c_str());
         }
         final_crs = target;
     } else if (source) {
@@ -427,10 +415,10 @@ std::vector<double> manning_from_gis(const Scene& s, const GisImportDef& gis, st
                                          "-r",
                                          classes ? "mode" : "average",
                                          "-te",
-                                         number_text(s.grid.x_min_edge()),
-                                         number_text(s.grid.y_min_edge()),
-                                         number_text(s.grid.x_max_edge()),
-                                         number_text(s.grid.y_max_edge()),
+                                         exact_text(s.grid.x_min_edge()),
+                                         exact_text(s.grid.y_min_edge()),
+                                         exact_text(s.grid.x_max_edge()),
+                                         exact_text(s.grid.y_max_edge()),
                                          "-ts",
                                          std::to_string(s.grid.nx),
                                          std::to_string(s.grid.ny),
@@ -455,7 +443,7 @@ std::vector<double> manning_from_gis(const Scene& s, const GisImportDef& gis, st
                 value = it->second;
             } else if (!(value >= 0.0 && value < 1.0)) {
                 fail(gis.manning_raster, "band 1",
-                     "value " + short_number(value) +
+                     "value " + number_text(value) +
                          " is not a Manning n in [0, 1) s m^-1/3 (give "
                          "--manning-classes if these are land-use codes)");
             }
@@ -470,7 +458,7 @@ std::vector<double> manning_from_gis(const Scene& s, const GisImportDef& gis, st
         for (std::size_t f = 0; f < p.value.size(); ++f)
             if (!(p.value[f] >= 0.0 && p.value[f] < 1.0))
                 fail(gis.manning_polygons, "field '" + gis.manning_field + "'",
-                     "polygon " + std::to_string(f) + ": n = " + short_number(p.value[f]) + " is not in [0, 1) s m^-1/3");
+                     "polygon " + std::to_string(f) + ": n = " + number_text(p.value[f]) + " is not in [0, 1) s m^-1/3");
         const std::vector<int> id = rasterise_ids(p, s, gis.manning_polygons);
         std::size_t used = 0;
         for (std::size_t k = 0; k < id.size(); ++k)

@@ -7,17 +7,12 @@
 #include <string>
 #include <utility>
 
+#include "common/checks.hpp"
 #include "sweep/sweep_spec.hpp"
 
 namespace flotsam::sweep {
 
 namespace {
-
-std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
 
 std::string numbered(const char* prefix, int k, int count) {
     const std::size_t digits = std::max<std::size_t>(2, std::to_string(std::max(count - 1, 0)).size());
@@ -45,9 +40,9 @@ std::vector<ParameterSet> one_at_a_time(const ParamValues& control, const std::v
     std::vector<ParameterSet> out{{"control", control, true}};
     for (int p : varied) {
         const std::string& key = design_parameters()[std::size_t(p)].key;
-        ParameterSet up{key + "x" + fmt(factor), control, false};
+        ParameterSet up{key + "x" + number_text(factor), control, false};
         up.values[p] = control[p] * factor;
-        ParameterSet down{key + "/" + fmt(factor), control, false};
+        ParameterSet down{key + "/" + number_text(factor), control, false};
         down.values[p] = control[p] / factor;
         out.push_back(up);
         out.push_back(down);
