@@ -62,7 +62,8 @@ $(FULL)/sweep.nc: $(FULL_FLOWS) $(FULL_SPEC) $(FULL)/port_layers.gpkg | tool
 
 # Region counts at the flume's 300 s and yaw over its 30 s, x sqrt(250).
 $(FULL)/stats.nc: $(FULL)/sweep.nc
-	$(FLOTSAM) stats --sweep $< --scene $(FULL)/scene.nc --arrival-time 4743 --yaw-window 474 --out $@
+	$(FLOTSAM) stats --sweep $< --scene $(FULL)/scene.nc --arrival-time 4743 --yaw-window 474 --out $@ \
+	  --csv $(FULL)/stats_csv
 
 ## real-scale-scene  the GeoTIFF, the footprints and the full-scale scene
 real-scale-scene: $(FULL)/scene.nc
@@ -73,6 +74,7 @@ real-scale-maps: $(FULL)/stats.nc
 	$(FLOTSAM) export --stats $(FULL)/stats.nc --scene $(FULL)/scene.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) \
 	  --trajectories $(FULL)/sweep.nc --out-dir $(FULL)/gis
 	$(PYTHON) -m pipelines.hazard_region --sweep $(FULL)/sweep.nc --scene $(FULL)/scene.nc --out $(FULL)/hazard
+	$(PYTHON) -m pipelines.charts --scene $(FULL)/scene.nc --stats $(FULL)/stats.nc --out $(FULL)/charts --only-buildings
 	gdalinfo $(FULL)/gis/pass_probability_all.tif | grep -E "^(Size|Origin|Pixel Size)|LAYOUT|ID\[\"EPSG\",32653\]\]$$"
 	$(PYTHON) -m pipelines.charts_full_scale --scene $(FULL)/scene.nc --stats $(FULL)/stats.nc --sweep $(FULL)/sweep.nc \
 	  --flows $(FULL_FLOWS) --out $(FULL)/kainan_full_scale.png

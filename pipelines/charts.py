@@ -51,11 +51,15 @@ def scene_background(ax, scene, extent=None):
     land = np.ma.masked_where(z < 0, z)
     water = np.ma.masked_where(z >= 0, z)
     ext = [x[0], x[-1], y[0], y[-1]]
-    ax.imshow(water, origin="lower", extent=ext, cmap="Blues_r", vmin=-0.3, vmax=0.05, aspect="equal")
-    ax.imshow(land, origin="lower", extent=ext, cmap="Greys", vmin=-0.02, vmax=0.08, aspect="equal")
+    deep, high = -0.3, 0.08  # the flume's [m]; a map (wider than 100 m) takes its own from the ground
+    if x[-1] - x[0] > 100.0 and (z < 0).any() and (z >= 0).any():
+        deep, high = np.percentile(z[z < 0], 2), np.percentile(z[z >= 0], 90)
+    ax.imshow(water, origin="lower", extent=ext, cmap="Blues_r", vmin=deep, vmax=-deep / 6, aspect="equal")
+    ax.imshow(land, origin="lower", extent=ext, cmap="Greys", vmin=-high / 4, vmax=high, aspect="equal")
     if extent:
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
+    ax.ticklabel_format(useOffset=False, style="plain")
     ax.set_xlabel("x [m] (east)")
     ax.set_ylabel("y [m] (north)")
 
@@ -388,8 +392,14 @@ def chart_buildings(scene, st, out, annotate=15):
     lookup[stat_ids] = prob
     field = np.where(ids > 0, lookup[np.clip(ids, 0, None)], np.nan)
     x, y = scene["x"].values, scene["y"].values
+    extent = city_extent(scene)
+    if np.any(field > 0):  # the buildings hit, with a margin of a tenth of their spread
+        jj, ii = np.nonzero(field > 0)
+        mx, my = 0.1 * (x[ii].max() - x[ii].min()), 0.1 * (y[jj].max() - y[jj].min())
+        extent = [max(extent[0], x[ii].min() - mx), min(extent[1], x[ii].max() + mx),
+                  max(extent[2], y[jj].min() - my), min(extent[3], y[jj].max() + my)]
     fig, ax = plt.subplots(figsize=(12, 4.2))
-    scene_background(ax, scene, city_extent(scene))
+    scene_background(ax, scene, extent)
     hit = np.ma.masked_where(~(field > 0), field)
     never = np.ma.masked_where(~(field == 0), np.ones_like(field))
     ext = [x[0], x[-1], y[0], y[-1]]
@@ -439,12 +449,17 @@ def main():
     ap.add_argument("--stats")
     ap.add_argument("--snapshot-time", type=float, default=250.0, help="time of the vorticity snapshot [s]")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--only-buildings", action="store_true", help="only buildings.png (any scene, any scale)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     for p in [a.scene] + a.flows + a.trajectories + ([a.stats] if a.stats else []):
         if not os.path.exists(p):
             sys.exit(f"charts.py: {p}: no such file")
     scene = xr.open_dataset(a.scene)
+    if a.only_buildings:
+        if not a.stats:
+            sys.exit("charts.py: --only-buildings needs --stats")
+        return chart_buildings(scene, xr.open_dataset(a.stats), a.out)
     chart_trajectories(scene, a.flows, a.trajectories, a.out, a.snapshot_time)
     chart_wg2(a.flows, a.out)
     chart_time_to_draft(scene, a.flows, a.out)
