@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "app/debris_sources.hpp"
@@ -191,7 +192,15 @@ void run_merge_command(const MergeOptions& o) {
 }
 
 void run_stats_command(const StatsOptions& o, const std::string& command_line) {
-    const OutputGuard guard({{"--out", o.out}, {"--csv", o.csv}}, {{"--sweep", o.sweep}, {"--scene", o.scene}});
+    const OutputGuard guard({{"--out", o.out}}, {{"--sweep", o.sweep}, {"--scene", o.scene}});
+    // --csv names a folder the tables go into (each table written whole, then renamed):
+    // an existing folder is reused, a file there is refused; one writer at a time.
+    std::optional<OutputLock> csv_lock;
+    if (!o.csv.empty()) {
+        if (std::filesystem::exists(o.csv) && !std::filesystem::is_directory(o.csv))
+            fail("--csv", o.csv, "is a file: --csv names the folder the CSV tables are written into");
+        csv_lock.emplace(o.csv);
+    }
     const sweep::SweepResult r = sweep::read_sweep_file(o.sweep);
     const std::string scene_path = o.scene.empty() ? r.scene_file : o.scene;
     if (scene_path.empty())

@@ -138,6 +138,7 @@ struct BodyStats {
     long unresolved = 0;                // MC: steps that end with an overlap deeper than the tolerance (debris/collision.hpp)
     long axis_shifts = 0;               // steps rotated about the contact centroid
     double max_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
+    long jams = 0;                      // MC: steps undone because the passes could not clear the overlap
 };
 
 }  // namespace flotsam::debris

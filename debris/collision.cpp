@@ -183,6 +183,13 @@ SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 
 
 }  // namespace
 
+double deepest_overlap(const ObstacleMap& obstacles, const BodyParams& body, double bottom, const Box& box,
+                       std::vector<ObstacleContact>& scratch) {
+    scratch.clear();
+    obstacles.find_contacts(box, bottom, body.step_height, scratch, 1e-10, body.def.blocking_ground);
+    return deepest(scratch);
+}
+
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
                                     double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
                                     const Box& footprint, std::vector<ObstacleContact>& contacts,
@@ -245,6 +252,18 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
         // the least move out of all of it at once, translation and rotation, that also
         // keeps out of the obstacles within the margin (so that it does not push the body
         // from one wall into the other).
+        detect_near(pose(state, body));
+        std::sort(contacts.begin(), contacts.end(), by_depth);
+        const SeparatingMove m = clearing_move(contacts, Vec2{state.x, state.y}, mass, inertia);
+        moved_out += m.shift;
+        turned_out += m.turn;
+        place();
+    }
+    // Overlap still left after the passes (several contacts whose impulses keep undoing
+    // each other's moves): moves out alone, each from the overlaps that remain, until
+    // none is left above the tolerance. Each clears the linearised overlaps, so what is
+    // left shrinks as the square of the turn.
+    for (int extra = 0; extra < max_passes && deepest(contacts) > move.tolerance; ++extra) {
         detect_near(pose(state, body));
         std::sort(contacts.begin(), contacts.end(), by_depth);
         const SeparatingMove m = clearing_move(contacts, Vec2{state.x, state.y}, mass, inertia);

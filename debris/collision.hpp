@@ -56,6 +56,10 @@ struct StepMove {
 //           order, so a body wedged across a gap turns and slides out of it}.
 // With `touches`, appends each building contacted (debris/impacts.hpp, BuildingTouch):
 // nothing of the motion depends on it.
+// The deepest overlap of the pose `box` with what blocks a body at `bottom` [m].
+double deepest_overlap(const ObstacleMap& obstacles, const BodyParams& body, double bottom, const Box& box,
+                       std::vector<ObstacleContact>& scratch);
+
 CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
                                     double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
                                     const Box& footprint, std::vector<ObstacleContact>& scratch,

@@ -177,8 +177,26 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
     if (!hit.touched) return;
     s.flags |= flag_colliding;
     ++stats.collisions;
-    stats.unresolved += hit.unresolved ? 1 : 0;
-    stats.max_residual_overlap = std::max(stats.max_residual_overlap, hit.residual);
+    double residual = hit.residual;
+    bool unresolved = hit.unresolved;
+    // Jammed: the passes could not clear the overlap (contacts on opposite sides whose
+    // first-order moves out contradict each other, a body wedged across a gap narrower
+    // than its projected width among the cells of a jagged bank). The body stays where
+    // the step began, held by the contacts (at rest), if that pose is clearer.
+    if (unresolved && b.def.collision == CollisionModel::multi) {
+        const double at_start = deepest_overlap(ctx.obstacles, b, bottom, start.box, scratch.contacts);
+        if (at_start < residual) {
+            s.x = start.now.centre.x;
+            s.y = start.now.centre.y;
+            s.theta = start.now.theta;
+            s.vx = s.vy = s.omega = s.pivot_rate = 0.0;
+            residual = at_start;
+            unresolved = at_start > move.tolerance;
+            ++stats.jams;
+        }
+    }
+    stats.unresolved += unresolved ? 1 : 0;
+    stats.max_residual_overlap = std::max(stats.max_residual_overlap, residual);
 }
 
 }  // namespace

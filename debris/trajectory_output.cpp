@@ -94,6 +94,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vnc = per_int("collision_steps", "steps with an obstacle contact");
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
+        const int vjam = per_int("jammed_steps", "steps undone because the collision passes could not clear the overlap");
         const int vres = cf::def_var(f, {.name = "largest_residual_overlap", .type = NC_DOUBLE, .dims = {dtraj}, .units = "m",
                                          .long_name = "deepest obstacle overlap left after collision handling"});
         const std::vector<Impact> impacts = world.impacts();
@@ -124,6 +125,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(vnc, column<int>(stats, &BodyStats::collisions));
         f.put(vnu, column<int>(stats, &BodyStats::unresolved));
         f.put(vres, column<double>(stats, &BodyStats::max_residual_overlap));
+        f.put(vjam, column<int>(stats, &BodyStats::jams));
         f.put(vns, column<int>(stats, &BodyStats::axis_shifts));
         for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, series.tracks[b]);
         put_impacts(f, vimpact, impacts);

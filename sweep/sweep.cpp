@@ -136,6 +136,7 @@ void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::v
         rec.collision_steps = int(bs.collisions);
         rec.unresolved_collisions = int(bs.unresolved);
         rec.largest_residual_overlap = bs.max_residual_overlap;
+        rec.jammed_steps = int(bs.jams);
         rec.axis_shift_steps = int(bs.axis_shifts);
         rec.track = std::move(series.tracks[b]);
         for (const Impact& i : impacts)

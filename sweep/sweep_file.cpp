@@ -81,7 +81,7 @@ MemberText member_text(const SweepResult& r) {
 struct MemberVariables {
     int id, member, flow_index, flow, body, start, perturbation, variant, contact, collision, param_set, label;
     std::vector<int> coefficients, shape, model;
-    int x0, y0, heading0, collision_steps, unresolved, axis_shift_steps, residual;
+    int x0, y0, heading0, collision_steps, unresolved, axis_shift_steps, residual, jammed;
 };
 
 MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText& t) {
@@ -115,6 +115,7 @@ MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText
     v.collision_steps = var("collision_steps", NC_INT, "", "steps with an obstacle contact");
     v.unresolved = var("unresolved_collisions", NC_INT, "", "steps whose collision passes left an overlap");
     v.axis_shift_steps = var("axis_shift_steps", NC_INT, "", "steps rotated about the contact centroid");
+    v.jammed = var("jammed_steps", NC_INT, "", "steps undone because the collision passes could not clear the overlap");
     v.residual = var("largest_residual_overlap", NC_DOUBLE, "m", "deepest obstacle overlap left after collision handling");
     return v;
 }
@@ -142,6 +143,7 @@ void put_member_variables(nc::File& f, const MemberVariables& v, const MemberTex
     f.put(v.collision_steps, column<int>(ms, &MemberRecord::collision_steps));
     f.put(v.unresolved, column<int>(ms, &MemberRecord::unresolved_collisions));
     f.put(v.residual, column<double>(ms, &MemberRecord::largest_residual_overlap));
+    f.put(v.jammed, column<int>(ms, &MemberRecord::jammed_steps));
     f.put(v.axis_shift_steps, column<int>(ms, &MemberRecord::axis_shift_steps));
 }
 
@@ -294,7 +296,7 @@ void read_sweep_tables(nc::File& f, const std::string& path, SweepResult& r) {
 
 // The per-trajectory columns of the members, read whole.
 struct MemberColumns {
-    std::vector<int> id, flow, perturbation, param_set, collision_steps, unresolved, axis_shift_steps;
+    std::vector<int> id, flow, perturbation, param_set, collision_steps, unresolved, axis_shift_steps, jammed;
     std::vector<std::string> body, start, variant, contact, collision;
     std::vector<double> x0, y0, heading0, residual;
     std::vector<debris::BodyDef> defs;
@@ -313,6 +315,7 @@ struct MemberColumns {
         x0 = doubles("x0"), y0 = doubles("y0"), heading0 = doubles("heading0");
         // Optional: a file without it reads as no overlap left.
         residual = f.has_var("largest_residual_overlap") ? doubles("largest_residual_overlap") : std::vector<double>(nm, 0.0);
+        jammed = f.has_var("jammed_steps") ? ints("jammed_steps") : std::vector<int>(nm, 0);
         get_setting_vars(f, debris::body_coefficient_settings(), defs);
         get_setting_vars(f, debris::body_shape_settings(), defs);
         get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
@@ -347,6 +350,7 @@ MemberRecord member_of(const MemberColumns& c, std::size_t b, const SweepResult&
     m.collision_steps = c.collision_steps[b];
     m.unresolved_collisions = c.unresolved[b];
     m.largest_residual_overlap = c.residual[b];
+    m.jammed_steps = c.jammed[b];
     m.axis_shift_steps = c.axis_shift_steps[b];
     return m;
 }

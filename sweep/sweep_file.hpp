@@ -27,6 +27,7 @@ struct MemberRecord : MemberIndex {
     double heading0_deg = 0;  // start heading [degree] (def.heading, as written in the file)
     int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
     double largest_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
+    int jammed_steps = 0;                   // steps undone because the passes could not clear the overlap
     debris::Track track;  // on SweepResult::time
     std::vector<Impact> impacts;  // on buildings, by time (Impact::trajectory: unused here, the file's index when written)
 };

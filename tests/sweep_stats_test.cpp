@@ -334,6 +334,18 @@ TEST(SweepStats, FilesRoundTripAndTheCommandWritesTables) {
     for (const char* name : {"sections.csv", "speed_kde.csv", "yaw_histogram.csv", "rotation_from_start.csv", "regions.csv",
                              "distance.csv", "members.csv"})
         EXPECT_TRUE(std::filesystem::exists(dir + "/csv/" + name)) << name;
+    // Again into the same folders (make's rerun of an out-of-date statistics file); a
+    // --csv that is a file is refused.
+    ASSERT_EQ(
+        test::run_cli("stats --sweep " + dir + "/a.nc --scene " + dir + "/scene.nc --out " + dir + "/st.nc --csv " + dir + "/csv",
+                      &out),
+        0)
+        << out;
+    EXPECT_NE(test::run_cli("stats --sweep " + dir + "/a.nc --scene " + dir + "/scene.nc --out " + dir + "/st2.nc --csv " + dir +
+                                "/b.nc",
+                            &out),
+              0);
+    EXPECT_NE(out.find("--csv: " + dir + "/b.nc: is a file"), std::string::npos) << out;
 
     // A shard is refused until merged.
     SweepResult part = sw.r;
