@@ -31,11 +31,7 @@ debris::BodyDef body_of(const SourceFeature& f, const debris::BodyDef& model) {
         fail(f.where, "mass " + number_text(mass) + " kg",
              "a " + number_text(b.length) + " x " + number_text(b.width) + " x " + number_text(b.height) +
                  " m box this heavy never floats (specific gravity " + number_text(b.specific_gravity) + ")");
-    b.cd1 = c.cd1;
-    b.cd2 = c.cd2;
-    b.cm = c.cm;
-    b.mu = c.mu;
-    b.restitution = c.restitution;
+    for (const auto& setting : debris::body_coefficient_settings()) setting.set_number(b, setting.number(c));
     b.impact_stiffness = c.impact_stiffness;
     return b;
 }

@@ -259,18 +259,6 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
         turned_out += m.turn;
         place();
     }
-    // Overlap still left after the passes (several contacts whose impulses keep undoing
-    // each other's moves): moves out alone, each from the overlaps that remain, until
-    // none is left above the tolerance. Each clears the linearised overlaps, so what is
-    // left shrinks as the square of the turn.
-    for (int extra = 0; extra < max_passes && deepest(contacts) > move.tolerance; ++extra) {
-        detect_near(pose(state, body));
-        std::sort(contacts.begin(), contacts.end(), by_depth);
-        const SeparatingMove m = clearing_move(contacts, Vec2{state.x, state.y}, mass, inertia);
-        moved_out += m.shift;
-        turned_out += m.turn;
-        place();
-    }
     out.residual = deepest(contacts);
     out.unresolved = out.residual > move.tolerance;
     return out;
