@@ -3,11 +3,14 @@
 // to those of the whole sweep.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "cases/debris_flows.hpp"
+#include "common/netcdf.hpp"
+#include "data/gdal_support.hpp"
 #include "debris/catalogue.hpp"
 #include "debris/impacts.hpp"
 #include "debris/world.hpp"
@@ -191,4 +194,33 @@ TEST(DebrisImpacts, ImpactStatisticsOfMergedShardsAreThoseOfTheWholeRun) {
     const std::string buildings = read_text(dir + "/whole_csv/buildings.csv");
     EXPECT_EQ(buildings, read_text(dir + "/merged_csv/buildings.csv"));
     EXPECT_NE(buildings.find("all,all,1,"), std::string::npos) << buildings;
+
+    // The footprints layer for QGIS: one polygon per building, its area that of its 2 cm
+    // cells, and the statistics of the NetCDF file; the two blocks hold 5 columns × 37
+    // rows (40 less the 3 rows of the opening at y = 0.4 m).
+    ASSERT_EQ(test::run_cli("export --stats " + dir + "/whole_stats.nc --scene " + dir + "/scene.nc --out-dir " + dir + "/gis", &out),
+              0)
+        << out;
+    gdal::init();
+    gdal::Dataset layer_file = gdal::open_vector(dir + "/gis/buildings.gpkg");
+    OGRLayer* layer = layer_file->GetLayerByName("buildings");
+    ASSERT_NE(layer, nullptr);
+    EXPECT_EQ(layer->GetFeatureCount(), 2);
+    const nc::File st = nc::File::open_read(dir + "/whole_stats.nc");
+    const std::vector<int> ids = st.get_int(st.var("building_id"));
+    const std::vector<double> p_hit = st.get_double(st.var("building_hit_probability_all"));
+    const std::vector<double> f90 = st.get_double(st.var("building_impact_force_p90_all"));
+    int cells = 0;
+    for (OGRFeature* raw; (raw = layer->GetNextFeature()) != nullptr;) {
+        std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(raw, OGRFeature::DestroyFeature);
+        const int id = f->GetFieldAsInteger("building_id");
+        const auto k = std::size_t(std::find(ids.begin(), ids.end(), id) - ids.begin());
+        ASSERT_LT(k, ids.size()) << id;
+        EXPECT_DOUBLE_EQ(f->GetFieldAsDouble("hit_probability"), p_hit[k]) << id;
+        EXPECT_DOUBLE_EQ(f->GetFieldAsDouble("force_p90_N"), f90[k]) << id;
+        EXPECT_NEAR(f->GetFieldAsDouble("area_m2"), f->GetFieldAsInteger("cells") * 4e-4, 1e-12) << id;
+        EXPECT_NEAR(f->GetGeometryRef()->toMultiPolygon()->get_Area(), f->GetFieldAsDouble("area_m2"), 1e-9) << id;
+        cells += f->GetFieldAsInteger("cells");
+    }
+    EXPECT_EQ(cells, 5 * 37);
 }
