@@ -42,8 +42,9 @@ TEST(DebrisStability, ExplicitAddedMassFailsAboveCm2WhereImplicitHolds) {
 // step) nothing goes through, on 1 cm and on 4 cm cells. The first runs go through at
 // 6 cm steps (1 cm cells) and 8 cm (4 cm cells): the limit is set by the body (a step
 // longer than about half its 10 cm width carries its centre past the wall), not by the
-// cell. At the longest steps mapped (24 cm on 1 cm cells, 28 cm on 4 cm cells) 2 to 8 of
-// the 8 go through in every case.
+// cell. At the longest steps mapped (24 cm on 1 cm cells, 28 cm on 4 cm cells) 1 to 7 of
+// the 8 go through in every case (the jam rule, which puts back a body whose overlap the
+// collision passes cannot clear, holds some of the others).
 TEST(DebrisStability, StepLimitKeepsBodyOutOfOneCellWallWhereLongStepsTunnel) {
     const auto dir = test::scratch_dir("stab_tunnel");
     for (double cell : {0.01, 0.04}) {
@@ -53,7 +54,7 @@ TEST(DebrisStability, StepLimitKeepsBodyOutOfOneCellWallWhereLongStepsTunnel) {
                 EXPECT_EQ(test::wall_tunnelling_count(flow, cell, heading, f, 8), 0)
                     << cell << " m cells, heading " << heading << ", f " << f;
             const double longest = cell < 0.02 ? 0.24 : 0.28;  // [m]
-            EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, longest / cell, 8), 2)
+            EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, longest / cell, 8), 1)
                 << cell << " m cells, heading " << heading;
         }
     }
