@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "cases/debris_flows.hpp"
 #include "common/netcdf.hpp"
@@ -32,12 +30,6 @@ std::vector<std::uint8_t> east_wall() {
     return m;
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 }  // namespace
 
@@ -179,9 +171,9 @@ TEST(DebrisImpacts, ImpactStatisticsOfMergedShardsAreThoseOfTheWholeRun) {
                             &out),
               0)
         << out;
-    EXPECT_EQ(read_text(dir + "/whole.nc"), read_text(dir + "/merged.nc"));
-    const std::string impacts = read_text(dir + "/whole_impacts.csv");
-    EXPECT_EQ(impacts, read_text(dir + "/merged_impacts.csv"));
+    EXPECT_EQ(test::read_text(dir + "/whole.nc"), test::read_text(dir + "/merged.nc"));
+    const std::string impacts = test::read_text(dir + "/whole_impacts.csv");
+    EXPECT_EQ(impacts, test::read_text(dir + "/merged_impacts.csv"));
     EXPECT_GT(std::count(impacts.begin(), impacts.end(), '\n'), 4);  // header and impacts on both blocks
     EXPECT_NE(impacts.find(",1,"), std::string::npos);
     EXPECT_NE(impacts.find(",2,"), std::string::npos);
@@ -191,8 +183,8 @@ TEST(DebrisImpacts, ImpactStatisticsOfMergedShardsAreThoseOfTheWholeRun) {
                                 &out),
                   0)
             << out;
-    const std::string buildings = read_text(dir + "/whole_csv/buildings.csv");
-    EXPECT_EQ(buildings, read_text(dir + "/merged_csv/buildings.csv"));
+    const std::string buildings = test::read_text(dir + "/whole_csv/buildings.csv");
+    EXPECT_EQ(buildings, test::read_text(dir + "/merged_csv/buildings.csv"));
     EXPECT_NE(buildings.find("all,all,1,"), std::string::npos) << buildings;
 
     // The footprints layer for QGIS: one polygon per building, its area that of its 2 cm

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "cases/debris_flows.hpp"
@@ -14,17 +13,6 @@
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
-
-namespace {
-
-std::string read_text(const std::string& path) {
-    std::ifstream f(path);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
-
-}  // namespace
 
 // Origin (0.21, 0.15), a cell centre; current 0.15 m/s toward 30 degrees. A cell is in the
 // region when the direction to its centre lies within 7.5..52.5 degrees:
@@ -62,7 +50,7 @@ TEST(HazardRegion, APointSourceInAUniformCurrentGetsTheWedgeByHand) {
     ASSERT_EQ(test::run_cli("sweep --spec " + spec + " --out " + dir + "/sweep.nc --quiet --threads 1", &out), 0) << out;
     const std::string cmd = "cd " FLOTSAM_SOURCE_DIR " && /usr/bin/python3 -m pipelines.hazard_region --sweep " + dir +
                             "/sweep.nc --out " + dir + "/hazard --no-charts > " + dir + "/log.txt 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir + "/log.txt");
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir + "/log.txt");
 
     nc::File f = nc::File::open_read(dir + "/hazard/hazard_regions.nc");
     const std::vector<int> region = f.get_int(f.var("region_inflow")), back = f.get_int(f.var("region_outflow"));
@@ -71,14 +59,14 @@ TEST(HazardRegion, APointSourceInAUniformCurrentGetsTheWedgeByHand) {
     for (auto [x, y] : {std::pair{0.41, 0.49}, {0.31, 0.29}, {0.71, 0.21}, {0.11, 0.09}}) EXPECT_FALSE(in(x, y)) << x << ", " << y;
     for (int k : back) EXPECT_EQ(k, 0);  // a steady current has no return flow
 
-    const std::string table = read_text(dir + "/hazard/hazard_regions.csv");
+    const std::string table = test::read_text(dir + "/hazard/hazard_regions.csv");
     std::istringstream rows(table);
     std::string header, row;
     std::getline(rows, header);
     std::getline(rows, row);
     // source, origins (start positions), members, origin x, y, inflow, outflow, shares (3), ending inside, in region, hit, hit outside, never hit
     EXPECT_EQ(row, "P,1,1,0.210,0.150,30.00,,0.9474,0.0000,0.9474,1.0000,1,0,,2");
-    const std::string buildings = read_text(dir + "/hazard/hazard_buildings.csv");
+    const std::string buildings = test::read_text(dir + "/hazard/hazard_buildings.csv");
     EXPECT_NE(buildings.find("P,2,1,0.0000"), std::string::npos) << buildings;
     EXPECT_EQ(buildings.find("P,1,"), std::string::npos) << buildings;
 }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "common/error.hpp"
 
@@ -58,6 +59,13 @@ std::string write_file(const std::string& dir, const std::string& name, const st
     const std::string p = dir + "/" + name;
     std::ofstream(p) << text;
     return p;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 void damage_chunk(const std::string& path, const std::string& var, std::size_t frame) {

@@ -21,6 +21,8 @@ int finish_cli(FILE* running, std::string* output = nullptr);
 std::string error_of(const std::function<void()>& f);
 // Writes `text` to dir/name and returns the path.
 std::string write_file(const std::string& dir, const std::string& name, const std::string& text);
+// The whole of a file's bytes ("" when it cannot be read).
+std::string read_text(const std::string& path);
 // Overwrites 16 bytes in the middle of the stored chunk of (time, y, x) variable `var`
 // that holds frame `frame`, cells from (0, 0): its data no longer decode, the file's
 // structure still reads.
