@@ -187,6 +187,15 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
         double largest = 0.0;
         for (const auto& i : impacts) largest = std::max(largest, i.force);
         if (!impacts.empty()) std::fprintf(stderr, "impacts on buildings: %zu (largest force %.4g N)\n", impacts.size(), largest);
+        long jammed = 0, unresolved = 0, bodies = 0;
+        for (const auto& s : world.stats()) {
+            jammed += s.jams;
+            unresolved += s.unresolved;
+            bodies += (s.jams + s.unresolved) > 0 ? 1 : 0;
+        }
+        if (bodies > 0)  // docs/debris.md, "Collisions"
+            std::fprintf(stderr, "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
+                         jammed, unresolved, bodies, world.size());
     }
 }
 

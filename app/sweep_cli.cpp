@@ -171,11 +171,22 @@ void run_sweep_command(const SweepOptions& o) {
     sweep::write_sweep_file(o.out, r);
     sweep::write_summary_csv(summary, r);
     write_impacts_beside(summary, r);
-    if (!o.quiet)
+    if (!o.quiet) {
         std::fprintf(stderr,
                      "sweep: %d of %d members (shard %s) over %zu flows, %zu frames read (%.1f s), %.1f s wall; wrote %s and %s\n",
                      st.members, r.member_count, o.shard.c_str(), st.flows_opened, st.frames_loaded, st.io_seconds, st.wall_seconds,
                      o.out.c_str(), summary.c_str());
+        long jammed = 0, unresolved = 0, members = 0;
+        for (const auto& m : r.members) {
+            jammed += m.jammed_steps;
+            unresolved += m.unresolved_collisions;
+            members += (m.jammed_steps + m.unresolved_collisions) > 0 ? 1 : 0;
+        }
+        if (members > 0)  // docs/debris.md, "Collisions"
+            std::fprintf(stderr, "sweep: %ld jammed and %ld unresolved collision steps in %ld members (columns jammed_steps, "
+                         "unresolved_collisions of %s)\n",
+                         jammed, unresolved, members, summary.c_str());
+    }
 }
 
 void run_merge_command(const MergeOptions& o) {
