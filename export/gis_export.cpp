@@ -93,6 +93,41 @@ void rename_with_sidecars(const std::string& from, const std::string& to) {
         }
 }
 
+void add_field(OGRLayer& layer, const std::string& out_path, const std::string& name, OGRFieldType type) {
+    OGRFieldDefn d(name.c_str(), type);
+    if (layer.CreateField(&d) != OGRERR_NONE) fail(out_path, "field '" + name + "'", "cannot create: " + gdal::last_error());
+}
+
+// One layer of `geometry` in `crs` (read from `crs_file` for messages) written by
+// `write(layer)`, which returns the features written, into a file of GDAL's
+// `driver_name` under a temporary name: renamed (with shapefile sidecars) when complete,
+// removed when `write` throws.
+template <class Write>
+std::size_t write_vector_layer(const std::string& out_path, const char* driver_name, const char* layer_name,
+                               const cf::GridMapping& crs, const std::string& crs_file, OGRwkbGeometryType geometry, Write write) {
+    ensure_parent_dir(out_path);
+    const std::string temp = partial_name(out_path);
+    remove_with_sidecars(temp);
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name);
+    if (!driver) fail(out_path, "GDAL", std::string("no ") + driver_name + " driver");
+    std::size_t written = 0;
+    try {
+        gdal::Dataset ds(driver->Create(temp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+        if (!ds) fail(out_path, "GDAL", "cannot create: " + gdal::last_error());
+        std::optional<OGRSpatialReference> srs;
+        if (!crs.empty()) srs = gdal::spatial_ref(crs, crs_file);
+        OGRLayer* layer = ds->CreateLayer(layer_name, srs ? &*srs : nullptr, geometry, nullptr);
+        if (!layer) fail(out_path, std::string("layer '") + layer_name + "'", "cannot create: " + gdal::last_error());
+        written = write(*layer);
+    } catch (...) {
+        remove_with_sidecars(temp);
+        throw;
+    }
+    remove_with_sidecars(out_path);
+    rename_with_sidecars(temp, out_path);
+    return written;
+}
+
 }  // namespace
 
 std::string file_safe(const std::string& label) {
@@ -213,7 +248,8 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
         const nc::File f = nc::File::open_read(flow_paths[k]);
         cf::require_kind(f, {"flow"}, "--flow");
         for (const char* v : {"max_depth", "max_speed", "arrival_time", "time", "z"})
-            if (!f.has_var(v)) fail(flow_paths[k], std::string("variable '") + v + "'", "missing: not a flow written by `flotsam hydro`");
+            if (!f.has_var(v))
+                fail(flow_paths[k], std::string("variable '") + v + "'", "missing: not a flow written by `flotsam hydro`");
         const Grid g = grid_of(f);
         const cf::GridMapping this_crs = cf::read_crs(f, "h");
         const std::vector<float> z = read_map(f, "z", g);
@@ -240,11 +276,12 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
             if (!fingerprint.empty() && !this_fingerprint.empty() && this_fingerprint != fingerprint)
                 fail(flow_paths[k], "",
                      "was computed on another scene than " + flow_paths[0] +
-                         " (their scenes' building masks differ: scene_buildings_sha256 " + this_fingerprint + " and " + fingerprint +
-                         "); an envelope is over one scene's flows");
+                         " (their scenes' building masks differ: scene_buildings_sha256 " + this_fingerprint + " and " +
+                         fingerprint + "); an envelope is over one scene's flows");
         }
         const std::vector<double> time = nc::read_finite(f, "time");
-        MapLayer depth{"max_depth", "", "m", read_map(f, "max_depth", g)}, speed{"max_speed", "", "m s-1", read_map(f, "max_speed", g)},
+        MapLayer depth{"max_depth", "", "m", read_map(f, "max_depth", g)},
+            speed{"max_speed", "", "m s-1", read_map(f, "max_speed", g)},
             arrival{"arrival_time", "", "s", read_map(f, "arrival_time", g)};
         // The maps a flow stores: never missing depth or speed, arrival within the run.
         for (const MapLayer* m : {&depth, &speed})
@@ -314,7 +351,8 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
     if (f.dim_names(f.var("time")) != std::vector<std::string>{"time"})
         fail(trajectory_path, "variable 'time'", "must be one-dimensional on dimension 'time'");
     for (std::size_t k = 1; k < time.size(); ++k)
-        if (!(time[k] > time[k - 1])) fail(trajectory_path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
+        if (!(time[k] > time[k - 1]))
+            fail(trajectory_path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
     const std::vector<double> x = f.get_double(track_var("x")), y = f.get_double(track_var("y"));
     const bool has_speed = f.has_var("u") && f.has_var("v");
     const std::vector<double> u = has_speed ? f.get_double(track_var("u")) : std::vector<double>{},
@@ -324,7 +362,12 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
         for (std::size_t k = 0; k < series->size(); ++k)
             if (!std::isfinite((*series)[k]) || std::fabs((*series)[k]) >= 1e12)
                 fail(trajectory_path,
-                     std::string("variable '") + (series == &x ? "x" : series == &y ? "y" : series == &u ? "u" : "v") + "'",
+                     std::string("variable '") +
+                         (series == &x   ? "x"
+                          : series == &y ? "y"
+                          : series == &u ? "u"
+                                         : "v") +
+                         "'",
                      "trajectory " + std::to_string(k / std::max<std::size_t>(nt, 1)) + ", time index " +
                          std::to_string(k % std::max<std::size_t>(nt, 1)) + ": " + number_text((*series)[k]) +
                          " is not a position or speed (NaN, infinite or a fill value)");
@@ -358,32 +401,14 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
     if (scene) *scene = SceneOf{trajectory_path, 0.0, f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""), crs};
     if (check_only) return ntraj;
 
-    ensure_parent_dir(out_path);
-    const std::string temp = partial_name(out_path);
-    remove_with_sidecars(temp);
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name);
-    if (!driver) fail(out_path, "GDAL", std::string("no ") + driver_name + " driver");
-    std::size_t written = 0;
-    try {
-        gdal::Dataset ds(driver->Create(temp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-        if (!ds) fail(out_path, "GDAL", "cannot create: " + gdal::last_error());
-        std::optional<OGRSpatialReference> srs;
-        if (!crs.empty()) srs = gdal::spatial_ref(crs, trajectory_path);
-        OGRLayer* layer = ds->CreateLayer("tracks", srs ? &*srs : nullptr, wkbLineString, nullptr);
-        if (!layer) fail(out_path, "layer 'tracks'", "cannot create: " + gdal::last_error());
-        auto add_field = [&](const std::string& name, OGRFieldType t) {
-            OGRFieldDefn d(name.c_str(), t);
-            if (layer->CreateField(&d) != OGRERR_NONE)
-                fail(out_path, "field '" + name + "'", "cannot create: " + gdal::last_error());
-        };
+    return write_vector_layer(out_path, driver_name, "tracks", crs, trajectory_path, wkbLineString, [&](OGRLayer& layer) {
+        std::size_t written = 0;
         for (const auto& c : columns)
-            add_field(c.name, c.type == NC_STRING                                             ? OFTString
-                              : (c.type == NC_INT || c.type == NC_BYTE || c.type == NC_SHORT) ? OFTInteger
-                                                                                              : OFTReal);
-        add_field("t_start", OFTReal);
-        add_field("t_end", OFTReal);
-        add_field("path_length", OFTReal);
-        add_field("max_speed", OFTReal);
+            add_field(layer, out_path, c.name,
+                      c.type == NC_STRING                                             ? OFTString
+                      : (c.type == NC_INT || c.type == NC_BYTE || c.type == NC_SHORT) ? OFTInteger
+                                                                                      : OFTReal);
+        for (const char* name : {"t_start", "t_end", "path_length", "max_speed"}) add_field(layer, out_path, name, OFTReal);
         for (std::size_t b = 0; b < ntraj; ++b) {
             OGRLineString line;
             double length = 0.0, vmax = 0.0, t0 = std::nan(""), t1 = std::nan("");
@@ -401,7 +426,7 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
             }
             if (line.getNumPoints() == 0) continue;
             if (line.getNumPoints() == 1) line.addPoint(px, py);  // one sample: a line needs two points
-            OGRFeature feature(layer->GetLayerDefn());
+            OGRFeature feature(layer.GetLayerDefn());
             for (std::size_t c = 0; c < columns.size(); ++c) {
                 const auto& col = columns[c];
                 if (col.type == NC_STRING)
@@ -416,17 +441,12 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
             feature.SetField("path_length", length);
             feature.SetField("max_speed", vmax);
             feature.SetGeometry(&line);
-            if (layer->CreateFeature(&feature) != OGRERR_NONE)
+            if (layer.CreateFeature(&feature) != OGRERR_NONE)
                 fail(out_path, "trajectory " + std::to_string(b), "cannot write: " + gdal::last_error());
             ++written;
         }
-    } catch (...) {
-        remove_with_sidecars(temp);
-        throw;
-    }
-    remove_with_sidecars(out_path);
-    rename_with_sidecars(temp, out_path);
-    return written;
+        return written;
+    });
 }
 
 std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path) {
@@ -438,14 +458,16 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
     cf::require_kind(st, {stats_file::kind});
     const std::string fingerprint = st.att_text(NC_GLOBAL, stats_file::attribute::scene_buildings_sha256).value_or("");
     if (!fingerprint.empty() && fingerprint != scene_buildings_sha256(scene))
-        fail(stats_path, "scene_buildings_sha256", "comes from another scene than " + scene_path + " (grid or building mask differ)");
+        fail(stats_path, "scene_buildings_sha256",
+             "comes from another scene than " + scene_path + " (grid or building mask differ)");
     if (!st.has_var(stats_file::building_id.name))
-        fail(stats_path, "variable 'building_id'", "missing: statistics written before impacts were recorded (run flotsam stats again)");
+        fail(stats_path, "variable 'building_id'",
+             "missing: statistics written before impacts were recorded (run flotsam stats again)");
     const std::vector<int> stat_ids = st.get_int(st.var(stats_file::building_id.name));
     const stats_file::BuildingVariables& b = stats_file::building_all;
     const stats_file::Variable* columns[] = {&b.hit_probability, &b.first_hit_time, &b.impact_count, &b.speed_median, &b.speed_p90,
                                              &b.speed_max,       &b.force_median,   &b.force_p90,    &b.force_max};
-    const char* field_names[] = {"hit_probability", "first_hit_time_s", "impacts",      "speed_median_m_s", "speed_p90_m_s",
+    const char* field_names[] = {"hit_probability", "first_hit_time_s", "impacts",     "speed_median_m_s", "speed_p90_m_s",
                                  "speed_max_m_s",   "force_median_N",   "force_p90_N", "force_max_N"};
     std::vector<std::vector<double>> values;
     for (const auto* c : columns) {
@@ -477,8 +499,8 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
     if (!piece_layer) fail(out_path, "GDAL", "cannot create an in-memory vector layer: " + gdal::last_error());
     OGRFieldDefn id_field("id", OFTInteger);
     piece_layer->CreateField(&id_field);
-    if (GDALPolygonize(GDALRasterBand::ToHandle(band), GDALRasterBand::ToHandle(band->GetMaskBand()), OGRLayer::ToHandle(piece_layer), 0,
-                       nullptr, nullptr, nullptr) != CE_None)
+    if (GDALPolygonize(GDALRasterBand::ToHandle(band), GDALRasterBand::ToHandle(band->GetMaskBand()),
+                       OGRLayer::ToHandle(piece_layer), 0, nullptr, nullptr, nullptr) != CE_None)
         fail(out_path, "buildings", "GDAL could not polygonise the building ids: " + gdal::last_error());
     std::map<int, OGRMultiPolygon> by_id;
     piece_layer->ResetReading();
@@ -490,32 +512,17 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
     for (std::int32_t id : ids)
         if (id > 0) ++cells[id];
 
-    ensure_parent_dir(out_path);
-    const std::string temp = partial_name(out_path);
-    remove_with_sidecars(temp);
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-    if (!driver) fail(out_path, "GDAL", "no GPKG driver");
-    std::size_t written = 0;
-    try {
-        gdal::Dataset ds(driver->Create(temp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-        if (!ds) fail(out_path, "GDAL", "cannot create: " + gdal::last_error());
-        std::optional<OGRSpatialReference> srs;
-        if (!scene.crs.empty()) srs = gdal::spatial_ref(scene.crs, scene_path);
-        OGRLayer* layer = ds->CreateLayer("buildings", srs ? &*srs : nullptr, wkbMultiPolygon, nullptr);
-        if (!layer) fail(out_path, "layer 'buildings'", "cannot create: " + gdal::last_error());
-        auto add_field = [&](const char* name, OGRFieldType t) {
-            OGRFieldDefn d(name, t);
-            if (layer->CreateField(&d) != OGRERR_NONE) fail(out_path, std::string("field '") + name + "'", "cannot create: " + gdal::last_error());
-        };
-        add_field("building_id", OFTInteger);
-        add_field("cells", OFTInteger);
-        add_field("area_m2", OFTReal);
-        for (std::size_t c = 0; c < 9; ++c) add_field(field_names[c], c == 2 ? OFTInteger : OFTReal);
+    return write_vector_layer(out_path, "GPKG", "buildings", scene.crs, scene_path, wkbMultiPolygon, [&](OGRLayer& layer) {
+        std::size_t written = 0;
+        add_field(layer, out_path, "building_id", OFTInteger);
+        add_field(layer, out_path, "cells", OFTInteger);
+        add_field(layer, out_path, "area_m2", OFTReal);
+        for (std::size_t c = 0; c < 9; ++c) add_field(layer, out_path, field_names[c], c == 2 ? OFTInteger : OFTReal);
         for (auto& [id, parts] : by_id) {
             std::unique_ptr<OGRGeometry> joined(parts.UnionCascaded());
             if (!joined) fail(out_path, "building " + std::to_string(id), "GDAL could not join its cells: " + gdal::last_error());
             std::unique_ptr<OGRGeometry> multi(OGRGeometryFactory::forceToMultiPolygon(joined.release()));
-            OGRFeature feature(layer->GetLayerDefn());
+            OGRFeature feature(layer.GetLayerDefn());
             feature.SetField("building_id", id);
             feature.SetField("cells", cells[id]);
             feature.SetField("area_m2", double(cells[id]) * g.dx * g.dy);
@@ -530,17 +537,12 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
                     feature.SetFieldNull(feature.GetFieldIndex(field_names[c]));
             }
             feature.SetGeometry(multi.get());
-            if (layer->CreateFeature(&feature) != OGRERR_NONE)
+            if (layer.CreateFeature(&feature) != OGRERR_NONE)
                 fail(out_path, "building " + std::to_string(id), "cannot write: " + gdal::last_error());
             ++written;
         }
-    } catch (...) {
-        remove_with_sidecars(temp);
-        throw;
-    }
-    remove_with_sidecars(out_path);
-    rename_with_sidecars(temp, out_path);
-    return written;
+        return written;
+    });
 }
 
 }  // namespace flotsam::gis
