@@ -1,5 +1,6 @@
 // flotsam debris: replay one or more bodies through a stored flow and write their
 // trajectories (debris/trajectory_output.hpp, schema in formats/trajectory_file.hpp).
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -19,6 +20,7 @@
 #include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
+#include "sweep/sweep.hpp"
 #include "formats/impact_file.hpp"
 #include "formats/scene.hpp"
 
@@ -69,8 +71,8 @@ void print_catalogue() {
                     b.height, b.mass, b.cd1, b.cd2, b.cm, b.mu, b.restitution, b.description.c_str());
 }
 
-// "x,y,heading_deg" → a body at that place.
-debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, int index) {
+// "x,y,heading_deg" → its three numbers.
+std::array<double, 3> parse_at(const std::string& text) {
     std::stringstream ss(text);
     std::string part;
     std::vector<double> v;
@@ -85,118 +87,113 @@ debris::BodyDef parse_at(const std::string& text, const debris::BodyDef& base, i
         }
     }
     if (v.size() != 3) fail("--at", text, "expected x,y,heading_deg (three numbers)");
-    debris::BodyDef b = base;
-    b.name = "body" + std::to_string(index);
-    b.x = v[0];
-    b.y = v[1];
-    b.heading = v[2] * std::numbers::pi / 180.0;
-    return b;
+    return {v[0], v[1], v[2]};
+}
+
+// The run as a sweep of one flow: one control run of every body (as given), no
+// perturbation; the bodies placed as a spec's are.
+sweep::SweepSpec debris_spec(const DebrisOptions& o, bool dt_max_default, const Scene* scene) {
+    const debris::BodyDef& base = o.body;
+    sweep::SweepSpec spec;
+    spec.scene = o.scene;
+    spec.ground = o.ground;
+    spec.flows = {o.flow};
+    spec.output_interval = o.output_interval;
+    spec.end_time = o.end_time;
+    spec.world = o.world;
+    spec.dt_max_given = !dt_max_default;
+    spec.bodies_as_given = true;
+    spec.design = "control";
+    spec.params = {{"control", sweep::paper_control(), true}};
+    spec.variants = {{"", base.contact, base.collision}};
+    for (const auto& name : o.starts) {
+        if (!scene) fail("--start", name, "needs --scene (the start points are named there)");
+        const ScenePoint* p = sweep::scene_start(*scene, name);
+        if (!p) fail(o.scene, "point '" + name + "'", "no start point of that name in the scene");
+        spec.bodies.push_back(sweep::body_at(name, p->x, p->y, p->heading_deg, base));
+        spec.bodies.back().start = name;
+    }
+    for (const auto& text : o.ats) {
+        const auto at = parse_at(text);
+        spec.bodies.push_back(sweep::body_at("body" + std::to_string(spec.bodies.size()), at[0], at[1], at[2], base));
+    }
+    for (auto& b : spec.bodies) b.type = o.body_type;
+    if (!o.sources.empty()) {
+        if (!scene) fail("--sources", o.sources, "needs --scene (its CRS places the layers, its buildings check the starts)");
+        const std::vector<SourcedBody> sourced = bodies_from_sources(o.sources, o.source_layers, *scene, base);
+        for (const SourcedBody& s : sourced) spec.bodies.push_back(body_spec_of(s));
+        if (!o.quiet) std::fprintf(stderr, "debris: %zu bodies from %s\n", sourced.size(), o.sources.c_str());
+    }
+    return spec;
+}
+
+// The trajectory file (and the impacts CSV) of the run, and the end-of-run lines.
+void write_debris_outputs(const DebrisOptions& o, const sweep::SweepInputs& in, const sweep::SweepResult& r,
+                          debris::TrajectoryFileDef file) {
+    std::vector<debris::TrajectoryRecord> records;
+    std::vector<Impact> impacts;  // by body, then time
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < r.members.size(); ++k) {
+        const sweep::MemberRecord& m = r.members[k];
+        const sweep::BodySpec& b = in.spec.bodies[std::size_t(m.body)];
+        file.start_names.push_back(b.start);
+        file.sources.push_back(b.source);
+        file.body_types.push_back(b.type);
+        debris::BodyStats stats;
+        stats.collisions = m.collision_steps;
+        stats.unresolved = m.unresolved_collisions;
+        stats.max_residual_overlap = m.largest_residual_overlap;
+        stats.jams = m.jammed_steps;
+        stats.axis_shifts = m.axis_shift_steps;
+        for (Impact i : m.impacts) {
+            i.trajectory = int(k);
+            impacts.push_back(i);
+        }
+        names.push_back(m.def.name);
+        records.push_back({m.def, stats, m.track});
+    }
+    debris::write_trajectory_file(o.out, records, r.time, impacts, r.world, file);
+    if (!o.impacts_csv.empty()) write_impacts_csv(o.impacts_csv, impacts, names);
+    if (o.quiet) return;
+    double largest = 0.0;
+    for (const auto& i : impacts) largest = std::max(largest, i.force);
+    if (!impacts.empty()) std::fprintf(stderr, "impacts on buildings: %zu (largest force %.4g N)\n", impacts.size(), largest);
+    const sweep::CollisionReport c = sweep::collision_report(r);
+    if (c.members > 0)  // docs/debris.md, "Collisions"
+        std::fprintf(stderr, "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
+                     c.jammed, c.unresolved, c.members, records.size());
 }
 
 void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
-    const debris::BodyDef& base = o.body;
     std::vector<NamedPath> outputs = {{"--out", o.out}};
     if (!o.impacts_csv.empty()) outputs.push_back({"--impacts", o.impacts_csv});
     const OutputGuard guard(outputs, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}});
     if (o.starts.empty() && o.ats.empty() && o.sources.empty())
         fail("debris", "bodies", "give at least one --start NAME, --at x,y,heading_deg or --sources FILE");
     if (!o.source_layers.empty() && o.sources.empty()) fail("--source-layer", o.source_layers.front(), "needs --sources FILE");
-
-    std::unique_ptr<Scene> scene;
-    if (!o.scene.empty()) scene = std::make_unique<Scene>(read_scene(o.scene));
-    std::unique_ptr<Scene> ground;
-    if (!o.ground.empty()) ground = std::make_unique<Scene>(read_scene(o.ground));
-    std::vector<debris::BodyDef> bodies;
-    std::vector<std::string> start_names, sources, types;
-    for (const auto& name : o.starts) {
-        if (!scene) fail("--start", name, "needs --scene (the start points are named there)");
-        const ScenePoint* p = scene->find_point(name);
-        if (!p || p->kind != "start") fail(o.scene, "point '" + name + "'", "no start point of that name in the scene");
-        debris::BodyDef b = base;
-        b.name = name;
-        b.x = p->x;
-        b.y = p->y;
-        b.heading = p->heading_deg * std::numbers::pi / 180.0;
-        bodies.push_back(b);
-        start_names.push_back(name);
-    }
-    for (const auto& at : o.ats) {
-        bodies.push_back(parse_at(at, base, int(bodies.size())));
-        start_names.emplace_back();
-    }
-    types.assign(bodies.size(), o.body_type);
-    sources.assign(bodies.size(), "");
-    if (!o.sources.empty()) {
-        if (!scene) fail("--sources", o.sources, "needs --scene (its CRS places the layers, its buildings check the starts)");
-        for (const SourcedBody& s : bodies_from_sources(o.sources, o.source_layers, *scene, base)) {
-            bodies.push_back(s.def);
-            start_names.emplace_back();
-            sources.push_back(s.source);
-            types.push_back(s.type);
-        }
-        if (!o.quiet) std::fprintf(stderr, "debris: %zu bodies from %s\n", bodies.size() - o.starts.size() - o.ats.size(), o.sources.c_str());
-    }
-
-    debris::WorldDef wdef = debris::scaled_to_bodies(o.world, bodies, !dt_max_default);
-    // More threads than processors only slow a run down, and thousands cannot be started.
-    wdef.threads = capped_threads(wdef.threads, "--threads", o.quiet);
-    debris::World world = debris::make_world(o.flow, scene.get(), bodies, wdef, ground.get());
-    const double t0 = world.time();
-    const double t_end = o.end_time < 0 ? world.flow().end_time() : o.end_time;
-    if (t_end < t0) fail("--end-time", std::to_string(t_end), "before the flow's first frame");
-    debris::check_replay_work(world.flow(), world.obstacles().grid(), wdef.step, t0, t_end, double(bodies.size()),
-                              o.allow_large_run, "--dt-max", "--vertex-step-fraction");
-    check_allocation("--output-interval", number_text(o.output_interval) + " s", (t_end - t0) / o.output_interval + 2,
-                     7.0 * sizeof(double) * double(bodies.size()), "trajectory samples");
-
-    debris::TrajectorySeries series;
-    debris::record(world, series);
-    Progress progress("debris", t_end, 10.0, o.quiet);
-    const std::clock_t cpu_start = std::clock();
-    // Output times t0 + k Δ, computed from k (no accumulated round-off), ending at t_end.
-    for (long k = 1;; ++k) {
-        const double t = std::min(t0 + double(k) * o.output_interval, t_end);
-        world.advance_to(t);
-        debris::record(world, series);
-        long steps = 0;
-        for (const auto& s : world.stats()) steps += s.steps;
-        progress.update(t, o.output_interval, steps);
-        if (t >= t_end) break;
-    }
-    long steps = 0;
-    for (const auto& s : world.stats()) steps += s.steps;
-    progress.finish(t_end, steps);
-    if (!o.quiet) {  // for cost charts (pipelines/accuracy_debris.py); CPU time of all threads
-        const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC, reading = world.flow().load_cpu_seconds();
-        std::fprintf(stderr,
-                     "debris cost: %zu bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall waiting "
-                     "for them)\n",
-                     world.size(), steps, cpu - reading, reading, world.flow().frames_loaded(), world.flow().load_seconds());
-    }
+    std::shared_ptr<const Scene> scene;
+    if (!o.scene.empty()) scene = std::make_shared<const Scene>(read_scene(o.scene));
+    sweep::SweepRunDef def;
+    def.threads = capped_threads(o.world.threads, "--threads", o.quiet);  // more than processors only slows a run down
+    def.read_ahead = o.world.read_ahead;
+    def.quiet = o.quiet;
+    def.allow_large_run = o.allow_large_run;
+    def.progress_label = "debris";
+    def.names = {"--dt-max", "--vertex-step-fraction", "--output-interval", "--end-time"};
+    sweep::SweepInputs in = sweep::open_sweep(debris_spec(o, dt_max_default, scene.get()), scene, def);
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
-    debris::write_trajectory_file(o.out, world, series,
-                                  {command_line, o.flow, start_names, sources, types, world.flow().crs(),
-                                   world.flow().scene_buildings_sha256()});
-    if (!o.impacts_csv.empty()) {
-        std::vector<std::string> names;
-        for (const auto& p : world.params()) names.push_back(p.def.name);
-        write_impacts_csv(o.impacts_csv, world.impacts(), names);
-    }
-    if (!o.quiet) {
-        const auto impacts = world.impacts();
-        double largest = 0.0;
-        for (const auto& i : impacts) largest = std::max(largest, i.force);
-        if (!impacts.empty()) std::fprintf(stderr, "impacts on buildings: %zu (largest force %.4g N)\n", impacts.size(), largest);
-        long jammed = 0, unresolved = 0, bodies = 0;
-        for (const auto& s : world.stats()) {
-            jammed += s.jams;
-            unresolved += s.unresolved;
-            bodies += (s.jams + s.unresolved) > 0 ? 1 : 0;
-        }
-        if (bodies > 0)  // docs/debris.md, "Collisions"
-            std::fprintf(stderr, "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
-                         jammed, unresolved, bodies, world.size());
-    }
+    const debris::TrajectoryFileDef file{command_line, o.flow, {}, {}, {}, in.flows.front()->crs(),
+                                         in.flows.front()->scene_buildings_sha256()};
+    const std::clock_t cpu_start = std::clock();
+    sweep::SweepRunStats st;
+    const sweep::SweepResult r = sweep::run_sweep(in, def, &st);
+    if (!o.quiet)  // for cost charts (pipelines/accuracy_debris.py); CPU time of all threads
+        std::fprintf(stderr,
+                     "debris cost: %d bodies, %ld steps, %.3f s CPU stepping, %.3f s CPU reading %zu frames (%.3f s wall waiting "
+                     "for them)\n",
+                     st.members, st.steps, double(std::clock() - cpu_start) / CLOCKS_PER_SEC - st.read_cpu_seconds,
+                     st.read_cpu_seconds, st.frames_loaded, st.io_seconds);
+    write_debris_outputs(o, in, r, file);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "app/debris_sources.hpp"
 
+#include <filesystem>
 #include <numbers>
 
 #include "common/checks.hpp"
@@ -80,6 +81,36 @@ std::vector<SourcedBody> bodies_from_sources(const std::string& path, const std:
         }
     }
     return out;
+}
+
+sweep::BodySpec body_spec_of(const SourcedBody& s) {
+    sweep::BodySpec b;
+    b.name = s.def.name;
+    b.x = s.def.x;
+    b.y = s.def.y;
+    b.heading = s.def.heading;
+    b.heading_deg = s.def.heading * 180.0 / std::numbers::pi;
+    b.def = s.def;
+    b.type = s.type;
+    b.source = s.source;
+    return b;
+}
+
+void expand_sources(sweep::SweepSpec& spec, const Scene* scene) {
+    if (spec.sources.empty()) return;
+    if (!scene) fail(spec.path, "[[sources]]", "sources need a scene ([sweep] scene = \"...\" or --scene): its CRS places them");
+    for (const sweep::SourceFileSpec& file : spec.sources) {
+        if (!std::filesystem::exists(file.file))
+            fail(spec.path, "line " + std::to_string(file.line) + ": [[sources]] file", "'" + file.file + "' does not exist");
+        for (const SourcedBody& s : bodies_from_sources(file.file, file.layers, *scene, file.model)) {
+            for (const auto& other : spec.bodies)
+                if (other.name == s.def.name)
+                    fail(spec.path, "line " + std::to_string(file.line), "body name '" + s.def.name + "' used twice ([[body]] name = ...)");
+            const sweep::BodySpec b = body_spec_of(s);
+            spec.bodies.push_back(b);
+        }
+    }
+    spec.sources.clear();
 }
 
 }  // namespace flotsam

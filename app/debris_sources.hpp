@@ -7,6 +7,7 @@
 
 #include "debris/body.hpp"
 #include "formats/scene.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace flotsam {
 
@@ -21,5 +22,12 @@ struct SourcedBody {
 // Errors name the feature: an unknown type, a yard that holds fewer bodies than its count.
 std::vector<SourcedBody> bodies_from_sources(const std::string& path, const std::vector<std::string>& layers,
                                              const Scene& scene, const debris::BodyDef& model);
+
+// A sourced body as a sweep's body (its heading exact, in radians).
+sweep::BodySpec body_spec_of(const SourcedBody& s);
+
+// The spec's [[sources]] as bodies after its [[body]] tables, named by their features, on
+// `scene` (the spec's, as read_sweep_spec read it; it must be given when there are sources).
+void expand_sources(sweep::SweepSpec& spec, const Scene* scene);
 
 }  // namespace flotsam

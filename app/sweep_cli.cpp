@@ -123,42 +123,15 @@ void write_impacts_beside(const std::string& summary, const sweep::SweepResult& 
         if (!m.impacts.empty()) return sweep::write_impacts_summary_csv(sweep::impacts_path_for(summary), r);
 }
 
-// The spec's [[sources]] as bodies (after its [[body]] tables), named by their features.
-void expand_sources(sweep::SweepSpec& spec) {
-    if (spec.sources.empty()) return;
-    const Scene scene = read_scene(spec.scene);
-    for (const sweep::SourceFileSpec& file : spec.sources) {
-        if (!std::filesystem::exists(file.file))
-            fail(spec.path, "line " + std::to_string(file.line) + ": [[sources]] file", "'" + file.file + "' does not exist");
-        for (const SourcedBody& s : bodies_from_sources(file.file, file.layers, scene, file.model)) {
-            for (const auto& other : spec.bodies)
-                if (other.name == s.def.name)
-                    fail(spec.path, "line " + std::to_string(file.line), "body name '" + s.def.name + "' used twice ([[body]] name = ...)");
-            sweep::BodySpec b;
-            b.name = s.def.name;
-            b.x = s.def.x;
-            b.y = s.def.y;
-            b.heading_deg = s.def.heading * 180.0 / std::numbers::pi;
-            b.def = s.def;
-            b.type = s.type;
-            b.source = s.source;
-            spec.bodies.push_back(b);
-        }
-    }
-    spec.sources.clear();
-}
-
 void run_sweep_command(const SweepOptions& o) {
     if (o.spec.empty()) fail("sweep", "--spec", "required (or use `flotsam sweep merge`)");
-    sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, o.scene, o.flows);
-    std::vector<NamedPath> inputs_of_sources;
-    if (!o.ground.empty()) spec.ground = o.ground;
-    for (const auto& s : spec.sources) inputs_of_sources.push_back({"[[sources]] file", s.file});
-    expand_sources(spec);
-    const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
+    std::shared_ptr<const Scene> scene;
+    sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, {o.scene, o.ground, o.flows}, &scene);
     std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}, {"--ground", spec.ground}};
     for (const auto& f : spec.flows) inputs.push_back({"--flow", f});
-    inputs.insert(inputs.end(), inputs_of_sources.begin(), inputs_of_sources.end());
+    for (const auto& s : spec.sources) inputs.push_back({"[[sources]] file", s.file});
+    expand_sources(spec, scene.get());
+    const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
     const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;
     def.shard = sweep::parse_shard(o.shard);
@@ -167,7 +140,8 @@ void run_sweep_command(const SweepOptions& o) {
     def.read_ahead = !o.no_read_ahead;
     def.quiet = o.quiet;
     sweep::SweepRunStats st;
-    const sweep::SweepResult r = sweep::run_sweep(spec, def, &st);
+    sweep::SweepInputs in = sweep::open_sweep(std::move(spec), std::move(scene), def);
+    const sweep::SweepResult r = sweep::run_sweep(in, def, &st);
     sweep::write_sweep_file(o.out, r);
     sweep::write_summary_csv(summary, r);
     write_impacts_beside(summary, r);
@@ -176,16 +150,11 @@ void run_sweep_command(const SweepOptions& o) {
                      "sweep: %d of %d members (shard %s) over %zu flows, %zu frames read (%.1f s), %.1f s wall; wrote %s and %s\n",
                      st.members, r.member_count, o.shard.c_str(), st.flows_opened, st.frames_loaded, st.io_seconds, st.wall_seconds,
                      o.out.c_str(), summary.c_str());
-        long jammed = 0, unresolved = 0, members = 0;
-        for (const auto& m : r.members) {
-            jammed += m.jammed_steps;
-            unresolved += m.unresolved_collisions;
-            members += (m.jammed_steps + m.unresolved_collisions) > 0 ? 1 : 0;
-        }
-        if (members > 0)  // docs/debris.md, "Collisions"
+        const sweep::CollisionReport c = sweep::collision_report(r);
+        if (c.members > 0)  // docs/debris.md, "Collisions"
             std::fprintf(stderr, "sweep: %ld jammed and %ld unresolved collision steps in %ld members (columns jammed_steps, "
                          "unresolved_collisions of %s)\n",
-                         jammed, unresolved, members, summary.c_str());
+                         c.jammed, c.unresolved, c.members, summary.c_str());
     }
 }
 

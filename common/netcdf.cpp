@@ -219,13 +219,20 @@ int check_in_child(const char* path, Report& report) {
         }
         for (int v = 0; v < nvars; ++v) read_variable(id, v, report);
     }
+    // Only flows are read through libhdf5 (formats/tile_decoder): a file that says it is
+    // another kind (a scene, a sweep) is not walked again, nor opened a second time.
+    char kind[64] = {0};
+    std::size_t kind_length = 0;
+    const bool other_kind = nc_inq_attlen(id, NC_GLOBAL, "flotsam_file_kind", &kind_length) == NC_NOERR &&
+                            kind_length < sizeof kind && nc_get_att_text(id, NC_GLOBAL, "flotsam_file_kind", kind) == NC_NOERR &&
+                            std::string(kind, kind_length) != "flow";
     report.stage("closing the file");
     nc_close(id);
     // The same file through libhdf5, as formats/tile_decoder reads it.
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    report.stage("opening the file through libhdf5");
-    const hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     ChunkWalk walk{&report, 0, ""};
+    if (!other_kind) report.stage("opening the file through libhdf5");
+    const hid_t file = other_kind ? hid_t(-1) : H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (file >= 0) {  // else not HDF5 (netCDF-3, say): nothing more to walk
         H5Fget_filesize(file, &walk.file_size);
         hsize_t index = 0;

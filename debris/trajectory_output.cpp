@@ -52,26 +52,26 @@ WorldDef get_world_attributes(const nc::File& f) {
     return def;
 }
 
-void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series,
-                           const TrajectoryFileDef& def) {
+void write_trajectory_file(const std::string& path, const std::vector<TrajectoryRecord>& records, const std::vector<double>& time,
+                           const std::vector<Impact>& impacts, const WorldDef& world, const TrajectoryFileDef& def) {
     ensure_parent_dir(path);
     AtomicOutput out(path);
     {
         nc::File f = nc::File::create(out.temp_path());
-        const std::size_t nb = world.size(), nt = series.time.size();
+        const std::size_t nb = records.size(), nt = time.size();
         const int dtraj = f.def_dim("trajectory", nb), dtime = f.def_dim("time", nt);
         const TrackVariables track_vars = define_track_variables(f, dtraj, dtime, def.crs);
         // The strings, known before they are defined (character arrays are as long as the longest).
-        const std::vector<BodyParams>& bodies = world.params();
+        const std::vector<BodyDef> bodies = column<BodyDef>(records, &TrajectoryRecord::def);
         std::vector<std::string> starts = def.start_names, sources = def.sources, types = def.body_types;
         starts.resize(nb);
         sources.resize(nb);
         types.resize(nb);
-        const std::vector<std::string> ids = column<std::string>(bodies, [](const BodyParams& p) { return p.def.name; });
+        const std::vector<std::string> ids = column<std::string>(bodies, [](const BodyDef& d) { return d.name; });
         const std::vector<std::string> contacts =
-            column<std::string>(bodies, [](const BodyParams& p) { return std::string(enum_name(p.def.contact)); });
+            column<std::string>(bodies, [](const BodyDef& d) { return std::string(enum_name(d.contact)); });
         const std::vector<std::string> collisions =
-            column<std::string>(bodies, [](const BodyParams& p) { return std::string(enum_name(p.def.collision)); });
+            column<std::string>(bodies, [](const BodyDef& d) { return std::string(enum_name(d.collision)); });
         const int vid = f.def_text_var("trajectory_id", {dtraj}, cf::longest(ids));
         f.put_att(vid, "cf_role", std::string("trajectory_id"));
         f.put_att(vid, "long_name", std::string("body name"));
@@ -97,7 +97,6 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         const int vjam = per_int("jammed_steps", "steps undone because the collision passes could not clear the overlap");
         const int vres = cf::def_var(f, {.name = "largest_residual_overlap", .type = NC_DOUBLE, .dims = {dtraj}, .units = "m",
                                          .long_name = "deepest obstacle overlap left after collision handling"});
-        const std::vector<Impact> impacts = world.impacts();
         const std::vector<int> vimpact = define_impact_variables(f, impacts.size(), def.crs, impact_force_formula);
 
         cf::put_conventions(f, "trajectory");
@@ -107,12 +106,12 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put_att(NC_GLOBAL, "flow_file", def.flow_file);
         if (!def.scene_buildings_sha256.empty()) f.put_att(NC_GLOBAL, "scene_buildings_sha256", def.scene_buildings_sha256);
         f.put_att(NC_GLOBAL, "history", def.history);
-        put_world_attributes(f, world.def());
+        put_world_attributes(f, world);
         f.enddef();
 
-        f.put(track_vars.time, series.time);
-        const auto def_of = [](const BodyParams& p) -> const BodyDef& { return p.def; };
-        const std::vector<BodyStats>& stats = world.stats();
+        f.put(track_vars.time, time);
+        const auto def_of = [](const BodyDef& d) -> const BodyDef& { return d; };
+        const std::vector<BodyStats> stats = column<BodyStats>(records, &TrajectoryRecord::stats);
         f.put(vid, ids);
         f.put(vstart, starts);
         f.put(vsource, sources);
@@ -127,7 +126,7 @@ void write_trajectory_file(const std::string& path, const World& world, const Tr
         f.put(vres, column<double>(stats, &BodyStats::max_residual_overlap));
         f.put(vjam, column<int>(stats, &BodyStats::jams));
         f.put(vns, column<int>(stats, &BodyStats::axis_shifts));
-        for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, series.tracks[b]);
+        for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, records[b].track);
         put_impacts(f, vimpact, impacts);
         f.close();
     }

@@ -34,8 +34,17 @@ struct TrajectoryFileDef {
 void put_world_attributes(nc::File& f, const WorldDef& def);
 WorldDef get_world_attributes(const nc::File& f);
 
-// Writes atomically (temporary file, then rename).
-void write_trajectory_file(const std::string& path, const World& world, const TrajectorySeries& series,
-                           const TrajectoryFileDef& def);
+// One body over a run, as its trajectory file holds it.
+struct TrajectoryRecord {
+    BodyDef def;      // the body as run (its start in the flow's coordinates)
+    BodyStats stats;  // its step counts
+    Track track;      // on the file's time axis
+};
+
+// Writes atomically (temporary file, then rename): the records on the time axis `time`,
+// the impacts on buildings (by record, then time; Impact::trajectory the record's index),
+// and the step and flow replay settings `world` they were run with.
+void write_trajectory_file(const std::string& path, const std::vector<TrajectoryRecord>& records, const std::vector<double>& time,
+                           const std::vector<Impact>& impacts, const WorldDef& world, const TrajectoryFileDef& def);
 
 }  // namespace flotsam::debris

@@ -161,57 +161,66 @@ FlowReaderDef replay_def(const WorldDef& def) {
 
 }  // namespace
 
-World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
-    : def_(def), flow_(flow_path, replay_def(def)) {
-    if (!ground && !building.empty() && building.size() != flow_.grid().size())
-        fail(flow_path, "building mask", "does not match the flow grid");
+std::unique_ptr<FlowReader> open_flow(const std::string& path, const WorldDef& def) {
+    return std::make_unique<FlowReader>(path, replay_def(def));
+}
+
+World::World(std::unique_ptr<FlowReader> flow, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
+    : def_(def), flow_(std::move(flow)) {
+    if (!ground && !building.empty() && building.size() != flow_->grid().size())
+        fail(flow_->path(), "building mask", "does not match the flow grid");
     // Map coordinates (beyond 10 km from the origin): work relative to a round kilometre.
     const auto origin = [](double edge) { return std::abs(edge) > 1e4 ? 1000.0 * std::floor(edge / 1000.0) : 0.0; };
-    origin_x_ = origin(flow_.grid().x_min_edge());
-    origin_y_ = origin(flow_.grid().y_min_edge());
-    if (origin_x_ != 0.0 || origin_y_ != 0.0) flow_.set_origin(origin_x_, origin_y_);
+    origin_x_ = origin(flow_->grid().x_min_edge());
+    origin_y_ = origin(flow_->grid().y_min_edge());
+    if (origin_x_ != 0.0 || origin_y_ != 0.0) flow_->set_origin(origin_x_, origin_y_);
     if (ground) {
         Grid g = ground->grid;  // into the world's frame, as the flow's grid
         g.x0 -= origin_x_;
         g.y0 -= origin_y_;
-        flow_.set_ground(g, ground->z);
+        flow_->set_ground(g, ground->z);
         obstacles_ = ObstacleMap(g, ground->z, ground->building);
     } else {
-        obstacles_ = ObstacleMap(flow_.grid(), flow_.bed(), std::move(building));
+        obstacles_ = ObstacleMap(flow_->grid(), flow_->bed(), std::move(building));
     }
-    time_ = flow_.start_time();
+    time_ = flow_->start_time();
 }
 
-World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
+    : World(open_flow(flow_path, def), std::move(building), def, ground) {}
+
+World make_world(std::unique_ptr<FlowReader> flow, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
                  const Scene* ground) {
     std::vector<std::uint8_t> building;
     std::optional<Ground> fine;
     std::vector<std::int32_t> ids;
-    {
-        const FlowReader probe(flow_path, def.flow);  // only for its grid
-        if (scene) {
-            check_flow_matches_scene(probe, *scene);
-            building = buildings_on_grid(*scene, probe.grid());
-        }
-        if (ground) {
-            cf::check_same_crs(ground->path, ground->crs, flow_path, probe.crs());
-            fine = ground_from_scene(*ground, probe);
-        }
-        for (const BodyDef& b : bodies) {
-            check_body_start(b, probe, scene);
-            if (ground) check_body_start(b, probe, ground);
-        }
-        // The buildings are numbered as the scene numbers them (a finer ground's cells take
-        // the id of the scene's building there), so that impacts name the scene's buildings.
-        const Scene* numbering = scene ? scene : ground;
-        if (numbering)
-            ids = fine ? building_ids_on_grid(*numbering, fine->grid, fine->building)
-                       : building_ids_on_grid(*numbering, probe.grid(), building);
+    const FlowReader& f = *flow;
+    if (scene) {
+        check_flow_matches_scene(f, *scene);
+        building = buildings_on_grid(*scene, f.grid());
     }
-    World world(flow_path, std::move(building), def, fine ? &*fine : nullptr);
+    if (ground) {
+        cf::check_same_crs(ground->path, ground->crs, f.path(), f.crs());
+        fine = ground_from_scene(*ground, f);
+    }
+    for (const BodyDef& b : bodies) {
+        check_body_start(b, f, scene);
+        if (ground) check_body_start(b, f, ground);
+    }
+    // The buildings are numbered as the scene numbers them (a finer ground's cells take
+    // the id of the scene's building there), so that impacts name the scene's buildings.
+    const Scene* numbering = scene ? scene : ground;
+    if (numbering)
+        ids = fine ? building_ids_on_grid(*numbering, fine->grid, fine->building) : building_ids_on_grid(*numbering, f.grid(), building);
+    World world(std::move(flow), std::move(building), def, fine ? &*fine : nullptr);
     if (!ids.empty()) world.set_building_ids(std::move(ids));
     for (const BodyDef& b : bodies) world.add_body(b);
     return world;
+}
+
+World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const Scene* ground) {
+    return make_world(open_flow(flow_path, def), scene, bodies, def, ground);
 }
 
 std::size_t World::add_body(const BodyDef& def) {
@@ -244,14 +253,14 @@ void World::clear_event_flags() {
 
 void World::fit_window() {
     std::vector<CellWindow> regions;
-    const StepContext ctx{flow_, obstacles_, def_.step};
+    const StepContext ctx{*flow_, obstacles_, def_.step};
     for (std::size_t b = 0; b < states_.size(); ++b) {
         // Beyond what one step needs (else a body could never be served), plus the margin.
         const double r = window_pad(ctx, params_[b]) + def_.window_margin_lengths * params_[b].def.length;
-        regions.push_back(flow_.cells_for(states_[b].x - r, states_[b].x + r, states_[b].y - r, states_[b].y + r));
+        regions.push_back(flow_->cells_for(states_[b].x - r, states_[b].x + r, states_[b].y - r, states_[b].y + r));
     }
     if (regions.empty()) return;
-    flow_.set_regions(regions);
+    flow_->set_regions(regions);
     window_fitted_ = true;
 }
 
@@ -261,12 +270,12 @@ void World::advance_to(double t) {
     // No more threads than bodies: an idle thread only adds a barrier per frame interval.
     const int threads = std::max(1, std::min<int>(int(n), def_.threads > 0 ? def_.threads : omp_get_max_threads()));
     while (time_ < t) {
-        const double next = flow_.next_frame_time(time_);
+        const double next = flow_->next_frame_time(time_);
         const double t_next = next > time_ ? std::min(t, next) : t;  // past the last frame the flow is held
         if (!window_fitted_) fit_window();
-        flow_.prepare(time_);
-        if (def_.read_ahead) flow_.read_ahead(t_next);  // what prepare(t_next) will read
-        const StepContext ctx{flow_, obstacles_, def_.step};
+        flow_->prepare(time_);
+        if (def_.read_ahead) flow_->read_ahead(t_next);  // what prepare(t_next) will read
+        const StepContext ctx{*flow_, obstacles_, def_.step};
         std::fill(active.begin(), active.end(), 1);
         for (;;) {
 #pragma omp parallel num_threads(threads)
@@ -282,11 +291,11 @@ void World::advance_to(double t) {
             }
             if (std::none_of(active.begin(), active.end(), [](char a) { return a != 0; })) break;
             fit_window();  // some body left the loaded window: move it (reloads the same two frames)
-            if (def_.read_ahead) flow_.read_ahead(t_next);
+            if (def_.read_ahead) flow_->read_ahead(t_next);
         }
         time_ = t_next;
     }
-    flow_.finish_read_ahead();  // no netCDF call of ours outlives this one
+    flow_->finish_read_ahead();  // no netCDF call of ours outlives this one
 }
 
 }  // namespace flotsam::debris

@@ -6,6 +6,7 @@
 // thread.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -81,10 +82,12 @@ Ground ground_from_scene(const Scene& scene, const FlowReader& flow);
 
 class World {
 public:
-    // A world without bodies; `building` on the flow's grid (empty: none). make_world()
-    // below is the usual way in.
+    // A world without bodies on an opened flow (open_flow) or the flow file at `flow_path`;
+    // `building` on the flow's grid (empty: none). make_world() below is the usual way in.
     // With `ground`, the bodies stand on it instead of the flow's bed, and `building` is
     // not used (the ground's own buildings are).
+    World(std::unique_ptr<FlowReader> flow, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def(),
+          const Ground* ground = nullptr);
     World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def(),
           const Ground* ground = nullptr);
 
@@ -102,8 +105,8 @@ public:
     double origin_x() const { return origin_x_; }
     double origin_y() const { return origin_y_; }
     // Whether the flow grid covers the point (x, y) given in the flow's own coordinates.
-    bool covers(double x, double y) const { return flow_.grid().contains(x - origin_x_, y - origin_y_); }
-    const FlowReader& flow() const { return flow_; }
+    bool covers(double x, double y) const { return flow_->grid().contains(x - origin_x_, y - origin_y_); }
+    const FlowReader& flow() const { return *flow_; }
     const ObstacleMap& obstacles() const { return obstacles_; }
     const WorldDef& def() const { return def_; }
     std::size_t size() const { return states_.size(); }
@@ -123,7 +126,7 @@ private:
     void fit_window();  // the loaded tiles: those under each body plus the margin
 
     WorldDef def_;
-    FlowReader flow_;
+    std::unique_ptr<FlowReader> flow_;
     double origin_x_ = 0.0, origin_y_ = 0.0;
     ObstacleMap obstacles_;
     double time_ = 0.0;
@@ -134,12 +137,20 @@ private:
     std::vector<BodyImpacts> impacts_;  // cold, written on events
 };
 
+// The flow file opened for a world with `def` (its replay settings, and as many decoding
+// threads as step the bodies unless set).
+std::unique_ptr<FlowReader> open_flow(const std::string& path, const WorldDef& def);
+
 // The world of one flow: the scene's building mask and ids on the flow's grid (scene null:
 // no buildings), and the bodies. The flow must have been computed on the scene, and each
 // body must start on the grid and off the buildings (debris/scene_match.hpp: the errors
 // name the files or the body). With `ground` (a finer scene of the same place, null:
-// none) the bodies stand on its ground and keep off its buildings too. Used by
-// `flotsam debris` and by every flow of a sweep.
+// none) the bodies stand on its ground and keep off its buildings too. Used by every
+// flow of a sweep (`flotsam debris` is a sweep of one); the reader is the world's from
+// then on.
+World make_world(std::unique_ptr<FlowReader> flow, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
+                 const Scene* ground = nullptr);
+// The same, opening the flow file at `flow_path`.
 World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
                  const Scene* ground = nullptr);
 

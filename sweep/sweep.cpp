@@ -17,36 +17,41 @@
 
 namespace flotsam::sweep {
 
-std::vector<double> sweep_output_times(const SweepSpec& spec) {
+namespace {
+
+// The output time axis: t0 + k Δ up to the end time (the spec's, or the earliest last
+// frame), sized before it is built (the trajectories hold 7 series of this length per member).
+std::vector<double> output_times(const SweepInputs& in, const SettingNames& names) {
+    const SweepSpec& spec = in.spec;
     double t0 = 0.0, last = 0.0;
-    for (std::size_t f = 0; f < spec.flows.size(); ++f) {
-        const debris::FlowReader probe(spec.flows[f]);
+    for (std::size_t f = 0; f < in.flows.size(); ++f) {
+        const debris::FlowReader& flow = *in.flows[f];
         if (f == 0) {
-            t0 = probe.start_time();
-            last = probe.end_time();
-        } else if (probe.start_time() != t0) {
+            t0 = flow.start_time();
+            last = flow.end_time();
+        } else if (flow.start_time() != t0) {
             fail(spec.flows[f], "time",
-                 "starts at " + std::to_string(probe.start_time()) + " s, the sweep's first flow at " + std::to_string(t0) +
+                 "starts at " + std::to_string(flow.start_time()) + " s, the sweep's first flow at " + std::to_string(t0) +
                      " s (all flows of a sweep share one time axis)");
         }
-        last = std::min(last, probe.end_time());
+        last = std::min(last, flow.end_time());
     }
-    const double t_end = spec.end_time > 0 ? spec.end_time : last;
-    if (t_end < t0) fail(spec.path, "end_time", "before the flows' first frame");
-    // Sized before it is built: the trajectories hold 7 series of this length per member.
-    check_allocation("output_interval", number_text(spec.output_interval) + " s", (t_end - t0) / spec.output_interval + 2,
-                     7.0 * sizeof(double) * double(std::max<std::size_t>(1, enumerate_members(spec).size())),
-                     "output times (for every member)", spec.path);
+    const double t_end = spec.end_time >= 0 ? spec.end_time : last;
+    if (t_end < t0)
+        fail(spec.path.empty() ? names.end_time : spec.path, spec.path.empty() ? number_text(t_end) : names.end_time,
+             "before the flows' first frame");
+    check_allocation(names.output_interval, number_text(spec.output_interval) + " s", (t_end - t0) / spec.output_interval + 2,
+                     7.0 * sizeof(double) * double(std::max<std::size_t>(1, in.members.size())), "output times (for every member)",
+                     spec.path);
     // t0 + k Δ from k (no accumulated round-off), the last one at t_end.
     std::vector<double> times{t0};
     for (long k = 1; times.back() < t_end; ++k) times.push_back(std::min(t0 + double(k) * spec.output_interval, t_end));
     return times;
 }
 
-namespace {
-
 // The sweep's description, as every shard records it (the members come later).
-SweepResult describe_sweep(const SweepSpec& spec, const SweepRunDef& def, int member_count, const Scene* scene) {
+SweepResult describe_sweep(const SweepInputs& in, const SweepRunDef& def) {
+    const SweepSpec& spec = in.spec;
     SweepResult r;
     r.spec_file = spec.path;
     r.spec_sha256 = spec.sha256;
@@ -62,57 +67,76 @@ SweepResult describe_sweep(const SweepSpec& spec, const SweepRunDef& def, int me
     for (const auto& v : spec.variants) r.variants.push_back(v.name);
     r.params = spec.params;
     r.perturbation = spec.perturbation;
-    r.member_count = member_count;
+    r.member_count = int(in.members.size());
     r.output_interval = spec.output_interval;
-    std::vector<debris::BodyDef> shapes;
-    for (const auto& b : spec.bodies) shapes.push_back(b.def);
-    r.world = debris::scaled_to_bodies(spec.world, shapes, spec.dt_max_given);  // scale-dependent settings follow the bodies
-    r.time = sweep_output_times(spec);
+    r.world = in.world;
+    r.time = in.times;
     r.shard = def.shard;
     // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.
-    r.crs = cf::read_crs(nc::File::open_read(spec.flows.front()), "h");
+    r.crs = in.flows.front()->crs();
     // The scene every shard records, whichever flows its members are on (merging shards
     // compares it).
-    r.scene_buildings_sha256 =
-        scene ? scene_buildings_sha256(*scene) : debris::FlowReader(spec.flows.front()).scene_buildings_sha256();
+    r.scene_buildings_sha256 = in.scene ? scene_buildings_sha256(*in.scene) : in.flows.front()->scene_buildings_sha256();
     return r;
 }
 
 // The work of this shard, flow by flow, before any body steps: refused past the bounds
 // (common/checks.hpp) unless allowed.
-void check_shard_work(const SweepSpec& spec, const SweepRunDef& def, const std::vector<Member>& all, std::array<int, 2> range,
-                      const Scene* ground, const SweepResult& r) {
+void check_shard_work(const SweepInputs& in, const SweepRunDef& def) {
+    const std::array<int, 2> range = shard_range(int(in.members.size()), def.shard);
     double body_steps = 0.0;
-    for (int f = 0; f < int(spec.flows.size()); ++f) {
+    for (int f = 0; f < int(in.flows.size()); ++f) {
         double on_flow = 0;
-        for (int id = range[0]; id < range[1]; ++id) on_flow += all[std::size_t(id)].flow == f ? 1 : 0;
+        for (int id = range[0]; id < range[1]; ++id) on_flow += in.members[std::size_t(id)].flow == f ? 1 : 0;
         if (on_flow == 0) continue;
-        const debris::FlowReader probe(spec.flows[std::size_t(f)]);
-        const Grid cells = ground && ground->grid.dx < probe.grid().dx ? ground->grid : probe.grid();
-        body_steps += on_flow * debris::check_replay_work(probe, cells, r.world.step, r.time.front(), r.time.back(), on_flow,
-                                                          def.allow_large_run, "[sweep] dt-max",
-                                                          "[sweep] vertex-step-fraction", spec.path);
+        const debris::FlowReader& flow = *in.flows[std::size_t(f)];
+        const Grid cells = in.ground && in.ground->grid.dx < flow.grid().dx ? in.ground->grid : flow.grid();
+        body_steps += on_flow * debris::check_replay_work(flow, cells, in.world.step, in.times.front(), in.times.back(), on_flow,
+                                                          def.allow_large_run, def.names.dt_max, def.names.vertex_step_fraction,
+                                                          in.spec.path);
     }
-    check_work("sweep size", number_text(double(range[1] - range[0])) + " members over " + number_text(double(spec.flows.size())) +
+    check_work("sweep size", number_text(double(range[1] - range[0])) + " members over " + number_text(double(in.flows.size())) +
                                  " flows",
-               body_steps, max_body_steps, "body steps", def.allow_large_run, spec.path);
+               body_steps, max_body_steps, "body steps", def.allow_large_run, in.spec.path);
 }
 
+}  // namespace
+
+SweepInputs open_sweep(SweepSpec spec, std::shared_ptr<const Scene> scene, const SweepRunDef& def) {
+    SweepInputs in;
+    if (!scene && !spec.scene.empty()) scene = std::make_shared<const Scene>(read_scene(spec.scene));
+    in.scene = std::move(scene);
+    if (!spec.ground.empty()) in.ground = std::make_shared<const Scene>(read_scene(spec.ground));
+    std::vector<debris::BodyDef> shapes;
+    for (const auto& b : spec.bodies) shapes.push_back(b.def);
+    in.world = debris::scaled_to_bodies(spec.world, shapes, spec.dt_max_given);  // scale-dependent settings follow the bodies
+    in.world.threads = def.threads;
+    in.world.read_ahead = def.read_ahead;
+    for (const std::string& path : spec.flows) in.flows.push_back(debris::open_flow(path, in.world));
+    in.members = enumerate_members(spec);
+    in.spec = std::move(spec);
+    in.times = output_times(in, def.names);
+    check_shard_work(in, def);
+    return in;
+}
+
+namespace {
+
 // Replays the members on flow f through one World, appending their records to r.
-void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::vector<const Member*>& on_flow,
-              const Scene* scene, const Scene* ground, SweepResult& r, SweepRunStats& st) {
-    const std::string& path = spec.flows[std::size_t(f)];
-    debris::WorldDef wdef = r.world;  // as run (threads are not recorded)
-    wdef.threads = def.threads;
-    wdef.read_ahead = def.read_ahead;
+void run_flow(SweepInputs& in, const SweepRunDef& def, int f, const std::vector<const Member*>& on_flow, SweepResult& r,
+              SweepRunStats& st) {
+    const SweepSpec& spec = in.spec;
     std::vector<debris::BodyDef> bodies;
     for (const Member* m : on_flow) bodies.push_back(m->def);
-    debris::World world = debris::make_world(path, scene, bodies, wdef, ground);
+    debris::World world =
+        debris::make_world(std::move(in.flows[std::size_t(f)]), in.scene.get(), bodies, in.world, in.ground.get());
     debris::TrajectorySeries series;
     debris::record(world, series);
-    Progress progress("sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +
-                          std::to_string(on_flow.size()) + " members)",
-                      r.time.back(), 10.0, def.quiet);
+    const std::string label = !def.progress_label.empty()
+                                  ? def.progress_label
+                                  : "sweep flow " + std::to_string(f + 1) + "/" + std::to_string(spec.flows.size()) + " (" +
+                                        std::to_string(on_flow.size()) + " members)";
+    Progress progress(label, r.time.back(), 10.0, def.quiet);
     long steps = 0;
     for (std::size_t k = 1; k < r.time.size(); ++k) {
         world.advance_to(r.time[k]);
@@ -155,27 +179,36 @@ void run_flow(const SweepSpec& spec, const SweepRunDef& def, int f, const std::v
 
 }  // namespace
 
-SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunStats* stats) {
+SweepResult run_sweep(SweepInputs& in, const SweepRunDef& def, SweepRunStats* stats) {
     const auto wall0 = std::chrono::steady_clock::now();
-    const std::vector<Member> all = enumerate_members(spec);
-    const auto range = shard_range(int(all.size()), def.shard);
-    std::unique_ptr<Scene> scene;
-    if (!spec.scene.empty()) scene = std::make_unique<Scene>(read_scene(spec.scene));
-    std::unique_ptr<Scene> ground;
-    if (!spec.ground.empty()) ground = std::make_unique<Scene>(read_scene(spec.ground));
-    SweepResult r = describe_sweep(spec, def, int(all.size()), scene.get());
-    check_shard_work(spec, def, all, range, ground.get(), r);
+    const auto range = shard_range(int(in.members.size()), def.shard);
+    SweepResult r = describe_sweep(in, def);
     SweepRunStats st;
-    for (int f = 0; f < int(spec.flows.size()); ++f) {
+    for (int f = 0; f < int(in.spec.flows.size()); ++f) {
         std::vector<const Member*> on_flow;
         for (int id = range[0]; id < range[1]; ++id)
-            if (all[std::size_t(id)].flow == f) on_flow.push_back(&all[std::size_t(id)]);
-        if (!on_flow.empty()) run_flow(spec, def, f, on_flow, scene.get(), ground.get(), r, st);
+            if (in.members[std::size_t(id)].flow == f) on_flow.push_back(&in.members[std::size_t(id)]);
+        if (!on_flow.empty()) run_flow(in, def, f, on_flow, r, st);
     }
     st.members = int(r.members.size());
     st.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     if (stats) *stats = st;
     return r;
+}
+
+SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunStats* stats) {
+    SweepInputs in = open_sweep(spec, nullptr, def);
+    return run_sweep(in, def, stats);
+}
+
+CollisionReport collision_report(const SweepResult& r) {
+    CollisionReport c;
+    for (const auto& m : r.members) {
+        c.jammed += m.jammed_steps;
+        c.unresolved += m.unresolved_collisions;
+        c.members += (m.jammed_steps + m.unresolved_collisions) > 0 ? 1 : 0;
+    }
+    return c;
 }
 
 }  // namespace flotsam::sweep

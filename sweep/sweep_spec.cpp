@@ -228,51 +228,72 @@ void read_sweep_table(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec, d
     read_settings(doc, *t, debris::body_model_settings(), body_model);
 }
 
+}  // namespace
+
+BodySpec body_at(const std::string& name, double x, double y, double heading_deg, const debris::BodyDef& def) {
+    BodySpec b;
+    b.name = name;
+    b.x = x;
+    b.y = y;
+    b.heading_deg = heading_deg;
+    b.heading = heading_deg * (std::numbers::pi / 180.0);
+    b.def = def;
+    b.def.name = name;
+    b.def.x = x;
+    b.def.y = y;
+    b.def.heading = b.heading;
+    return b;
+}
+
+const ScenePoint* scene_start(const Scene& scene, const std::string& name) {
+    const ScenePoint* p = scene.find_point(name);
+    return p && p->kind == "start" ? p : nullptr;
+}
+
+namespace {
+
 // One [[body]]: where it starts (a scene point or coordinates), its name, and its shape
 // and model settings over those of [sweep].
 BodySpec read_body(const TomlDoc& doc, const TomlTable& t, SweepSpec& spec, const debris::BodyDef& body_model,
-                   std::unique_ptr<Scene>& scene) {
+                   std::shared_ptr<const Scene>& scene) {
     toml_allow_only(doc, t,
                     keys_with(keys_with({"start", "at", "name", "type"}, setting_keys(debris::body_shape_settings())),
                               setting_keys(debris::body_model_settings())));
-    BodySpec b;
-    b.def = body_model;
+    debris::BodyDef def = body_model;
+    std::string type;
     if (has(t, "type")) {  // a catalogue entry: its shape and coefficients
-        b.type = toml_string(doc, t, "type");
-        if (!debris::find_catalogue_body(b.type))
-            toml_fail(doc, t, "type", "'" + b.type + "' is not in the debris catalogue (" + debris::catalogue_names() + ")");
-        const debris::BodyDef entry = debris::catalogue_body_def(b.type, doc.path);
+        type = toml_string(doc, t, "type");
+        if (!debris::find_catalogue_body(type))
+            toml_fail(doc, t, "type", "'" + type + "' is not in the debris catalogue (" + debris::catalogue_names() + ")");
+        const debris::BodyDef entry = debris::catalogue_body_def(type, doc.path);
         for (const auto* table : {&debris::body_shape_settings(), &debris::body_coefficient_settings()})
-            for (const auto& setting : *table) setting.set_number(b.def, setting.number(entry));
-        b.def.impact_stiffness = entry.impact_stiffness;
+            for (const auto& setting : *table) setting.set_number(def, setting.number(entry));
+        def.impact_stiffness = entry.impact_stiffness;
     }
+    read_settings(doc, t, debris::body_shape_settings(), def);
+    read_settings(doc, t, debris::body_model_settings(), def);
     if (has(t, "start") == has(t, "at"))
         toml_fail(doc, t, "start", "give exactly one of start = \"NAME\" (a scene point) and at = [x, y, heading_deg]");
+    BodySpec b;
     if (has(t, "start")) {
-        b.start = toml_string(doc, t, "start");
+        const std::string start = toml_string(doc, t, "start");
         if (spec.scene.empty()) toml_fail(doc, t, "start", "a named start needs a scene ([sweep] scene = \"...\" or --scene)");
-        if (!scene) scene = std::make_unique<Scene>(read_scene(spec.scene));
-        const ScenePoint* p = scene->find_point(b.start);
-        if (!p || p->kind != "start") toml_fail(doc, t, "start", "scene '" + spec.scene + "' has no start point '" + b.start + "'");
-        b.name = b.start;
-        b.x = p->x;
-        b.y = p->y;
-        b.heading_deg = p->heading_deg;
+        if (!scene) scene = std::make_shared<const Scene>(read_scene(spec.scene));
+        const ScenePoint* p = scene_start(*scene, start);
+        if (!p) toml_fail(doc, t, "start", "scene '" + spec.scene + "' has no start point '" + start + "'");
+        b = body_at(start, p->x, p->y, p->heading_deg, def);
+        b.start = start;
     } else {
         const std::vector<double> at = toml_numbers(doc, t, "at");
         if (at.size() != 3) toml_fail(doc, t, "at", "expected [x, y, heading_deg]");
-        b.x = at[0];
-        b.y = at[1];
-        b.heading_deg = at[2];
-        b.name = "body" + std::to_string(spec.bodies.size());
+        b = body_at("body" + std::to_string(spec.bodies.size()), at[0], at[1], at[2], def);
     }
+    b.type = type;
     if (has(t, "name")) b.name = toml_string(doc, t, "name");
     if (b.name.empty()) toml_fail(doc, t, "name", "must not be empty");
     for (const auto& other : spec.bodies)
         if (other.name == b.name)
             toml_fail(doc, t, has(t, "name") ? "name" : "start", "body name '" + b.name + "' used twice (set name = \"...\")");
-    read_settings(doc, t, debris::body_shape_settings(), b.def);
-    read_settings(doc, t, debris::body_model_settings(), b.def);
     return b;
 }
 
@@ -348,6 +369,10 @@ void read_perturbation(const TomlDoc& doc, const TomlTable* t, SweepSpec& spec) 
 
 SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_override,
                           const std::vector<std::string>& flow_override) {
+    return read_sweep_spec(path, SpecOverrides{scene_override, "", flow_override}, nullptr);
+}
+
+SweepSpec read_sweep_spec(const std::string& path, const SpecOverrides& overrides, std::shared_ptr<const Scene>* scene_read) {
     const TomlDoc doc = read_toml_lite(path);
     SweepSpec spec;
     spec.path = path;
@@ -361,12 +386,13 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
 
     debris::BodyDef body_model = debris::default_body_def();
     read_sweep_table(doc, find_table(doc, "sweep"), spec, body_model);
-    if (!scene_override.empty()) spec.scene = scene_override;
-    if (!flow_override.empty())
-        spec.flows = flow_override;
+    if (!overrides.scene.empty()) spec.scene = overrides.scene;
+    if (!overrides.ground.empty()) spec.ground = overrides.ground;
+    if (!overrides.flows.empty())
+        spec.flows = overrides.flows;
     else
         read_flows(doc, find_table(doc, "flows"), spec);
-    std::unique_ptr<Scene> scene;
+    std::shared_ptr<const Scene> scene;  // read once, where a start point or the caller needs it
     for (const auto& t : doc.tables) {
         if (t.name == "body") spec.bodies.push_back(read_body(doc, t, spec, body_model, scene));
         if (t.name == "sources") spec.sources.push_back(read_sources(doc, t, spec, body_model));
@@ -378,13 +404,17 @@ SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_over
     read_variants(doc, find_table(doc, "variants"), spec);
     read_parameters(doc, find_table(doc, "parameters"), spec);
     read_perturbation(doc, find_table(doc, "perturbation"), spec);
+    if (scene_read) {
+        if (!scene && !spec.scene.empty()) scene = std::make_shared<const Scene>(read_scene(spec.scene));
+        *scene_read = std::move(scene);
+    }
     return spec;
 }
 
 std::array<double, 3> perturbed_start(const SweepSpec& spec, int body, int k) {
     const BodySpec& b = spec.bodies[std::size_t(body)];
     const double deg = std::numbers::pi / 180.0;
-    if (k == 0) return {b.x, b.y, b.heading_deg * deg};
+    if (k == 0) return {b.x, b.y, b.heading};
     // Its own stream per (body, k): the same offsets whatever the flows, variants or sets.
     Rng rng(spec.perturbation.seed * 0x100000001b3ULL + std::uint64_t(body) * 0x10001ULL + std::uint64_t(k));
     const double dx = spec.perturbation.position_std * rng.normal();
@@ -420,7 +450,8 @@ std::vector<Member> enumerate_members(const SweepSpec& spec) {
                         d.contact = spec.variants[std::size_t(v)].contact;
                         d.collision = spec.variants[std::size_t(v)].collision;
                         const BodySpec& body = spec.bodies[std::size_t(b)];
-                        apply_parameters(body.type.empty() ? spec.params[std::size_t(p)].values
+                        if (!spec.bodies_as_given)
+                            apply_parameters(body.type.empty() ? spec.params[std::size_t(p)].values
                                                            : catalogue_values(spec, body, spec.params[std::size_t(p)].values),
                                          d);
                         out.push_back(m);

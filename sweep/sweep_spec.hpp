@@ -5,12 +5,14 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/settings.hpp"
 #include "debris/body.hpp"
 #include "debris/world.hpp"
+#include "formats/scene.hpp"
 
 namespace flotsam::sweep {
 
@@ -81,6 +83,7 @@ struct BodySpec {
     std::string start;                                 // scene start point, or "" when at = [x, y, heading]
     double x = 0.0, y = 0.0;                           // [m], from the scene point or `at`
     double heading_deg = 0.0;                          // long axis from +x, counter-clockwise [degree]
+    double heading = 0.0;                              // the same [rad], as the unperturbed start uses it
     debris::BodyDef def = debris::default_body_def();  // shape and model settings ([[body]], [sweep])
     // Catalogue entry (debris/catalogue.hpp), "" for none. Such a body keeps the entry's
     // coefficients as its own control: a parameter set multiplies them by the set's
@@ -88,6 +91,12 @@ struct BodySpec {
     std::string type;
     std::string source;  // the GIS feature "layer/fid" it came from ([[sources]]), or ""
 };
+
+// A body at (x, y) with a heading in degrees, its shape and model from `def`: how specs'
+// [[body]] tables and `flotsam debris` place a body (the name as given; no start point).
+BodySpec body_at(const std::string& name, double x, double y, double heading_deg, const debris::BodyDef& def);
+// The scene's start point of that name (null: none).
+const ScenePoint* scene_start(const Scene& scene, const std::string& name);
 
 // A [[sources]] table: a GIS file of debris sources (data/debris_sources.hpp), expanded
 // into bodies by the command line (app/debris_sources.hpp, which reads GIS) before the
@@ -123,11 +132,23 @@ struct SweepSpec {
     double end_time = -1.0;                                // [s]; < 0: the earliest last frame of the flows
     debris::WorldDef world = debris::default_world_def();  // step and flow replay settings ([sweep])
     bool dt_max_given = false;  // [sweep] dt-max set; else the step follows the bodies (debris::default_world_def)
+    // The members keep their bodies' coefficients as given, no parameter set applied
+    // (`flotsam debris`: a sweep of one control run). False for specs.
+    bool bodies_as_given = false;
+};
+
+// What the command line sets over a spec's own: scene, ground and flows ("" and empty:
+// the spec's).
+struct SpecOverrides {
+    std::string scene;
+    std::string ground;
+    std::vector<std::string> flows;
 };
 
 // Reads and checks a spec. Bodies given by a scene start name are placed from the scene
-// (the spec's `scene`, or `scene_override` when not empty); flows come from the spec
-// unless `flow_override` is not empty. Errors name the spec file, line and key.
+// (the spec's `scene`, or the override). Errors name the spec file, line and key. With
+// `scene`, the scene the spec names is read (once) and handed back there (null: none).
+SweepSpec read_sweep_spec(const std::string& path, const SpecOverrides& overrides, std::shared_ptr<const Scene>* scene);
 SweepSpec read_sweep_spec(const std::string& path, const std::string& scene_override = "",
                           const std::vector<std::string>& flow_override = {});
 
