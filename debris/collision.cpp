@@ -183,32 +183,27 @@ SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 
 
 }  // namespace
 
-double deepest_overlap(const ObstacleMap& obstacles, const BodyParams& body, double bottom, const Box& box,
+double deepest_overlap(const ObstacleMap& obstacles, const Blocking& blocking, const Box& box,
                        std::vector<ObstacleContact>& scratch) {
     scratch.clear();
-    obstacles.find_contacts(box, bottom, body.step_height, scratch, 1e-10, body.def.blocking_ground);
+    obstacles.find_contacts(box, blocking, scratch);
     return deepest(scratch);
 }
 
-CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
-                                    double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
-                                    const Box& footprint, std::vector<ObstacleContact>& contacts,
-                                    std::vector<BuildingTouch>* touches) {
-    const BlockingGround rule = body.def.blocking_ground;
+CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& state, const Box& footprint,
+                                    std::vector<ObstacleContact>& contacts, std::vector<BuildingTouch>* touches) {
+    const ObstacleMap& obstacles = setup.obstacles;
+    const BodyParams& body = setup.body;
+    const double mass = setup.mass, inertia = setup.inertia;
     const auto detect = [&](const Box& box) {
         contacts.clear();
-        obstacles.find_contacts(box, bottom, body.step_height, contacts, 1e-10, rule);
+        obstacles.find_contacts(box, setup.blocking, contacts);
     };
-    // The contacts of `box` and those within `margin` of it (depth > −margin): the body
-    // widened by the margin, its depths less the margin.
+    // The contacts of `box` and the cells within `margin` of it (depth > −margin: the gap).
     const double margin = clearing_margin_cells * std::min(obstacles.grid().dx, obstacles.grid().dy);
     const auto detect_near = [&](const Box& box) {
         contacts.clear();
-        Box wide = box;
-        wide.half_length += margin;
-        wide.half_width += margin;
-        obstacles.find_contacts(wide, bottom, body.step_height, contacts, 1e-10, rule);
-        for (auto& c : contacts) c.depth -= margin;
+        obstacles.find_contacts(box, setup.blocking, contacts, -margin, margin);
     };
     CollisionOutcome out;
     detect(footprint);
@@ -217,7 +212,7 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
     hand_pivot_to_centre(state);
     auto by_depth = [](const ObstacleContact& a, const ObstacleContact& b) { return a.depth > b.depth; };
 
-    if (model == CollisionModel::single) {
+    if (body.def.collision == CollisionModel::single) {
         if (touches) note_buildings(contacts, state, *touches);
         const auto& c = *std::min_element(contacts.begin(), contacts.end(), by_depth);
         apply_impulse(c, body, mass, inertia, state);
@@ -234,14 +229,14 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
     const BodyState reached = state;
     Vec2 moved_out;
     double turned_out = 0.0;
-    const double w = move.new_weight * move.dt;
+    const double w = setup.move.new_weight * setup.move.dt;
     const auto place = [&] {
         state.x = reached.x + w * (state.vx - reached.vx) + moved_out.x;
         state.y = reached.y + w * (state.vy - reached.vy) + moved_out.y;
         state.theta = reached.theta + w * (state.omega - reached.omega) + turned_out;
         detect(pose(state, body));
     };
-    for (; out.passes < max_passes && !contacts.empty(); ++out.passes) {
+    for (; out.passes < setup.max_passes && !contacts.empty(); ++out.passes) {
         std::sort(contacts.begin(), contacts.end(), by_depth);
         if (touches) note_buildings(contacts, state, *touches);
         for (const auto& c : contacts) apply_impulse(c, body, mass, inertia, state);
@@ -250,7 +245,7 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
         // What that leaves (an overlap the step began with, a turning body's arc against
         // the straight re-advance, contacts whose impulses undo each other in a wedge):
         // the least move out of all of it at once, translation and rotation, that also
-        // keeps out of the obstacles within the margin (so that it does not push the body
+        // closes no gap to the cells within the margin (so that it does not push the body
         // from one wall into the other).
         detect_near(pose(state, body));
         std::sort(contacts.begin(), contacts.end(), by_depth);
@@ -260,7 +255,7 @@ CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyPara
         place();
     }
     out.residual = deepest(contacts);
-    out.unresolved = out.residual > move.tolerance;
+    out.unresolved = out.residual > setup.move.tolerance;
     return out;
 }
 

@@ -20,7 +20,9 @@ inline constexpr double unresolved_overlap_cells = 1e-3;  // [-]
 
 // The move out of overlaps keeps out of the blocked cells within this many cells of the
 // body too, so that it does not push the body from one wall into another (a move out is
-// the size of an overlap, a fraction of the quarter cell a corner moves in a step) [-].
+// the size of an overlap, a fraction of the quarter cell a corner moves in a step). The
+// margin only chooses which cells are looked at: each such cell is a contact of the body's
+// own box, its gap the most the move may close (ObstacleMap::find_contacts) [-].
 inline constexpr double clearing_margin_cells = 0.25;
 
 struct CollisionOutcome {
@@ -40,29 +42,41 @@ struct StepMove {
     double tolerance = 0.0;    // overlap left that still counts as resolved [m]
 };
 
+// What one body's collisions are resolved against, and with what: the obstacles and what
+// blocks it, its effective mass and yaw inertia (added mass included where it is
+// implicit, so an impulse changes the same momentum the dynamics integrates), the pass
+// bound and the step being corrected.
+struct CollisionSetup {
+    const ObstacleMap& obstacles;
+    Blocking blocking;
+    const BodyParams& body;  // its collision model and restitution
+    double mass = 0.0;       // [kg]
+    double inertia = 0.0;    // [kg m²]
+    int max_passes = 10;     // MC [-]
+    StepMove move;
+};
+
 // Resolves overlaps of the body (state; `footprint` its pose, Box::make of it: made once
-// a step, sincos included, by the caller) with blocked cells. mass and inertia are
-// the body's effective ones (added mass included where it is implicit), so an impulse
-// changes the same momentum the dynamics integrates. A rotation about the contact
-// centroid (the axis shift) is part of that momentum: it is handed to the centre's
-// velocity and yaw rate first (V + ω_p ẑ × (x_g − x_sub), ω + ω_p).
+// a step, sincos included, by the caller) with blocked cells. A rotation about the contact
+// centroid (the axis shift) is part of the momentum: it is handed to the centre's velocity
+// and yaw rate first (V + ω_p ẑ × (x_g − x_sub), ω + ω_p).
 //   single: the deepest contact only, one impulse, then a move out by its depth.
 //   multi:  up to max_passes of {detect all; for each contact, deepest first, the impulse
 //           (only where the contact approaches); the pose advanced again from the start of
 //           the step with the corrected velocities; where an overlap is left (one the step
 //           began with, a turning body's arc against the straight re-advance, two contacts
-//           whose impulses undo each other in a wedge), the least move out of all of them
-//           at once: the smallest M |Δx|² + I Δθ² that clears every contact to first
-//           order, so a body wedged across a gap turns and slides out of it}.
+//           whose impulses undo each other in a wedge), the least move out of all of it at
+//           once: the smallest M |Δx|² + I Δθ² that clears every contact to first order and
+//           closes no gap to a cell within the clearing margin, so a body wedged across a
+//           gap turns and slides out of it}.
 // With `touches`, appends each building contacted (debris/impacts.hpp, BuildingTouch):
 // nothing of the motion depends on it.
-// The deepest overlap of the pose `box` with what blocks a body at `bottom` [m].
-double deepest_overlap(const ObstacleMap& obstacles, const BodyParams& body, double bottom, const Box& box,
-                       std::vector<ObstacleContact>& scratch);
+CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& state, const Box& footprint,
+                                    std::vector<ObstacleContact>& scratch, std::vector<BuildingTouch>* touches = nullptr);
 
-CollisionOutcome resolve_collisions(const ObstacleMap& obstacles, const BodyParams& body, CollisionModel model, double mass,
-                                    double inertia, double bottom, int max_passes, const StepMove& move, BodyState& state,
-                                    const Box& footprint, std::vector<ObstacleContact>& scratch,
-                                    std::vector<BuildingTouch>* touches = nullptr);
+// The deepest overlap of the pose `box` with what blocks the body [m]; `scratch` is left
+// holding the overlaps.
+double deepest_overlap(const ObstacleMap& obstacles, const Blocking& blocking, const Box& box,
+                       std::vector<ObstacleContact>& scratch);
 
 }  // namespace flotsam::debris

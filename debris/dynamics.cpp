@@ -15,9 +15,11 @@ StepDef default_step_def() { return StepDef{}; }
 
 namespace {
 
-// A cell the body reaches into by less than this is not under it: the collision's
-// separation slop (1e-9 m) and round-off, never a real overlap [m].
-constexpr double footprint_overlap = 1e-6;
+// A cell the body reaches into by less than this many cells is not under it: an overlap
+// the collisions leave as resolved (up to unresolved_overlap_cells) is a wall being
+// pushed out of, not ground to rest on; were it ground, a body pressed against a step
+// too high for it would rest on the step's edge and be carried onto it [-].
+constexpr double footprint_overlap_cells = 2.0 * unresolved_overlap_cells;
 
 // What a step starts from: the flow at the centre and what follows from it.
 struct StepStart {
@@ -26,15 +28,31 @@ struct StepStart {
     Inertia eff;            // effective mass and yaw inertia
     Box box;                // the pose
     Motion now;             // pose and velocities
+    Resting rest;           // where its bottom is (resting_place, once the contact patches are known)
 };
 
 StepStart step_start(const StepContext& ctx, const BodyParams& b, const BodyState& s, const FlowPointAccel& centre) {
     const Vec2 xg{s.x, s.y};
     const double submerged = b.plan_area * std::min(b.draft, centre.depth);
-    return StepStart{centre, submerged, effective_inertia(b, submerged, ctx.def.water_density),
+    return StepStart{centre,
+                     submerged,
+                     effective_inertia(b, submerged, ctx.def.water_density),
                      Box::make(xg, s.theta, b.def.length, b.def.width),
-                     Motion{xg, s.theta, Vec2{s.vx, s.vy}, s.omega, s.pivot_rate, Vec2{s.pivot_ax, s.pivot_ay}}};
+                     Motion{xg, s.theta, Vec2{s.vx, s.vy}, s.omega, s.pivot_rate, Vec2{s.pivot_ax, s.pivot_ay}},
+                     {}};
 }
+
+// The water over the obstacle grid's cells at one time: the flow's depth at their centres.
+class WaterOverCells final : public CellWater {
+public:
+    WaterOverCells(const FlowSampler& flow, const Grid& cells, double t) : flow_(flow), cells_(cells), at_(flow.at_time(t)) {}
+    double depth(int i, int j) const override { return flow_.depth(cells_.x(i), cells_.y(j), at_); }
+
+private:
+    const FlowSampler& flow_;
+    const Grid& cells_;
+    FlowSampler::TimeStencil at_;
+};
 
 // Loads: the flow's force and torque T' at the start of the step (the explicit added
 // mass −ρ C_a V_s a^(n−1) included where chosen: unstable, for the study only), and the
@@ -51,7 +69,7 @@ Loads integrate_loads(const StepContext& ctx, const BodyParams& b, const BodySta
     const double rho = ctx.def.water_density, t = s.time;
     const Inertia& eff = st.eff;
     Loads out;
-    out.load = fluid_load(ctx.flow, b, st.now, st.box, st.centre, st.submerged, t, rho);
+    out.load = fluid_load(ctx.flow, b, st.now, st.box, st.centre, st.submerged, t, rho, st.rest);
     Vec2 explicit_force;
     double explicit_torque = 0.0;
     if (b.def.added_mass == AddedMass::explicit_) {
@@ -73,7 +91,7 @@ Loads integrate_loads(const StepContext& ctx, const BodyParams& b, const BodySta
         const FlowPointAccel centre_end = ctx.flow.sample_accel(end.centre.x, end.centre.y, t + dt);
         const double submerged_end = b.plan_area * std::min(b.draft, centre_end.depth);
         const Inertia eff_end = effective_inertia(b, submerged_end, rho);
-        const FluidLoad load_end = fluid_load(ctx.flow, b, end, centre_end, submerged_end, t + dt, rho);
+        const FluidLoad load_end = fluid_load(ctx.flow, b, end, centre_end, submerged_end, t + dt, rho, st.rest);
         out.trial.V =
             st.now.velocity + (0.5 * dt) * ((1.0 / eff.mass) * F + (1.0 / eff_end.mass) * (load_end.force + explicit_force));
         out.trial.omega = s.omega + 0.5 * dt * (T / eff.inertia + (load_end.torque + explicit_torque) / eff_end.inertia);
@@ -152,27 +170,25 @@ void track_impacts(const StepContext& ctx, const BodyParams& b, const BodyState&
     }
 }
 
-// Collisions with the obstacles at the committed pose (SC or MC, debris/collision.hpp).
-// Ground blocks only where ground that can block (BlockingGround) rises more than the
-// step height above the bottom where the body rested at the start of the step (MODEL.md,
-// "Vertical position"): at η_c − d afloat, on the highest ground under its footprint
-// (`start`) where that is higher. So the ground under the footprint is never a wall.
-// Where no such ground within reach is above η_c − d + step, the resting height cannot
-// change the outcome and is not computed.
+// Collisions with the obstacles at the committed pose (SC or MC, debris/collision.hpp),
+// for the bottom where the body rested at the start of the step. Ground blocks where it
+// can (BlockingGround), rises more than the step height above that bottom, and the water
+// over its cell is shallower than the draft (docs/debris.md, "Ground and obstacles"); so
+// the ground under the footprint is never a wall, and land the body floats over neither.
 void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start, const Box& pose,
              double dt, StepScratch& scratch, BodyImpacts* impacts) {
-    const double afloat = ctx.obstacles.ground(start.now.centre.x, start.now.centre.y) + start.centre.depth - b.draft;
-    double bottom = afloat;
-    if (ctx.obstacles.ground_above(pose, afloat + b.step_height, b.def.blocking_ground))
-        bottom = std::max(afloat, ctx.obstacles.highest_ground(start.box, footprint_overlap));
-    const Inertia& eff = start.eff;
+    const WaterOverCells water(ctx.flow, ctx.obstacles.grid(), s.time);
+    const Blocking blocking{start.rest.bottom, b.step_height, b.def.blocking_ground, &water, b.draft};
     const Grid& g = ctx.obstacles.grid();
-    const StepMove move{dt, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0,
-                        unresolved_overlap_cells * std::min(g.dx, g.dy)};
+    const CollisionSetup setup{ctx.obstacles,
+                               blocking,
+                               b,
+                               start.eff.mass,
+                               start.eff.inertia,
+                               ctx.def.max_collision_passes,
+                               {dt, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)}};
     scratch.touches.clear();
-    const CollisionOutcome hit = resolve_collisions(ctx.obstacles, b, b.def.collision, eff.mass, eff.inertia, bottom,
-                                                    ctx.def.max_collision_passes, move, s, pose, scratch.contacts,
-                                                    impacts ? &scratch.touches : nullptr);
+    const CollisionOutcome hit = resolve_collisions(setup, s, pose, scratch.contacts, impacts ? &scratch.touches : nullptr);
     if (impacts) track_impacts(ctx, b, s, s.time + dt, scratch, *impacts);
     if (!hit.touched) return;
     s.flags |= flag_colliding;
@@ -181,17 +197,26 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
     bool unresolved = hit.unresolved;
     // Jammed: the passes could not clear the overlap (contacts on opposite sides whose
     // first-order moves out contradict each other, a body wedged across a gap narrower
-    // than its projected width among the cells of a jagged bank). The body stays where
-    // the step began, held by the contacts (at rest), if that pose is clearer.
+    // than its projected width among the cells of a jagged bank). The body goes back to
+    // where the step began, if that pose is clearer, and keeps its velocity along the
+    // walls it was pressed against: walls are frictionless, so only the approach into them
+    // is taken away (and the turn that jammed it).
     if (unresolved && b.def.collision == CollisionModel::multi) {
-        const double at_start = deepest_overlap(ctx.obstacles, b, bottom, start.box, scratch.contacts);
+        scratch.jammed_at = scratch.contacts;  // the overlaps left
+        const double at_start = deepest_overlap(ctx.obstacles, blocking, start.box, scratch.contacts);
         if (at_start < residual) {
             s.x = start.now.centre.x;
             s.y = start.now.centre.y;
             s.theta = start.now.theta;
-            s.vx = s.vy = s.omega = s.pivot_rate = 0.0;
+            Vec2 v{s.vx, s.vy};
+            for (int sweep = 0; sweep < 2; ++sweep)
+                for (const ObstacleContact& c : scratch.jammed_at)
+                    if (const double vn = dot(v, c.normal); vn < 0.0) v = v - vn * c.normal;
+            s.vx = v.x;
+            s.vy = v.y;
+            s.omega = s.pivot_rate = 0.0;
             residual = at_start;
-            unresolved = at_start > move.tolerance;
+            unresolved = at_start > setup.move.tolerance;
             ++stats.jams;
         }
     }
@@ -200,6 +225,20 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
 }
 
 }  // namespace
+
+Resting resting_place(const StepContext& ctx, const BodyParams& b, const Box& box, double centre_depth,
+                      const std::vector<ContactPatch>& patches) {
+    const double afloat = ctx.obstacles.ground(box.centre.x, box.centre.y) + centre_depth - b.draft;
+    const bool shallow =
+        b.def.contact == ContactModel::local
+            ? !patches.empty()
+            : ctx.flow.min_depth(ctx.flow.cells_for(box.centre.x - box.extent_x(), box.centre.x + box.extent_x(),
+                                                    box.centre.y - box.extent_y(), box.centre.y + box.extent_y())) < b.draft;
+    const Grid& g = ctx.obstacles.grid();
+    const double highest = shallow ? ctx.obstacles.highest_ground(box, footprint_overlap_cells * std::min(g.dx, g.dy)) : afloat;
+    if (!(highest > afloat)) return Resting{false, afloat, nullptr};
+    return Resting{true, highest, &ctx.obstacles};
+}
 
 double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch,
                  BodyImpacts* impacts) {
@@ -213,11 +252,12 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
         }
         s.flags |= flag_released;
     }
-    const StepStart st = step_start(ctx, b, s, centre);
-    const Loads loads = integrate_loads(ctx, b, s, st, dt);
+    StepStart st = step_start(ctx, b, s, centre);
     // A body grounded at its last step most likely is again: the depth bound is not tried.
     contact_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
                     scratch.footprint, scratch.patches, !(s.flags & flag_grounded));
+    st.rest = resting_place(ctx, b, st.box, centre.depth, scratch.patches);
+    const Loads loads = integrate_loads(ctx, b, s, st, dt);
     const Friction friction = apply_friction(scratch.patches, loads.trial, st.eff, dt);
     const AxisShift shift = axis_shift(b, s, scratch.patches, loads.load, friction.after.omega, friction.capacity, st.eff, dt);
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;

@@ -11,6 +11,7 @@
 #include "debris/flow_sampler.hpp"
 #include "debris/footprint.hpp"
 #include "debris/impacts.hpp"
+#include "debris/loads.hpp"
 #include "debris/obstacles.hpp"
 
 namespace flotsam::debris {
@@ -41,6 +42,7 @@ struct StepScratch {
     std::vector<ObstacleContact> contacts;
     std::vector<BuildingTouch> touches;
     std::vector<std::int32_t> open_saved;  // a body's open contact episodes before a step that may be redone
+    std::vector<ObstacleContact> jammed_at;  // the overlaps a jammed step left
 };
 
 struct StepContext {
@@ -48,6 +50,15 @@ struct StepContext {
     const ObstacleMap& obstacles;
     const StepDef& def;
 };
+
+// The body's bottom at the pose `box`, its centre in `centre_depth` of water, with these
+// contact patches (MODEL.md, "Vertical position"): afloat at η_c − d, or on the highest
+// ground under its footprint where that is higher. The one bottom that the faces' wetted
+// height (debris/loads.hpp), the steps that block the body and its collisions use. The
+// ground is looked at only where some of it under the body may be shallower than the
+// draft (a contact patch; for centre contact, the depth's lower bound under the footprint).
+Resting resting_place(const StepContext& ctx, const BodyParams& body, const Box& box, double centre_depth,
+                      const std::vector<ContactPatch>& patches);
 
 // One step of length dt from state.time. Returns the largest displacement of a corner
 // by the free motion (before collisions) [m], which the caller checks against the cell.

@@ -14,12 +14,12 @@ Inertia effective_inertia(const BodyParams& b, double submerged_volume, double r
 }
 
 FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& b, const Motion& m, const FlowPointAccel& centre, double submerged,
-                     double t, double rho) {
-    return fluid_load(flow, b, m, Box::make(m.centre, m.theta, b.def.length, b.def.width), centre, submerged, t, rho);
+                     double t, double rho, const Resting& rest) {
+    return fluid_load(flow, b, m, Box::make(m.centre, m.theta, b.def.length, b.def.width), centre, submerged, t, rho, rest);
 }
 
 FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& b, const Motion& m, const Box& box, const FlowPointAccel& centre,
-                     double submerged, double t, double rho) {
+                     double submerged, double t, double rho, const Resting& rest) {
     const BodyDef& def = b.def;
     // Velocity of the body point at r from the centre: translation, rotation about the
     // centre, and rotation about the pivot while the axis is shifted.
@@ -52,7 +52,10 @@ FluidLoad fluid_load(const FlowSampler& flow, const BodyParams& b, const Motion&
     flow.sample(p_at, 4 * ns, flow.at_time(t), flow_at);
     for (int k = 0; k < 4 * ns; ++k) {
         const int face = k / ns;
-        const double wetted = std::min(b.draft, flow_at[k].depth);
+        // Resting on ground higher than where p's own ground is, the face starts that much
+        // above p's ground: wetted from the bottom up to the water level at p.
+        const double raised = rest.on_ground ? std::max(0.0, rest.bottom - rest.ground->ground(p_at[k].x, p_at[k].y)) : 0.0;
+        const double wetted = std::min(b.draft, flow_at[k].depth - raised);
         if (wetted <= 0.0) continue;
         const Vec2 r = r_at[k];
         const Vec2 u_rel = Vec2{flow_at[k].u, flow_at[k].v} - point_velocity(r);

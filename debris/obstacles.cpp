@@ -57,6 +57,14 @@ bool ObstacleMap::blocked(int i, int j, double bottom, double step_height, Block
     return double(walls(rule).top[grid_.index(i, j)]) > bottom + step_height;
 }
 
+bool ObstacleMap::blocked(int i, int j, const Blocking& by) const {
+    if (!blocked(i, j, by.bottom, by.step_height, by.rule)) return false;
+    // Ground (not a building, not the edge) that the body would float over does not block.
+    if (by.water && i >= 0 && j >= 0 && i < grid_.nx && j < grid_.ny && std::isfinite(open_ground_[grid_.index(i, j)]))
+        return !(by.water->depth(i, j) >= by.draft);
+    return true;
+}
+
 namespace {
 
 // Largest of row[i0 .. i1] (vectorised; exact: a max does not depend on the order).
@@ -179,29 +187,60 @@ bool ObstacleMap::ground_above(const Box& box, double level, BlockingGround rule
     return false;
 }
 
-void ObstacleMap::find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
-                                double min_depth, BlockingGround rule) const {
-    const std::vector<float>& wall_top = walls(rule).top;
+namespace {
+
+// Where the impulse of a contact with normal n acts when the body only nears the cell (no
+// overlap): the body's point nearest the cell along n, on the body. Its supporting
+// feature toward the cell (a corner, or a face lying across n) cut to the cell's extent
+// across n, and its middle taken: for a face, the part of it facing the cell. The lever
+// arm's moment (r × n) does not depend on where along n the point lies.
+Vec2 nearest_point_toward(const Box& box, Vec2 cell, double hx, double hy, Vec2 n) {
+    const auto corners = box.corners();
+    const Vec2 t{-n.y, n.x};
+    double low = 1e300;
+    for (const Vec2& p : corners) low = std::min(low, dot(p, n));
+    const double flat = 1e-9 * (box.half_length + box.half_width);  // corners level to round-off
+    double a = 1e300, b = -1e300;  // the feature's extent along t
+    for (const Vec2& p : corners)
+        if (dot(p, n) <= low + flat) {
+            a = std::min(a, dot(p, t));
+            b = std::max(b, dot(p, t));
+        }
+    const double reach = hx * std::fabs(t.x) + hy * std::fabs(t.y);  // the cell's half extent along t
+    const double c = dot(cell, t);
+    double s0 = std::max(a, c - reach), s1 = std::min(b, c + reach);
+    if (s0 > s1) s0 = s1 = s1 < a ? a : b;  // no common part: the feature's end nearest the cell
+    return low * n + 0.5 * (s0 + s1) * t;
+}
+
+}  // namespace
+
+void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleContact>& out, double min_depth,
+                                double margin) const {
+    const std::vector<float>& wall_top = walls(by.rule).top;
+    const double reach = by.bottom + by.step_height;
     const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
-    const CellRange r = cells_touching(box, 0);
+    Box wide = box;  // chooses the cells looked at: those within the margin
+    wide.half_length += margin;
+    wide.half_width += margin;
+    const CellRange r = cells_touching(wide, 0);
     const auto corners = box.corners();
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const bool inside_x = r.i0 >= 0 && r.i1 < grid_.nx;
     // Nothing within the grid that rises above the bottom's reach: no contact at all.
-    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_[std::size_t(rule)].bound(r.i0, r.i1, r.j0, r.j1)) > bottom + step_height))
+    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_[std::size_t(by.rule)].bound(r.i0, r.i1, r.j0, r.j1)) > reach))
         return;
     // A cell that the body misses by more than this cannot overlap it whatever the
     // round-off (some 1e-15 m) of the separating-axis test [m].
     const double clear = 1e-6 * std::min(grid_.dx, grid_.dy);
-    const Outline outline(box);
+    const Outline outline(wide);
     for (int j = r.j0; j <= r.j1; ++j) {
         // A row inside the grid with nothing above the bottom's reach under the whole
         // bounding box holds no contact: ruled out before the body's part in it is found.
-        if (inside_x && j >= 0 && j < grid_.ny &&
-            !(double(row_max(wall_top.data() + grid_.index(0, j), r.i0, r.i1)) > bottom + step_height))
+        if (inside_x && j >= 0 && j < grid_.ny && !(double(row_max(wall_top.data() + grid_.index(0, j), r.i0, r.i1)) > reach))
             continue;
-        // Only the row's cells that meet the body's part within the row's band (widened by
-        // `clear`) can overlap it: the cells beside it are not tested.
+        // Only the row's cells that meet the (widened) body's part within the row's band,
+        // widened by `clear`, can be found: the cells beside it are not tested.
         const double yc = grid_.y0 + j * grid_.dy;
         const XRange part = x_range_in_band(outline, yc - hy - clear, yc + hy + clear);
         if (!(part.x0 <= part.x1)) continue;
@@ -209,13 +248,17 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
         const int i1 = std::min(r.i1, int(std::floor((part.x1 + clear - grid_.x0) / grid_.dx + 0.5)));
         // A row inside the grid with nothing above the bottom's reach holds no contact.
         if (i0 > i1 || (i0 >= 0 && i1 < grid_.nx && j >= 0 && j < grid_.ny &&
-                        !(double(row_max(wall_top.data() + grid_.index(0, j), i0, i1)) > bottom + step_height)))
+                        !(double(row_max(wall_top.data() + grid_.index(0, j), i0, i1)) > reach)))
             continue;
         for (int i = i0; i <= i1; ++i) {
-            if (!blocked(i, j, bottom, step_height, rule)) continue;
+            if (!blocked(i, j, by)) continue;
             const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
             const Penetration pen = penetration(box, c, hx, hy);
-            if (!pen.overlap()) continue;
+            const double separation = pen.depth();  // > 0: overlap; ≤ 0: minus a lower bound of the gap
+            // Without a margin, only a cell the body reaches into by more than min_depth
+            // along every axis: one it only grazes (an edge on the cell's line, to round-off)
+            // is no contact, whatever its depth along the normals that are left.
+            if (!(separation > -margin) || (margin == 0.0 && !(separation > min_depth))) continue;
             // Candidate normals. A cell face shared with another blocked cell is inside a
             // wall and is never a push-out direction (no snagging on internal edges); a body
             // axis is used only in the direction pointing from the cell toward the body.
@@ -227,32 +270,48 @@ void ObstacleMap::find_contacts(const Box& box, double bottom, double step_heigh
                     best.normal = n;
                 }
             };
-            if (!blocked(i + 1, j, bottom, step_height, rule)) consider({1, 0}, pen.px);
-            if (!blocked(i - 1, j, bottom, step_height, rule)) consider({-1, 0}, pen.mx);
-            if (!blocked(i, j + 1, bottom, step_height, rule)) consider({0, 1}, pen.py);
-            if (!blocked(i, j - 1, bottom, step_height, rule)) consider({0, -1}, pen.my);
+            if (!blocked(i + 1, j, by)) consider({1, 0}, pen.px);
+            if (!blocked(i - 1, j, by)) consider({-1, 0}, pen.mx);
+            if (!blocked(i, j + 1, by)) consider({0, 1}, pen.py);
+            if (!blocked(i, j - 1, by)) consider({0, -1}, pen.my);
+            // A body axis n pushes the body off the cell's corner that points along n (the
+            // cell's vertex in its face): only where that corner is one of the obstacle's
+            // own, its two cells beside it along n open. Inside a straight wall the next cell
+            // goes on where the corner is, and the push would be along the wall.
+            const auto corner_exposed = [&](Vec2 n) {
+                const int sx = n.x > 0.0 ? 1 : (n.x < 0.0 ? -1 : 0), sy = n.y > 0.0 ? 1 : (n.y < 0.0 ? -1 : 0);
+                return (sx == 0 || !blocked(i + sx, j, by)) && (sy == 0 || !blocked(i, j + sy, by));
+            };
             const Vec2 rel = box.centre - c;
             for (int k = 0; k < 2; ++k) {
                 const double side = dot(rel, axes[k]);
-                if (side >= 0) consider(axes[k], pen.p[k]);
-                if (side <= 0) consider(-1.0 * axes[k], pen.m[k]);
+                if (side >= 0 && corner_exposed(axes[k])) consider(axes[k], pen.p[k]);
+                if (side <= 0 && corner_exposed(-1.0 * axes[k])) consider(-1.0 * axes[k], pen.m[k]);
             }
+            if (best.depth == 1e300) continue;  // every side of it lies inside the wall
             if (best.depth <= min_depth) continue;
-            // The contact point: the mean of the body corners inside the cell and the cell
-            // corners inside the body.
-            Vec2 sum;
-            int count = 0;
-            for (const Vec2& p : corners)
-                if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
-                    sum += p;
-                    ++count;
-                }
-            for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
-                if (box.contains(c + d)) {
-                    sum += c + d;
-                    ++count;
-                }
-            best.point = count ? (1.0 / count) * sum : 0.5 * (box.centre + c);
+            // Apart from the body along an axis that lies inside a wall: a nearer blocked
+            // neighbour holds that side, and this cell is no contact.
+            if (separation <= 0.0 && best.depth > 0.0) continue;
+            if (separation > 0.0) {
+                // The contact point: the mean of the body corners inside the cell and the
+                // cell corners inside the body (both in the body).
+                Vec2 sum;
+                int count = 0;
+                for (const Vec2& p : corners)
+                    if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
+                        sum += p;
+                        ++count;
+                    }
+                for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
+                    if (box.contains(c + d)) {
+                        sum += c + d;
+                        ++count;
+                    }
+                best.point = count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, best.normal);
+            } else {
+                best.point = nearest_point_toward(box, c, hx, hy, best.normal);
+            }
             best.building = building_id(i, j);
             out.push_back(best);
         }

@@ -35,9 +35,29 @@ constexpr const auto& enum_names(BlockingGround) { return blocking_ground_names;
 
 struct ObstacleContact {
     Vec2 normal;         // unit, from the obstacle into the body (the direction that separates) [-]
-    double depth = 0.0;  // penetration along normal [m]
-    Vec2 point;          // where the impulse acts [m]
+    double depth = 0.0;  // penetration along normal [m]; negative: the gap to a cell near the body
+    Vec2 point;          // where the impulse acts: on the body (a corner, or the middle of its part of a face) [m]
     std::int32_t building = 0;  // the building of the blocked cell (ObstacleMap::building_id); 0: ground or the grid's edge
+};
+
+// The water over the obstacle grid's cells at the time asked: whether a body floats over a
+// land cell or is stopped by it (Blocking below).
+class CellWater {
+public:
+    virtual ~CellWater() = default;
+    virtual double depth(int i, int j) const = 0;  // over cell (i, j) [m]
+};
+
+// What blocks one body (docs/debris.md, "Ground and obstacles"): a building, the grid's
+// edge, and ground that `rule` lets block where it rises above the body's bottom by more
+// than the step height; with `water`, such ground blocks only where the water over that
+// cell is shallower than the draft (deeper, the body floats over it).
+struct Blocking {
+    double bottom = 0.0;       // the body's bottom [m]
+    double step_height = 0.0;  // [m]
+    BlockingGround rule = BlockingGround::any;
+    const CellWater* water = nullptr;  // null: ground blocks whatever the water over it
+    double draft = 0.0;                // [m]
 };
 
 class ObstacleMap {
@@ -61,6 +81,7 @@ public:
     // Ground elevation of the cell holding (x, y) [m] (clamped to the grid).
     double ground(double x, double y) const { return double(bed_[grid_.index(grid_.cell_i(x), grid_.cell_j(y))]); }
     bool blocked(int i, int j, double bottom, double step_height, BlockingGround rule = BlockingGround::any) const;
+    bool blocked(int i, int j, const Blocking& by) const;
 
     // Highest ground [m] of the cells under `box`, buildings left out (no body rests on a
     // roof; buildings are walls): the cells it reaches into by more than `min_overlap` [m]
@@ -70,9 +91,16 @@ public:
     // cell), buildings left out, has ground that can block under `rule` above `level` [m].
     bool ground_above(const Box& box, double level, BlockingGround rule = BlockingGround::any) const;
 
-    // Appends every overlap of `box` with a blocked cell deeper than `min_depth`.
+    // Appends every overlap of `box` with a blocked cell deeper than `min_depth` and, with a
+    // margin, every blocked cell within `margin` of it (depth down to −margin: the gap). The
+    // contacts are the box's own: normal and depth from the separating-axis test of the box
+    // itself, the point on it (the margin chooses only which cells are looked at).
+    void find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleContact>& out, double min_depth = 1e-10,
+                       double margin = 0.0) const;
     void find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
-                       double min_depth = 1e-10, BlockingGround rule = BlockingGround::any) const;
+                       double min_depth = 1e-10, BlockingGround rule = BlockingGround::any) const {
+        find_contacts(box, Blocking{bottom, step_height, rule}, out, min_depth);
+    }
 
 private:
     // Cell index range [i0, i1] x [j0, j1] of the cells that the bounding box of `box`,

@@ -29,13 +29,18 @@ BodyState& released(World& w, std::size_t b) {
 constexpr double rho = 1000.0, g = 9.81;
 
 // The flow's load on a body at rest at the origin with `heading`, from a flow file, at t.
-FluidLoad load_at_rest(const std::string& path, const BodyDef& def, double heading, double t = 0.5) {
+// The load on a body at rest at the origin: afloat, or (resting_on_ground) with its bottom
+// on the ground at `bottom` [m].
+FluidLoad load_at_rest(const std::string& path, const BodyDef& def, double heading, double t = 0.5, bool resting_on_ground = false,
+                       double bottom = 0.0) {
     FlowReader flow(path);
     flow.prepare(t);
     const BodyParams p = make_body_params(def, rho);
     const FlowPointAccel centre = flow.sample_accel(0.0, 0.0, t);
     const Motion at_rest{{0.0, 0.0}, heading, {0.0, 0.0}, 0.0, 0.0, {0.0, 0.0}};
-    return fluid_load(flow, p, at_rest, centre, p.plan_area * std::min(p.draft, centre.depth), t, rho);
+    const ObstacleMap ground(flow.grid(), flow.bed(), {});
+    const Resting rest{resting_on_ground, bottom, &ground};
+    return fluid_load(flow, p, at_rest, centre, p.plan_area * std::min(p.draft, centre.depth), t, rho, rest);
 }
 
 // Sum of the friction patch capacities [N] of a body at rest at the origin.
@@ -345,18 +350,21 @@ TEST(DebrisBody, PivotsAboutCornerHeldOnRidgeWithLocalContact) {
 // A body at rest (heading 0, centre at the origin) with 40 % of its footprint over 2.0 cm
 // of water (a strip 1 cm ≤ y ≤ 5 cm along its north side, ground at −2 cm) and the rest
 // over 3.0 cm (ground at −3 cm), level 0, on 1 cm cells, in a current of 0.1 m/s along its
-// long axis (+x, across its 10 cm ends). By hand:
+// long axis (+x, across its 10 cm ends). It rests on the strip: its bottom is at −2 cm,
+// 0.5 cm above where it would float. By hand:
 //  * friction capacity (Eq. 5; only the strip's cells are shallower than the 2.5 cm
 //    draft): 0.4 μ (m − ρ L B h) g = 0.4 × 0.4 × (0.625 − 0.5) × 9.81 = 0.1962 N;
 //  * flow force: drag on the two ends, ½ ρ (Cd1 + Cd2) U² (B/4) Σ s_p over the four
-//    samples of an end at y = 3.75, 1.25, −1.25, −3.75 cm, wetted heights min(d, h(p)) =
-//    2.0, 2.25 (h bilinear between the cell rows at 0.5 and 1.5 cm), 2.5, 2.5 cm:
-//    600 × 0.025 × 0.0925 × 0.01 = 0.013875 N along +x; its torque about the centre,
-//    T' = −Σ y_p F_p = 3.281e-5 N m (the deeper south half takes more drag);
+//    samples of an end at y = 3.75, 1.25, −1.25, −3.75 cm, wetted from the bottom (−2 cm)
+//    to the level: s_p = min(d, h(p) − (z_bot − z(p))) = 2.0, 2.25 (h bilinear between the
+//    cell rows at 0.5 and 1.5 cm, z(p) the strip's), 2.0, 2.0 cm (3 cm of water, 1 cm of
+//    it under the bottom): 600 × 0.025 × 0.0825 × 0.01 = 0.012375 N along +x; its torque
+//    about the centre, T' = −Σ y_p F_p = −0.15 × 3.125e-5 = −4.688e-6 N m (the
+//    wetted heights nearly even: the deeper south half's extra depth passes under the body);
 //  * contact centroid x_sub = (0, 3 cm): T_sub = T' + (x_g − x_sub) × F =
-//    3.281e-5 + 0.03 × 0.013875 = 4.491e-4 N m; I_sub = I + M |x_g − x_sub|² with
+//    −4.688e-6 + 0.03 × 0.012375 = 3.666e-4 N m; I_sub = I + M |x_g − x_sub|² with
 //    I = m (L² + B²)/12 = 3.776e-3 kg m² and M = m + ρ C_a L B d = 1.25 kg (the centre is
-//    in 3 cm of water): 4.901e-3 kg m²; T_sub / I_sub = 0.09163 rad/s².
+//    in 3 cm of water): 4.901e-3 kg m²; T_sub / I_sub = 0.07479 rad/s².
 // Eq. 6 holds at once (at rest, |F| ≤ |F_frc|), so the body turns counter-clockwise about
 // the strip, its centre on an arc of 3 cm about x_sub (east, downstream, at first).
 TEST(DebrisBody, AxisShiftTurnsAboutTheContactCentroidWithHandValues) {
@@ -388,20 +396,20 @@ TEST(DebrisBody, AxisShiftTurnsAboutTheContactCentroidWithHandValues) {
         EXPECT_NEAR(centroid.x, 0.0, 1e-9);
         EXPECT_NEAR(centroid.y, 0.03, 1e-9);
     }
-    const FluidLoad load = load_at_rest(path, def, 0.0, 0.0);
-    EXPECT_NEAR(load.force.x, 0.013875, 0.00013875);
+    const FluidLoad load = load_at_rest(path, def, 0.0, 0.0, true, -0.02);  // resting on the strip
+    EXPECT_NEAR(load.force.x, 0.012375, 0.00012375);
     EXPECT_NEAR(load.force.y, 0.0, 1e-12);
-    EXPECT_NEAR(load.torque, 3.281e-5, 3.281e-7);
+    EXPECT_NEAR(load.torque, -4.688e-6, 4.688e-8);
     const double M = 1.25, I_sub = p.inertia + M * 0.03 * 0.03, T_sub = load.torque + 0.03 * load.force.x;
     EXPECT_NEAR(I_sub, 4.901e-3, 4.901e-5);
-    EXPECT_NEAR(T_sub / I_sub, 0.09163, 0.0009163);
+    EXPECT_NEAR(T_sub / I_sub, 0.07479, 0.0007479);
 
     World w(path, {});
     w.add_body(def);
     w.advance_to(0.01);  // one step of dt_max
     const BodyState s0 = w.states()[0];
     ASSERT_TRUE(s0.flags & flag_pivoting);
-    EXPECT_NEAR(s0.pivot_rate / 0.01, 0.09163, 0.0009163);  // the initial angular acceleration about the contact
+    EXPECT_NEAR(s0.pivot_rate / 0.01, 0.07479, 0.0007479);  // the initial angular acceleration about the contact
     EXPECT_EQ(s0.vx, 0.0);                                    // held by friction
     const Vec2 axis{s0.x + s0.pivot_ax, s0.y + s0.pivot_ay};
     EXPECT_NEAR(axis.x, 0.0, 1e-9);
@@ -410,11 +418,11 @@ TEST(DebrisBody, AxisShiftTurnsAboutTheContactCentroidWithHandValues) {
     const BodyState& s = w.states()[0];
     const Vec2 centre{s.x, s.y};
     std::printf("after 1 s: turned %.4f rad (1/2 a t^2 = %.4f), centre (%.2f, %.2f) mm, %.3f cm from the first axis\n", s.theta,
-                0.5 * 0.09163, 1e3 * s.x, 1e3 * s.y, 100 * norm(centre - axis));
+                0.5 * 0.07479, 1e3 * s.x, 1e3 * s.y, 100 * norm(centre - axis));
     EXPECT_GT(s.theta, 0.0);  // counter-clockwise
-    // Constant T_sub would give ½ (T_sub / I_sub) t² = 0.0458 rad; the drag on the turning
-    // ends (about 1 cm/s at 0.09 rad/s) takes some of it.
-    EXPECT_NEAR(s.theta, 0.0458, 0.1 * 0.0458);
+    // Constant T_sub would give ½ (T_sub / I_sub) t² = 0.0374 rad; the drag on the turning
+    // ends (about 1 cm/s at 0.07 rad/s) takes some of it.
+    EXPECT_NEAR(s.theta, 0.0374, 0.1 * 0.0374);
     EXPECT_GT(s.x, 0.0);                                      // the centre swings east, downstream
     EXPECT_NEAR(norm(centre - axis), 0.03, 0.01 * 0.03);      // on an arc about the contact centroid
     EXPECT_NEAR(s.x, 0.03 * std::sin(s.theta), 0.05 * 0.03 * std::sin(s.theta));

@@ -99,12 +99,14 @@ TEST(DebrisGround, BodyAtRestAcrossRidgeStaysInStillWater) {
 
 // The ridge case of DebrisBody.PivotsAboutCornerHeldOnRidgeWithLocalContact (ridge top
 // 3 mm above the floating bottom) with the ridge higher than any step tolerance: 7 and
-// 15 mm above it. A current of 8 cm/s (+y) across the long side: its drag, 0.024 N, is
-// below the friction on the ridge corner (x > 0.09, y > 0.01; 1.4 cm² of the 250 cm²
-// bottom, μ (m − ρ L B h) g S/(L B) = 0.038 N at 7 mm, 0.082 N at 15 mm), so the corner is
-// held (|F| ≤ |F_frc|, Eq. 6) and the axis shift turns the body about it clockwise (the
-// free west end swings downstream, +y), the held point staying put and the centre on an
-// arc; looked at over the first 4 s (about 37°). The ridge is under the footprint: ground
+// 15 mm above it. A current of 8 cm/s (+y) across the long side: its drag (the faces
+// wetted from the bottom, which rests on the ridge, up to the level: 1.8 and 1.0 cm of the
+// 3 cm of water; 0.017 and 0.0096 N) is below the friction on the ridge corner (x > 0.09,
+// y > 0.01; 1.4 cm² of the 250 cm² bottom, μ (m − ρ L B h) g S/(L B) = 0.038 N at 7 mm,
+// 0.082 N at 15 mm), so the corner is held (|F| ≤ |F_frc|, Eq. 6) and the axis shift turns
+// the body about it clockwise (the free west end swings downstream, +y), the held point
+// staying put and the centre on an arc; looked at over the first 4 s (about 30° and 19°,
+// the less wetted body turning less). The ridge is under the footprint: ground
 // to rest on and pivot about, never a wall (and below still water, so never a wall
 // under the default rule either).
 TEST(DebrisGround, PivotsClockwiseAboutCornerHeldOnRidgeAboveStepTolerance) {
@@ -146,8 +148,8 @@ TEST(DebrisGround, PivotsClockwiseAboutCornerHeldOnRidgeAboveStepTolerance) {
             "pivot on a %.0f mm ridge: turned %.1f deg, centre moved %.1f cm, held point %.1f cm, %ld axis-shift steps, %ld "
             "collision steps\n",
             1e3 * ridge, s.theta / deg, 100 * norm(centre), 100 * held_move, w.stats()[0].axis_shifts, w.stats()[0].collisions);
-        EXPECT_LT(s.theta, -0.5) << "ridge " << ridge;  // clockwise
-        EXPECT_GT(norm(centre), 0.05);
+        EXPECT_LT(s.theta, ridge < 0.01 ? -0.45 : -0.28) << "ridge " << ridge;  // clockwise
+        EXPECT_GT(norm(centre), 0.03);
         EXPECT_LT(held_move, 0.15 * norm(centre)) << "ridge " << ridge;
         EXPECT_LT(std::fabs(norm(centre - held0) - norm(held0)) / norm(held0), 0.05);  // an arc about the held point
         EXPECT_GT(w.stats()[0].axis_shifts, 100);
