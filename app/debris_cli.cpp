@@ -103,6 +103,7 @@ sweep::SweepSpec debris_spec(const DebrisOptions& o, bool dt_max_default, const 
     spec.world = o.world;
     spec.dt_max_given = !dt_max_default;
     spec.bodies_as_given = true;
+    spec.one_world = true;  // every body of the run meets the others
     spec.design = "control";
     spec.params = {{"control", sweep::paper_control(), true}};
     spec.variants = {{"", base.contact, base.collision}};
@@ -145,6 +146,8 @@ void write_debris_outputs(const DebrisOptions& o, const sweep::SweepInputs& in, 
         stats.max_residual_overlap = m.largest_residual_overlap;
         stats.jams = m.jammed_steps;
         stats.axis_shifts = m.axis_shift_steps;
+        stats.body_contacts = m.body_contact_steps;
+        stats.max_body_overlap = m.largest_body_overlap;
         for (Impact i : m.impacts) {
             i.trajectory = int(k);
             impacts.push_back(i);

@@ -139,6 +139,8 @@ struct BodyStats {
     long axis_shifts = 0;               // steps rotated about the contact centroid
     double max_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
     long jams = 0;                      // MC: steps undone because the passes could not clear the overlap
+    long body_contacts = 0;             // steps with a contact with another body of its run
+    double max_body_overlap = 0.0;      // deepest overlap with another body left after collision handling [m]
 };
 
 }  // namespace flotsam::debris

@@ -50,18 +50,6 @@ double deepest(const std::vector<ObstacleContact>& cs) {
     return d;
 }
 
-// The axis shift's rotation about x_sub as the centre's velocity and yaw rate.
-void hand_pivot_to_centre(BodyState& s) {
-    if (s.pivot_rate == 0.0) return;
-    const Vec2 arm{-s.pivot_ax, -s.pivot_ay};  // the centre relative to the axis
-    const Vec2 v = spin(s.pivot_rate, arm);
-    s.vx += v.x;
-    s.vy += v.y;
-    s.omega += s.pivot_rate;
-    s.pivot_rate = 0.0;
-    s.pivot_ax = s.pivot_ay = 0.0;
-}
-
 // The least move out of every contact at once (`clearing_move` below): the contacts'
 // rows in the inertia-scaled coordinates u = (√M Δx, √M Δy, √I Δθ), where that move is
 // the shortest u.
@@ -182,6 +170,17 @@ SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 
 }
 
 }  // namespace
+
+void hand_pivot_to_centre(BodyState& s) {
+    if (s.pivot_rate == 0.0) return;
+    const Vec2 arm{-s.pivot_ax, -s.pivot_ay};  // the centre relative to the axis
+    const Vec2 v = spin(s.pivot_rate, arm);
+    s.vx += v.x;
+    s.vy += v.y;
+    s.omega += s.pivot_rate;
+    s.pivot_rate = 0.0;
+    s.pivot_ax = s.pivot_ay = 0.0;
+}
 
 double deepest_overlap(const ObstacleMap& obstacles, const Blocking& blocking, const Box& box,
                        std::vector<ObstacleContact>& scratch) {

@@ -74,6 +74,10 @@ struct CollisionSetup {
 CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& state, const Box& footprint,
                                     std::vector<ObstacleContact>& scratch, std::vector<BuildingTouch>* touches = nullptr);
 
+// The axis shift's rotation about x_sub (a body turning about its contact centroid) as the
+// centre's velocity and yaw rate, before an impulse changes them.
+void hand_pivot_to_centre(BodyState& state);
+
 // The deepest overlap of the pose `box` with what blocks the body [m]; `scratch` is left
 // holding the overlaps.
 double deepest_overlap(const ObstacleMap& obstacles, const Blocking& blocking, const Box& box,

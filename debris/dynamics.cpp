@@ -145,9 +145,12 @@ double commit(const StepContext& ctx, const BodyParams& b, BodyState& s, const S
 void track_impacts(const StepContext& ctx, const BodyParams& b, const BodyState& s, double t, StepScratch& scratch,
                    BodyImpacts& impacts) {
     if (scratch.touches.empty() && impacts.open.empty()) return;
-    const auto is_open = [&](std::int32_t id) { return std::find(impacts.open.begin(), impacts.open.end(), id) != impacts.open.end(); };
+    const auto is_open = [&](std::int32_t id) {
+        return std::find(impacts.open.begin(), impacts.open.end(), id) != impacts.open.end();
+    };
     const auto touched = [&](std::int32_t id) {
-        return std::any_of(scratch.touches.begin(), scratch.touches.end(), [&](const BuildingTouch& k) { return k.building == id; });
+        return std::any_of(scratch.touches.begin(), scratch.touches.end(),
+                           [&](const BuildingTouch& k) { return k.building == id; });
     };
     // Open episodes that this step did not touch: still near (within the separation)?
     if (std::any_of(impacts.open.begin(), impacts.open.end(), [&](std::int32_t id) { return !touched(id); })) {
@@ -158,7 +161,8 @@ void track_impacts(const StepContext& ctx, const BodyParams& b, const BodyState&
         found.clear();
         ctx.obstacles.find_contacts(near, 1e30, 0.0, found, 0.0, BlockingGround::none);  // only buildings block at that bottom
         std::erase_if(impacts.open, [&](std::int32_t id) {
-            return !touched(id) && std::none_of(found.begin(), found.end(), [&](const ObstacleContact& c) { return c.building == id; });
+            return !touched(id) &&
+                   std::none_of(found.begin(), found.end(), [&](const ObstacleContact& c) { return c.building == id; });
         });
     }
     for (const BuildingTouch& k : scratch.touches) {
@@ -176,20 +180,21 @@ void track_impacts(const StepContext& ctx, const BodyParams& b, const BodyState&
 // over its cell is shallower than the draft (docs/debris.md, "Ground and obstacles"); so
 // the ground under the footprint is never a wall, and land the body floats over neither.
 void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, const StepStart& start, const Box& pose,
-             double dt, StepScratch& scratch, BodyImpacts* impacts) {
+             double dt, StepScratch& scratch, BodyImpacts* impacts, bool defer_impacts) {
     const WaterOverCells water(ctx.flow, ctx.obstacles.grid(), s.time);
     const Blocking blocking{start.rest.bottom, b.step_height, b.def.blocking_ground, &water, b.draft};
     const Grid& g = ctx.obstacles.grid();
-    const CollisionSetup setup{ctx.obstacles,
-                               blocking,
-                               b,
-                               start.eff.mass,
-                               start.eff.inertia,
-                               ctx.def.max_collision_passes,
-                               {dt, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)}};
+    const CollisionSetup setup{
+        ctx.obstacles,
+        blocking,
+        b,
+        start.eff.mass,
+        start.eff.inertia,
+        ctx.def.max_collision_passes,
+        {dt, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)}};
     scratch.touches.clear();
     const CollisionOutcome hit = resolve_collisions(setup, s, pose, scratch.contacts, impacts ? &scratch.touches : nullptr);
-    if (impacts) track_impacts(ctx, b, s, s.time + dt, scratch, *impacts);
+    if (impacts && !defer_impacts) track_impacts(ctx, b, s, s.time + dt, scratch, *impacts);
     if (!hit.touched) return;
     s.flags |= flag_colliding;
     ++stats.collisions;
@@ -240,19 +245,29 @@ Resting resting_place(const StepContext& ctx, const BodyParams& b, const Box& bo
     return Resting{true, highest, &ctx.obstacles};
 }
 
-double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch,
-                 BodyImpacts* impacts) {
+namespace {
+
+// What a step leaves for the contacts between bodies: how far a corner went, the
+// effective inertia it was taken with and the bottom that decided what blocks.
+struct StepOutcome {
+    double travel = 0.0;  // [m]
+    Inertia eff{};
+    double bottom = 0.0;  // [m]
+};
+
+StepOutcome take_step(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch,
+                      BodyImpacts* impacts, bool defer_impacts) {
     const double t = s.time, x0 = s.x, y0 = s.y;
     const FlowPointAccel centre = ctx.flow.sample_accel(s.x, s.y, t);
     ++stats.steps;
+    StepStart st = step_start(ctx, b, s, centre);
     if (!(s.flags & flag_released)) {
         if (!(centre.depth > b.draft)) {  // a body starts once the depth at its centre exceeds the draft
             s.time = t + dt;
-            return 0.0;
+            return {0.0, st.eff, ctx.obstacles.ground(s.x, s.y) + centre.depth - b.draft};
         }
         s.flags |= flag_released;
     }
-    StepStart st = step_start(ctx, b, s, centre);
     // A body grounded at its last step most likely is again: the depth bound is not tried.
     contact_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
                     scratch.footprint, scratch.patches, !(s.flags & flag_grounded));
@@ -263,21 +278,35 @@ double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Body
     if (shift.shifted && shift.pivot_rate != 0.0) ++stats.axis_shifts;
     Box pose;
     const double travel = commit(ctx, b, s, st, friction.after, shift, !scratch.patches.empty(), dt, pose);
-    collide(ctx, b, s, stats, st, pose, dt, scratch, impacts);
+    collide(ctx, b, s, stats, st, pose, dt, scratch, impacts, defer_impacts);
     s.centre_vx = (s.x - x0) / dt;
     s.centre_vy = (s.y - y0) / dt;
     s.time = t + dt;
-    return travel;
+    return {travel, st.eff, st.rest.bottom};
+}
+
+// The step the vertex-speed limit allows a corner that may move `reach` [m] (≤ dt_max).
+double vertex_step(const StepContext& ctx, const BodyParams& b, const BodyState& s, double reach) {
+    // Fastest corner: |V| + |ω| r for rotation about the centre; a pivot about a point
+    // inside the footprint moves a corner at most |ω_sub| × 2 r.
+    const double vertex_speed = std::hypot(s.vx, s.vy) + (std::fabs(s.omega) + 2.0 * std::fabs(s.pivot_rate)) * b.half_diagonal;
+    return vertex_speed * ctx.def.dt_max > reach ? reach / vertex_speed : ctx.def.dt_max;
+}
+
+double cell_reach(const StepContext& ctx) {
+    const Grid& g = ctx.obstacles.grid();
+    return ctx.def.vertex_step_fraction * std::min(g.dx, g.dy);
+}
+
+}  // namespace
+
+double step_body(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStats& stats, double dt, StepScratch& scratch,
+                 BodyImpacts* impacts) {
+    return take_step(ctx, b, s, stats, dt, scratch, impacts, false).travel;
 }
 
 double stable_step(const StepContext& ctx, const BodyParams& b, const BodyState& s) {
-    const double half_diagonal = b.half_diagonal;
-    // Fastest corner: |V| + |ω| r for rotation about the centre; a pivot about a point
-    // inside the footprint moves a corner at most |ω_sub| × 2 r.
-    const double vertex_speed = std::hypot(s.vx, s.vy) + (std::fabs(s.omega) + 2.0 * std::fabs(s.pivot_rate)) * half_diagonal;
-    const Grid& g = ctx.obstacles.grid();
-    const double reach = ctx.def.vertex_step_fraction * std::min(g.dx, g.dy);
-    return vertex_speed * ctx.def.dt_max > reach ? reach / vertex_speed : ctx.def.dt_max;
+    return vertex_step(ctx, b, s, cell_reach(ctx));
 }
 
 double window_pad(const StepContext& ctx, const BodyParams& b) {
@@ -318,6 +347,105 @@ bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Bod
         if (s.time > t_end || t_end - s.time < 1e-12) s.time = t_end;
     }
     return true;
+}
+
+bool advance_group(const StepContext& ctx, BodyGroup& group, double t_end, GroupScratch& gs) {
+    const std::vector<int>& members = group.members;
+    const std::size_t n = members.size();
+    const Grid& g = ctx.obstacles.grid();
+    double narrowest = 1e300;
+    for (const int m : members) narrowest = std::min(narrowest, group.params[std::size_t(m)].def.width);
+    const double reach = ctx.def.vertex_step_fraction * std::min({g.dx, g.dy, narrowest});
+    gs.bodies.resize(n);
+    gs.saved.resize(n);
+    gs.saved_stats.resize(n);
+    gs.saved_events.resize(n);
+    gs.saved_open.resize(n);
+    std::vector<StepOutcome> outcome(n);
+    const BodyContactDef contact_def{
+        ctx.def.max_collision_passes,
+        {0.0, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)},
+        group.impacts != nullptr};
+    for (;;) {
+        const double t = group.states[std::size_t(members.front())].time;
+        if (!(t < t_end)) return true;
+        double dt = t_end - t;
+        for (const int m : members) {
+            const BodyState& s = group.states[std::size_t(m)];
+            dt = std::min(dt, vertex_step(ctx, group.params[std::size_t(m)], s, reach));
+            const double pad = window_pad(ctx, group.params[std::size_t(m)]);
+            if (!ctx.flow.covers(ctx.flow.cells_for(s.x - pad, s.x + pad, s.y - pad, s.y + pad))) return false;
+        }
+        if (t_end - t - dt < 1e-9 * ctx.def.dt_max) dt = t_end - t;  // no sliver steps
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t m = std::size_t(members[k]);
+            gs.saved[k] = group.states[m];
+            gs.saved_stats[k] = group.stats[m];
+            if (group.impacts) {
+                gs.saved_events[k] = (*group.impacts)[m].events.size();
+                gs.saved_open[k] = (*group.impacts)[m].open;
+            }
+        }
+        // Each body's own step; the whole group redone shorter where a corner moved more
+        // than twice what the step was set for (as advance_body).
+        for (int attempt = 0;; ++attempt) {
+            double travel = 0.0;
+            for (std::size_t k = 0; k < n; ++k) {
+                const std::size_t m = std::size_t(members[k]);
+                outcome[k] = take_step(ctx, group.params[m], group.states[m], group.stats[m], dt, gs.step,
+                                       group.impacts ? &(*group.impacts)[m] : nullptr, true);
+                gs.bodies[k].touches = gs.step.touches;
+                travel = std::max(travel, outcome[k].travel);
+            }
+            if (travel <= 2.0 * reach || attempt >= 20) break;
+            for (std::size_t k = 0; k < n; ++k) {
+                const std::size_t m = std::size_t(members[k]);
+                group.states[m] = gs.saved[k];
+                group.stats[m] = gs.saved_stats[k];
+                if (group.impacts) {
+                    (*group.impacts)[m].events.resize(gs.saved_events[k]);
+                    (*group.impacts)[m].open = gs.saved_open[k];
+                }
+            }
+            dt *= 0.5;
+        }
+        // The contacts between the bodies, at the time the step started (the water over the
+        // cells that decides what blocks).
+        const WaterOverCells water(ctx.flow, g, t);
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t m = std::size_t(members[k]);
+            const BodyParams& b = group.params[m];
+            GroupBody& gb = gs.bodies[k];
+            gb.state = &group.states[m];
+            gb.body = &b;
+            gb.mass = outcome[k].eff.mass;
+            gb.inertia = outcome[k].eff.inertia;
+            gb.blocking = Blocking{outcome[k].bottom, b.step_height, b.def.blocking_ground, &water, b.draft};
+        }
+        BodyContactDef def = contact_def;
+        def.move.dt = dt;
+        const bool met = ctx.def.body_contact && n > 1 && resolve_body_contacts(ctx.obstacles, gs.bodies, def, gs.contacts);
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t m = std::size_t(members[k]);
+            const GroupBody& gb = gs.bodies[k];
+            BodyState& s = group.states[m];
+            BodyStats& st = group.stats[m];
+            if (met && gb.met) {
+                s.flags |= flag_released | flag_colliding;
+                ++st.body_contacts;
+                st.max_body_overlap = std::max(st.max_body_overlap, gb.body_overlap);
+                st.max_residual_overlap = std::max(st.max_residual_overlap, gb.wall_overlap);
+                const bool left = std::max(gb.body_overlap, gb.wall_overlap) > def.move.tolerance;
+                if (left && st.unresolved == gs.saved_stats[k].unresolved) ++st.unresolved;
+                s.centre_vx = (s.x - gs.saved[k].x) / dt;
+                s.centre_vy = (s.y - gs.saved[k].y) / dt;
+            }
+            if (group.impacts) {
+                gs.step.touches = gb.touches;
+                track_impacts(ctx, group.params[m], s, t + dt, gs.step, (*group.impacts)[m]);
+            }
+        }
+    }
 }
 
 }  // namespace flotsam::debris

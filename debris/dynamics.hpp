@@ -7,6 +7,7 @@
 
 #include "common/enum_names.hpp"
 #include "debris/body.hpp"
+#include "debris/body_contact.hpp"
 #include "debris/contact.hpp"
 #include "debris/flow_sampler.hpp"
 #include "debris/footprint.hpp"
@@ -32,6 +33,9 @@ struct StepDef {
     double vertex_step_fraction = 0.25;  // largest corner displacement per step, in cells [-]
     int max_collision_passes = 10;       // MC pass bound [-]
     Integrator integrator = Integrator::euler;
+    // The bodies of one run meet each other (debris/body_contact.hpp); false: each body
+    // goes through the flow as if alone.
+    bool body_contact = true;
 };
 StepDef default_step_def();
 
@@ -41,7 +45,7 @@ struct StepScratch {
     std::vector<ContactPatch> patches;
     std::vector<ObstacleContact> contacts;
     std::vector<BuildingTouch> touches;
-    std::vector<std::int32_t> open_saved;  // a body's open contact episodes before a step that may be redone
+    std::vector<std::int32_t> open_saved;    // a body's open contact episodes before a step that may be redone
     std::vector<ObstacleContact> jammed_at;  // the overlaps a jammed step left
 };
 
@@ -78,5 +82,31 @@ double window_pad(const StepContext& ctx, const BodyParams& body);
 // the reader's loaded window (the caller moves the window and calls again).
 bool advance_body(const StepContext& ctx, const BodyParams& body, BodyState& state, BodyStats& stats, double t_end,
                   StepScratch& scratch, BodyImpacts* impacts = nullptr);
+
+// The bodies of one run, stepped together so that they meet each other
+// (debris/body_contact.hpp): every step as long as the one its fastest body allows (no
+// corner moving more than the vertex-step fraction of the smaller of a cell and the
+// narrowest body), each body's own step, then the contacts between them. Deterministic:
+// the bodies are stepped and their contacts resolved in a fixed order. A body another one
+// hits is released (it moves; the ground's friction holds it where it is grounded).
+struct GroupScratch {
+    StepScratch step;
+    BodyContactScratch contacts;
+    std::vector<GroupBody> bodies;
+    std::vector<BodyState> saved;
+    std::vector<BodyStats> saved_stats;
+    std::vector<std::size_t> saved_events;
+    std::vector<std::vector<std::int32_t>> saved_open;
+};
+struct BodyGroup {
+    const std::vector<int>& members;  // indices into the arrays below, in order
+    const std::vector<BodyParams>& params;
+    std::vector<BodyState>& states;
+    std::vector<BodyStats>& stats;
+    std::vector<BodyImpacts>* impacts;  // null: no buildings to record impacts on
+};
+// Steps the group to t_end; false, early, where one of its bodies would need flow outside
+// the loaded window (as advance_body).
+bool advance_group(const StepContext& ctx, BodyGroup& group, double t_end, GroupScratch& scratch);
 
 }  // namespace flotsam::debris

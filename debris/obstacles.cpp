@@ -200,7 +200,7 @@ Vec2 nearest_point_toward(const Box& box, Vec2 cell, double hx, double hy, Vec2 
     double low = 1e300;
     for (const Vec2& p : corners) low = std::min(low, dot(p, n));
     const double flat = 1e-9 * (box.half_length + box.half_width);  // corners level to round-off
-    double a = 1e300, b = -1e300;  // the feature's extent along t
+    double a = 1e300, b = -1e300;                                   // the feature's extent along t
     for (const Vec2& p : corners)
         if (dot(p, n) <= low + flat) {
             a = std::min(a, dot(p, t));
@@ -211,6 +211,33 @@ Vec2 nearest_point_toward(const Box& box, Vec2 cell, double hx, double hy, Vec2 
     double s0 = std::max(a, c - reach), s1 = std::min(b, c + reach);
     if (s0 > s1) s0 = s1 = s1 < a ? a : b;  // no common part: the feature's end nearest the cell
     return low * n + 0.5 * (s0 + s1) * t;
+}
+
+// The gap between a cell and the body's part across from it, along a face normal n of the
+// cell (into the body): the body's point lowest along n within the cell's slab across n
+// (its corners there and its edges' crossings of the slab's sides), and how far that point
+// lies beyond the cell's face [m]. False where no part of the body lies across the cell.
+bool gap_across(const Box& box, Vec2 cell, double hx, double hy, Vec2 n, Vec2& point, double& gap) {
+    const Vec2 t{-n.y, n.x};
+    const double reach = hx * std::fabs(t.x) + hy * std::fabs(t.y), c = dot(cell, t);
+    const auto corners = box.corners();
+    double low = 1e300;
+    const auto take = [&](Vec2 p) {
+        if (const double h = dot(p, n); h < low) {
+            low = h;
+            point = p;
+        }
+    };
+    for (int k = 0; k < 4; ++k) {
+        const Vec2 p = corners[k], q = corners[(k + 1) & 3];
+        const double sp = dot(p, t), sq = dot(q, t);
+        if (std::fabs(sp - c) <= reach) take(p);
+        for (const double side : {c - reach, c + reach})
+            if ((sp - side) * (sq - side) < 0.0) take(p + ((side - sp) / (sq - sp)) * (q - p));
+    }
+    if (!(low < 1e300)) return false;
+    gap = low - (dot(cell, n) + hx * std::fabs(n.x) + hy * std::fabs(n.y));
+    return true;
 }
 
 }  // namespace
@@ -228,7 +255,8 @@ void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const bool inside_x = r.i0 >= 0 && r.i1 < grid_.nx;
     // Nothing within the grid that rises above the bottom's reach: no contact at all.
-    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny && !(double(wall_top_blocks_[std::size_t(by.rule)].bound(r.i0, r.i1, r.j0, r.j1)) > reach))
+    if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny &&
+        !(double(wall_top_blocks_[std::size_t(by.rule)].bound(r.i0, r.i1, r.j0, r.j1)) > reach))
         return;
     // A cell that the body misses by more than this cannot overlap it whatever the
     // round-off (some 1e-15 m) of the separating-axis test [m].
@@ -309,6 +337,12 @@ void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<
                         ++count;
                     }
                 best.point = count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, best.normal);
+            } else if (best.normal.x == 0.0 || best.normal.y == 0.0) {
+                // Apart along one of the cell's faces: the gap to the body's part across
+                // from this cell (the separating axis bounds the gap of the whole body).
+                double gap = 0.0;
+                if (!gap_across(box, c, hx, hy, best.normal, best.point, gap) || !(-gap > min_depth)) continue;
+                best.depth = -gap;
             } else {
                 best.point = nearest_point_toward(box, c, hx, hy, best.normal);
             }

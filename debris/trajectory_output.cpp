@@ -37,6 +37,7 @@ void put_world_attributes(nc::File& f, const WorldDef& def) {
     f.put_att(NC_GLOBAL, "max_collision_passes", def.step.max_collision_passes);
     f.put_att(NC_GLOBAL, "integrator", std::string(enum_name(def.step.integrator)));
     f.put_att(NC_GLOBAL, "time_interpolation", std::string(enum_name(def.flow.time_interpolation)));
+    f.put_att(NC_GLOBAL, "body_contact", def.step.body_contact ? 1 : 0);
 }
 
 WorldDef get_world_attributes(const nc::File& f) {
@@ -44,6 +45,8 @@ WorldDef get_world_attributes(const nc::File& f) {
     if (const auto v = f.att_double(NC_GLOBAL, "dt_max_s")) def.step.dt_max = *v;
     if (const auto v = f.att_double(NC_GLOBAL, "vertex_step_fraction")) def.step.vertex_step_fraction = *v;
     if (const auto v = f.att_double(NC_GLOBAL, "max_collision_passes")) def.step.max_collision_passes = int(*v);
+    if (const auto v = f.att_double(NC_GLOBAL, "body_contact")) def.step.body_contact = *v != 0.0;  // absent: files from before bodies met: off
+    else def.step.body_contact = false;
     const std::string where = f.path() + ": attribute ";
     if (const auto v = f.att_text(NC_GLOBAL, "integrator"))
         def.step.integrator = parse_enum<Integrator>(*v, where + "'integrator'");
@@ -95,6 +98,9 @@ void write_trajectory_file(const std::string& path, const std::vector<Trajectory
         const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
         const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
         const int vjam = per_int("jammed_steps", "steps undone because the collision passes could not clear the overlap");
+        const int vbody = per_int("body_contact_steps", "steps with a contact with another body");
+        const int vbover = cf::def_var(f, {.name = "largest_body_overlap", .type = NC_DOUBLE, .dims = {dtraj}, .units = "m",
+                                           .long_name = "deepest overlap with another body left after collision handling"});
         const int vres = cf::def_var(f, {.name = "largest_residual_overlap", .type = NC_DOUBLE, .dims = {dtraj}, .units = "m",
                                          .long_name = "deepest obstacle overlap left after collision handling"});
         const std::vector<int> vimpact = define_impact_variables(f, impacts.size(), def.crs, impact_force_formula);
@@ -126,6 +132,8 @@ void write_trajectory_file(const std::string& path, const std::vector<Trajectory
         f.put(vres, column<double>(stats, &BodyStats::max_residual_overlap));
         f.put(vjam, column<int>(stats, &BodyStats::jams));
         f.put(vns, column<int>(stats, &BodyStats::axis_shifts));
+        f.put(vbody, column<int>(stats, &BodyStats::body_contacts));
+        f.put(vbover, column<double>(stats, &BodyStats::max_body_overlap));
         for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, records[b].track);
         put_impacts(f, vimpact, impacts);
         f.close();

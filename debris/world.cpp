@@ -16,7 +16,7 @@ namespace flotsam::debris {
 
 WorldDef default_world_def() { return WorldDef{}; }
 
-const Settings<StepDef>& step_settings() {
+const Settings<StepDef>& step_settings() {  // dt-max, vertex-step-fraction, integrator, body-contact
     static const Settings<StepDef> table = {
         {"dt-max", "s",
          "largest time step (flotsam debris: 0.01 s for the paper's 0.25 m box, x sqrt(L / 0.25 m) for the shortest body L)",
@@ -24,6 +24,12 @@ const Settings<StepDef>& step_settings() {
         {"vertex-step-fraction", "1", "largest corner displacement per step, in grid cells (no tunnelling at the default)",
          Range::positive().up_to(10.0), &StepDef::vertex_step_fraction},
         {"integrator", "", "fluid-force stage: semi-implicit Euler or Heun", {}, choice_of<&StepDef::integrator>()},
+        {"body-contact",
+         "",
+         "the bodies of one run meet each other (a yard's, a car park's, those of one `flotsam debris`; docs/debris.md, "
+         "\"Bodies that meet\"); off: each goes as if alone",
+         {},
+         &StepDef::body_contact},
     };
     return table;
 }
@@ -51,7 +57,7 @@ WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool
 }
 
 double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDef& step, double t0, double t_end, double bodies,
-                       bool allowed, const std::string& dt_name, const std::string& fraction_name, const std::string& file) {
+                         bool allowed, const std::string& dt_name, const std::string& fraction_name, const std::string& file) {
     const double speed = flow.largest_speed();
     const double reach = step.vertex_step_fraction * std::min(cells.dx, cells.dy);
     const double dt_vertex = speed > 0.0 ? reach / speed : std::numeric_limits<double>::infinity();
@@ -68,8 +74,8 @@ double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDe
                       number_text(t_end).c_str(), flow.path().c_str());
     const std::string name = vertex_binds ? fraction_name : dt_name;
     check_work(name, text, per_body, max_body_steps_per_body, "steps of each body", allowed, file);
-    check_work(name, std::string(text) + " for " + number_text(bodies) + " bodies", per_body * bodies, max_body_steps,
-               "body steps", allowed, file);
+    check_work(name, std::string(text) + " for " + number_text(bodies) + " bodies", per_body * bodies, max_body_steps, "body steps",
+               allowed, file);
     return per_body;
 }
 
@@ -190,7 +196,7 @@ World::World(const std::string& flow_path, std::vector<std::uint8_t> building, c
     : World(open_flow(flow_path, def), std::move(building), def, ground) {}
 
 World make_world(std::unique_ptr<FlowReader> flow, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
-                 const Scene* ground) {
+                 const Scene* ground, const std::vector<int>& groups) {
     std::vector<std::uint8_t> building;
     std::optional<Ground> fine;
     std::vector<std::int32_t> ids;
@@ -211,19 +217,20 @@ World make_world(std::unique_ptr<FlowReader> flow, const Scene* scene, const std
     // the id of the scene's building there), so that impacts name the scene's buildings.
     const Scene* numbering = scene ? scene : ground;
     if (numbering)
-        ids = fine ? building_ids_on_grid(*numbering, fine->grid, fine->building) : building_ids_on_grid(*numbering, f.grid(), building);
+        ids = fine ? building_ids_on_grid(*numbering, fine->grid, fine->building)
+                   : building_ids_on_grid(*numbering, f.grid(), building);
     World world(std::move(flow), std::move(building), def, fine ? &*fine : nullptr);
     if (!ids.empty()) world.set_building_ids(std::move(ids));
-    for (const BodyDef& b : bodies) world.add_body(b);
+    for (std::size_t k = 0; k < bodies.size(); ++k) world.add_body(bodies[k], groups.empty() ? -1 : groups[k]);
     return world;
 }
 
 World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
-                 const Scene* ground) {
-    return make_world(open_flow(flow_path, def), scene, bodies, def, ground);
+                 const Scene* ground, const std::vector<int>& groups) {
+    return make_world(open_flow(flow_path, def), scene, bodies, def, ground, groups);
 }
 
-std::size_t World::add_body(const BodyDef& def) {
+std::size_t World::add_body(const BodyDef& def, int group) {
     BodyDef local = def;
     local.x -= origin_x_;
     local.y -= origin_y_;
@@ -232,6 +239,8 @@ std::size_t World::add_body(const BodyDef& def) {
     window_fitted_ = false;
     stats_.push_back({});
     impacts_.push_back({});
+    group_of_.push_back(group >= 0 ? group : -1 - int(states_.size()));  // a group of its own: an id no caller gives
+    units_.clear();
     return states_.size() - 1;
 }
 
@@ -265,10 +274,21 @@ void World::fit_window() {
 }
 
 void World::advance_to(double t) {
-    const long n = long(states_.size());
-    std::vector<char> active(states_.size(), 1);
-    // No more threads than bodies: an idle thread only adds a barrier per frame interval.
+    if (units_.empty()) {                           // bodies of one group step together (where they meet), others alone
+        std::vector<std::pair<int, int>> by_group;  // (group, body)
+        for (std::size_t b = 0; b < states_.size(); ++b) by_group.push_back({group_of_[b], int(b)});
+        std::stable_sort(by_group.begin(), by_group.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        for (std::size_t k = 0; k < by_group.size(); ++k) {
+            if (k == 0 || by_group[k].first != by_group[k - 1].first || !def_.step.body_contact) units_.emplace_back();
+            units_.back().push_back(by_group[k].second);
+        }
+        std::sort(units_.begin(), units_.end(), [](const auto& x, const auto& y) { return x.front() < y.front(); });
+    }
+    const long n = long(units_.size());
+    std::vector<char> active(units_.size(), 1);
+    // No more threads than units: an idle thread only adds a barrier per frame interval.
     const int threads = std::max(1, std::min<int>(int(n), def_.threads > 0 ? def_.threads : omp_get_max_threads()));
+    std::vector<BodyImpacts>* impacts = obstacles_.has_buildings() ? &impacts_ : nullptr;
     while (time_ < t) {
         const double next = flow_->next_frame_time(time_);
         const double t_next = next > time_ ? std::min(t, next) : t;  // past the last frame the flow is held
@@ -281,12 +301,21 @@ void World::advance_to(double t) {
 #pragma omp parallel num_threads(threads)
             {
                 StepScratch scratch;
+                GroupScratch group_scratch;
 #pragma omp for schedule(dynamic, 1)
-                for (long b = 0; b < n; ++b) {
-                    if (!active[b]) continue;
-                    if (advance_body(ctx, params_[b], states_[b], stats_[b], t_next, scratch,
-                                     obstacles_.has_buildings() ? &impacts_[std::size_t(b)] : nullptr))
-                        active[b] = 0;
+                for (long u = 0; u < n; ++u) {
+                    if (!active[u]) continue;
+                    const std::vector<int>& unit = units_[std::size_t(u)];
+                    bool done;
+                    if (unit.size() == 1) {
+                        const std::size_t b = std::size_t(unit.front());
+                        done =
+                            advance_body(ctx, params_[b], states_[b], stats_[b], t_next, scratch, impacts ? &impacts_[b] : nullptr);
+                    } else {
+                        BodyGroup group{unit, params_, states_, stats_, impacts};
+                        done = advance_group(ctx, group, t_next, group_scratch);
+                    }
+                    if (done) active[u] = 0;
                 }
             }
             if (std::none_of(active.begin(), active.end(), [](char a) { return a != 0; })) break;

@@ -1,7 +1,10 @@
-// Many independent bodies replayed through one flow. The world owns the flow reader
-// and the obstacle map; advance_to(t) walks frame interval by frame interval, loading
-// each pair of frames once, and advances every body through it (in parallel with
-// OpenMP; each body is independent, so results do not depend on the thread count).
+// Bodies replayed through one flow. The world owns the flow reader and the obstacle map;
+// advance_to(t) walks frame interval by frame interval, loading each pair of frames once,
+// and advances every body through it. Bodies of one group (a run: a yard's bodies, the
+// bodies of one `flotsam debris`) meet each other and step together
+// (debris/body_contact.hpp); bodies of different groups never meet. Groups go in
+// parallel with OpenMP, each in a fixed order, so results do not depend on the thread
+// count.
 // With read_ahead, the frame the next interval needs is read meanwhile on one more
 // thread.
 #pragma once
@@ -37,7 +40,7 @@ WorldDef default_world_def();
 
 // The settings of the step and of the flow replay (common/settings.hpp; defaults: the
 // structs' initialisers): options of `flotsam debris`, keys of a sweep's [sweep] table.
-const Settings<StepDef>& step_settings();               // dt-max, vertex-step-fraction, integrator
+const Settings<StepDef>& step_settings();               // dt-max, vertex-step-fraction, integrator, body-contact
 const Settings<FlowReaderDef>& flow_replay_settings();  // time-interpolation
 
 // `def` with the settings that are lengths or times set for these bodies: they follow the
@@ -91,9 +94,10 @@ public:
     World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def = default_world_def(),
           const Ground* ground = nullptr);
 
-    // Adds a body at the current time (its position in the flow's own coordinates);
-    // returns its index.
-    std::size_t add_body(const BodyDef& def);
+    // Adds a body at the current time (its position in the flow's own coordinates) to
+    // group `group` (bodies of a group meet each other; < 0: a group of its own); returns
+    // its index.
+    std::size_t add_body(const BodyDef& def, int group = -1);
     void advance_to(double t);
 
     double time() const { return time_; }
@@ -135,6 +139,8 @@ private:
     std::vector<BodyParams> params_;  // cold, read only
     std::vector<BodyStats> stats_;
     std::vector<BodyImpacts> impacts_;  // cold, written on events
+    std::vector<int> group_of_;         // per body
+    std::vector<std::vector<int>> units_;  // the bodies stepped together, in order of their first body (rebuilt after add_body)
 };
 
 // The flow file opened for a world with `def` (its replay settings, and as many decoding
@@ -148,10 +154,11 @@ std::unique_ptr<FlowReader> open_flow(const std::string& path, const WorldDef& d
 // none) the bodies stand on its ground and keep off its buildings too. Used by every
 // flow of a sweep (`flotsam debris` is a sweep of one); the reader is the world's from
 // then on.
+// `groups`: each body's group (World::add_body; empty: each alone).
 World make_world(std::unique_ptr<FlowReader> flow, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
-                 const Scene* ground = nullptr);
+                 const Scene* ground = nullptr, const std::vector<int>& groups = {});
 // The same, opening the flow file at `flow_path`.
 World make_world(const std::string& flow_path, const Scene* scene, const std::vector<BodyDef>& bodies, const WorldDef& def,
-                 const Scene* ground = nullptr);
+                 const Scene* ground = nullptr, const std::vector<int>& groups = {});
 
 }  // namespace flotsam::debris

@@ -12,7 +12,8 @@
 //   per trajectory: start_name, source, body_type, contact_model, collision_model (strings), cd1, cd2, cm, mu,
 //                   restitution, length, width, height, specific_gravity (double),
 //                   added_yaw_inertia, collision_steps, unresolved_collisions,
-//                   axis_shift_steps, jammed_steps (int), largest_residual_overlap (double [m])
+//                   axis_shift_steps, jammed_steps, body_contact_steps (int), largest_residual_overlap,
+//                   largest_body_overlap (double [m])
 //   impact_*(impact)           the impacts on buildings, where there were any
 //                              (formats/impact_file.hpp)
 //   crs                        the flow's CF grid mapping, when it has one (yaw ... status

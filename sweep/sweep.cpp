@@ -83,7 +83,7 @@ SweepResult describe_sweep(const SweepInputs& in, const SweepRunDef& def) {
 // The work of this shard, flow by flow, before any body steps: refused past the bounds
 // (common/checks.hpp) unless allowed.
 void check_shard_work(const SweepInputs& in, const SweepRunDef& def) {
-    const std::array<int, 2> range = shard_range(int(in.members.size()), def.shard);
+    const std::array<int, 2> range = shard_range(in.members, def.shard);
     double body_steps = 0.0;
     for (int f = 0; f < int(in.flows.size()); ++f) {
         double on_flow = 0;
@@ -127,9 +127,13 @@ void run_flow(SweepInputs& in, const SweepRunDef& def, int f, const std::vector<
               SweepRunStats& st) {
     const SweepSpec& spec = in.spec;
     std::vector<debris::BodyDef> bodies;
-    for (const Member* m : on_flow) bodies.push_back(m->def);
+    std::vector<int> runs;
+    for (const Member* m : on_flow) {
+        bodies.push_back(m->def);
+        runs.push_back(m->run);
+    }
     debris::World world =
-        debris::make_world(std::move(in.flows[std::size_t(f)]), in.scene.get(), bodies, in.world, in.ground.get());
+        debris::make_world(std::move(in.flows[std::size_t(f)]), in.scene.get(), bodies, in.world, in.ground.get(), runs);
     debris::TrajectorySeries series;
     debris::record(world, series);
     const std::string label = !def.progress_label.empty()
@@ -161,6 +165,8 @@ void run_flow(SweepInputs& in, const SweepRunDef& def, int f, const std::vector<
         rec.unresolved_collisions = int(bs.unresolved);
         rec.largest_residual_overlap = bs.max_residual_overlap;
         rec.jammed_steps = int(bs.jams);
+        rec.body_contact_steps = int(bs.body_contacts);
+        rec.largest_body_overlap = bs.max_body_overlap;
         rec.axis_shift_steps = int(bs.axis_shifts);
         rec.track = std::move(series.tracks[b]);
         for (const Impact& i : impacts)
@@ -181,7 +187,7 @@ void run_flow(SweepInputs& in, const SweepRunDef& def, int f, const std::vector<
 
 SweepResult run_sweep(SweepInputs& in, const SweepRunDef& def, SweepRunStats* stats) {
     const auto wall0 = std::chrono::steady_clock::now();
-    const auto range = shard_range(int(in.members.size()), def.shard);
+    const auto range = shard_range(in.members, def.shard);
     SweepResult r = describe_sweep(in, def);
     SweepRunStats st;
     for (int f = 0; f < int(in.spec.flows.size()); ++f) {

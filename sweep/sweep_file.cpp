@@ -82,6 +82,7 @@ struct MemberVariables {
     int id, member, flow_index, flow, body, start, perturbation, variant, contact, collision, param_set, label;
     std::vector<int> coefficients, shape, model;
     int x0, y0, heading0, collision_steps, unresolved, axis_shift_steps, residual, jammed;
+    int run, body_contact_steps, body_overlap;
 };
 
 MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText& t) {
@@ -117,6 +118,9 @@ MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText
     v.axis_shift_steps = var("axis_shift_steps", NC_INT, "", "steps rotated about the contact centroid");
     v.jammed = var("jammed_steps", NC_INT, "", "steps undone because the collision passes could not clear the overlap");
     v.residual = var("largest_residual_overlap", NC_DOUBLE, "m", "deepest obstacle overlap left after collision handling");
+    v.run = var("run", NC_INT, "", "the run the member was part of: members of one run shared a world and met each other");
+    v.body_contact_steps = var("body_contact_steps", NC_INT, "", "steps with a contact with another body of its run");
+    v.body_overlap = var("largest_body_overlap", NC_DOUBLE, "m", "deepest overlap with another body left after collision handling");
     return v;
 }
 
@@ -145,6 +149,9 @@ void put_member_variables(nc::File& f, const MemberVariables& v, const MemberTex
     f.put(v.residual, column<double>(ms, &MemberRecord::largest_residual_overlap));
     f.put(v.jammed, column<int>(ms, &MemberRecord::jammed_steps));
     f.put(v.axis_shift_steps, column<int>(ms, &MemberRecord::axis_shift_steps));
+    f.put(v.run, column<int>(ms, &MemberRecord::run));
+    f.put(v.body_contact_steps, column<int>(ms, &MemberRecord::body_contact_steps));
+    f.put(v.body_overlap, column<double>(ms, &MemberRecord::largest_body_overlap));
 }
 
 void put_sweep_attributes(nc::File& f, const SweepResult& r) {
@@ -296,9 +303,9 @@ void read_sweep_tables(nc::File& f, const std::string& path, SweepResult& r) {
 
 // The per-trajectory columns of the members, read whole.
 struct MemberColumns {
-    std::vector<int> id, flow, perturbation, param_set, collision_steps, unresolved, axis_shift_steps, jammed;
+    std::vector<int> id, flow, perturbation, param_set, collision_steps, unresolved, axis_shift_steps, jammed, run, body_contacts;
     std::vector<std::string> body, start, variant, contact, collision;
-    std::vector<double> x0, y0, heading0, residual;
+    std::vector<double> x0, y0, heading0, residual, body_overlap;
     std::vector<debris::BodyDef> defs;
 
     MemberColumns(nc::File& f, const std::string& path, std::size_t nm) : defs(nm) {
@@ -316,6 +323,10 @@ struct MemberColumns {
         // Optional: a file without it reads as no overlap left.
         residual = f.has_var("largest_residual_overlap") ? doubles("largest_residual_overlap") : std::vector<double>(nm, 0.0);
         jammed = f.has_var("jammed_steps") ? ints("jammed_steps") : std::vector<int>(nm, 0);
+        // Optional: a file without them had every member alone in its world.
+        run = f.has_var("run") ? ints("run") : id;
+        body_contacts = f.has_var("body_contact_steps") ? ints("body_contact_steps") : std::vector<int>(nm, 0);
+        body_overlap = f.has_var("largest_body_overlap") ? doubles("largest_body_overlap") : std::vector<double>(nm, 0.0);
         get_setting_vars(f, debris::body_coefficient_settings(), defs);
         get_setting_vars(f, debris::body_shape_settings(), defs);
         get_setting_vars(f, debris::body_model_settings(), defs, "", false);  // recorded since the settings tables
@@ -352,6 +363,9 @@ MemberRecord member_of(const MemberColumns& c, std::size_t b, const SweepResult&
     m.largest_residual_overlap = c.residual[b];
     m.jammed_steps = c.jammed[b];
     m.axis_shift_steps = c.axis_shift_steps[b];
+    m.run = c.run[b];
+    m.body_contact_steps = c.body_contacts[b];
+    m.largest_body_overlap = c.body_overlap[b];
     return m;
 }
 

@@ -28,6 +28,8 @@ struct MemberRecord : MemberIndex {
     int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
     double largest_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
     int jammed_steps = 0;                   // steps undone because the passes could not clear the overlap
+    int body_contact_steps = 0;             // steps with a contact with another body of its run
+    double largest_body_overlap = 0.0;      // deepest overlap with another body left after collision handling [m]
     debris::Track track;  // on SweepResult::time
     std::vector<Impact> impacts;  // on buildings, by time (Impact::trajectory: unused here, the file's index when written)
 };

@@ -135,6 +135,9 @@ struct SweepSpec {
     // The members keep their bodies' coefficients as given, no parameter set applied
     // (`flotsam debris`: a sweep of one control run). False for specs.
     bool bodies_as_given = false;
+    // Every body of the spec is in one run (`flotsam debris`); false: the bodies of one GIS
+    // source feature (a yard) share a run, any other body runs alone.
+    bool one_world = false;
 };
 
 // What the command line sets over a spec's own: scene, ground and flows ("" and empty:
@@ -161,6 +164,7 @@ struct MemberIndex {
     int perturbation = 0;  // 0: the exact start; k > 0: the k-th perturbed start
     int variant = 0;       // index into spec.variants
     int param_set = 0;     // index into spec.params
+    int run = 0;           // the run it is part of: the members of one run share a world and meet each other
 };
 struct Member : MemberIndex {
     debris::BodyDef def;  // the body as run (name = the body's name)
@@ -170,10 +174,20 @@ struct Member : MemberIndex {
 // entry's own times the set's value over the spec's control value.
 ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const ParamValues& set);
 
-// All members, flow outermost, then body, perturbation, variant, parameter set.
+// The bodies that share a run, in the order of their first body: a source's bodies (every
+// body of one GIS feature), all of them with one_world, any other body alone.
+std::vector<std::vector<int>> body_runs(const SweepSpec& spec);
+
+// All members, flow outermost, then the bodies' runs (body_runs), perturbation, variant,
+// parameter set and the run's bodies: a run's members are consecutive (for a spec of
+// bodies that each run alone: flow, body, perturbation, variant, parameter set).
 std::vector<Member> enumerate_members(const SweepSpec& spec);
 
-// The start of body `b`'s k-th perturbed start (k = 0: unperturbed): x, y [m], heading [rad].
+// The k-th perturbed start (k = 0: unperturbed) of the bodies `bodies` (one run): x, y
+// [m], heading [rad] each. Perturbed, a run moves as a whole: one offset of its bodies'
+// centroid and one turn about it, drawn from its first body's stream.
+std::vector<std::array<double, 3>> perturbed_starts(const SweepSpec& spec, const std::vector<int>& bodies, int k);
+// The same for one body alone.
 std::array<double, 3> perturbed_start(const SweepSpec& spec, int body, int k);
 
 // Shard i of n: the contiguous member ids [first, last).
@@ -182,5 +196,7 @@ struct Shard {
 };
 Shard parse_shard(const std::string& text);  // "i/n", 0 <= i < n
 std::array<int, 2> shard_range(int members, const Shard& shard);
+// The same over whole runs (a run's members are never split between shards).
+std::array<int, 2> shard_range(const std::vector<Member>& members, const Shard& shard);
 
 }  // namespace flotsam::sweep

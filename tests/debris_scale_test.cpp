@@ -40,14 +40,17 @@ double overlap_with_buildings(const World& w, std::size_t b) {
 // Nothing acts along the wall (walls are frictionless, e acts on the normal component,
 // the inertia force is normal to the wall), so the centre's velocity along the wall stays
 // speed cos(angle) through every impact and the sliding: by hand.
-void slides_along_wall(const BodyDef& body, const Grid& g, double wall_y, double speed, double angle, double omega,
-                       double seconds, const char* label) {
+void slides_along_wall(const BodyDef& body, const Grid& g, double wall_y, double speed, double angle, double omega, double seconds,
+                       const char* label) {
     const auto dir = test::scratch_dir(std::string("scale_wall_") + label);
     const double depth = 20.0 * body.height, a = 0.1;  // afloat everywhere [m], [m/s²]
     std::vector<double> times;
     for (double t = 0.0; t <= seconds + 1.0; t += 1.0) times.push_back(t);
-    const auto path = test::write_flow(dir + "/pushing.nc", g, times, [&](double, double) { return -depth; },
-                                       [&](double, double, double t) { return test::FlowState{float(depth), 0.0f, float(a * t)}; });
+    const auto path = test::write_flow(
+        dir + "/pushing.nc", g, times, [&](double, double) { return -depth; },
+        [&](double, double, double t) {
+            return test::FlowState{float(depth), 0.0f, float(a * t)};
+        });
     std::vector<std::uint8_t> wall(g.size(), 0);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) wall[g.index(i, j)] = g.y(j) > wall_y ? 1 : 0;
@@ -69,9 +72,10 @@ void slides_along_wall(const BodyDef& body, const Grid& g, double wall_y, double
         fastest = std::max(fastest, w.states()[0].vx);
     }
     const BodyStats& st = w.stats()[0];
-    std::printf("%s: %ld collision steps, %ld jammed, %ld unresolved; speed along the wall %.6f to %.6f m/s (by hand %.6f); "
-                "deepest overlap %.3g m (tolerance %.3g m)\n",
-                label, st.collisions, st.jams, st.unresolved, slowest, fastest, along, worst, tolerance);
+    std::printf(
+        "%s: %ld collision steps, %ld jammed, %ld unresolved; speed along the wall %.6f to %.6f m/s (by hand %.6f); "
+        "deepest overlap %.3g m (tolerance %.3g m)\n",
+        label, st.collisions, st.jams, st.unresolved, slowest, fastest, along, worst, tolerance);
     EXPECT_GT(st.collisions, 50) << label;  // it met the wall and was held against it
     EXPECT_EQ(st.jams, 0) << label;
     EXPECT_EQ(st.unresolved, 0) << label;
@@ -136,13 +140,15 @@ TEST(DebrisScale, LandBlocksOnlyWhereItsWaterIsShallowerThanTheDraft) {
         for (int k = 1; k <= 160; ++k) {
             w.advance_to(0.05 * k);
             const BodyState& s = w.states()[0];
-            for (const Vec2& c : Box::make({s.x, s.y}, s.theta, body.length, body.width).corners()) worst = std::max(worst, c.x - 0.3);
+            for (const Vec2& c : Box::make({s.x, s.y}, s.theta, body.length, body.width).corners())
+                worst = std::max(worst, c.x - 0.3);
         }
         const BodyState& s = w.states()[0];
         const BodyStats& st = w.stats()[0];
-        std::printf("water over the land %.1f d: centre at x = %.4f m, heading %.1f degrees after 8 s, %ld collision steps, %ld "
-                    "jammed; easternmost point %.3g m past the edge\n",
-                    over_land, s.x, s.theta / deg, st.collisions, st.jams, worst);
+        std::printf(
+            "water over the land %.1f d: centre at x = %.4f m, heading %.1f degrees after 8 s, %ld collision steps, %ld "
+            "jammed; easternmost point %.3g m past the edge\n",
+            over_land, s.x, s.theta / deg, st.collisions, st.jams, worst);
         if (over_land > 1.0) {
             EXPECT_GT(s.x, 0.5 + 0.125) << "floats over the land and past it";
             EXPECT_EQ(st.collisions, 0);
@@ -184,7 +190,8 @@ TEST(DebrisScale, GroundedBodyFacesAreWettedFromItsBottom) {
     ASSERT_TRUE(rest.on_ground);
     EXPECT_NEAR(rest.bottom, -0.015, 1e-9);
     const Motion at_rest{{0.0, 0.0}, 0.0, {0.0, 0.0}, 0.0, 0.0, {0.0, 0.0}};
-    const FluidLoad load = fluid_load(flow, p, at_rest, box, centre, p.plan_area * std::min(p.draft, centre.depth), 0.0, 1000.0, rest);
+    const FluidLoad load =
+        fluid_load(flow, p, at_rest, box, centre, p.plan_area * std::min(p.draft, centre.depth), 0.0, 1000.0, rest);
     EXPECT_NEAR(load.force.x, 9.0e-3, 9.0e-5);
     EXPECT_NEAR(load.force.y, 0.0, 1e-12);
     EXPECT_NEAR(load.torque, 0.0, 1e-12);

@@ -91,8 +91,9 @@ TEST(StepShortcuts, WholeFootprintCellsAreTheCornerTestsAnswer) {
 }
 
 // The contact scan with the block maxima against every blocked cell checked one by one:
-// a contact for each blocked cell the body reaches into (by more than 1 nm), none for a
-// cell it stays clear of (by 1 nm); the ground test against a plain scan of the cells
+// a contact for each blocked cell on a wall's edge (a side open) that the body reaches into
+// (by more than 1 nm; a cell inside a wall has no side to push out through and gives
+// none), none for a cell it stays clear of (by 1 nm); the ground test against a plain scan of the cells
 // within a cell of the body's bounding box. The poses: a corner of the body 2 mm into a
 // building's corner cell, 0.5 mm short of it, a body across the grid's edge and one just
 // inside it, one whose cells reach a block that holds a wall but not the wall itself,
@@ -122,7 +123,8 @@ TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
             for (int i = -20; i < g.nx + 20; ++i) {
                 if (!blocked(i, j)) continue;
                 const double d = overlap_depth(box, Vec2{g.x0 + i * g.dx, g.y0 + j * g.dy}, hx, hy);
-                deep += d > 1e-9 ? 1 : 0;
+                const bool edge = !blocked(i + 1, j) || !blocked(i - 1, j) || !blocked(i, j + 1) || !blocked(i, j - 1);
+                deep += d > 1e-9 && edge ? 1 : 0;
                 touching += d > -1e-9 ? 1 : 0;
             }
         // The highest open ground under the body: cells it reaches into by more than 1 µm.

@@ -99,7 +99,7 @@ struct UtmPort {
     Grid grid{100, 60, 518001.0, 3779001.0, 2.0, 2.0};
     OGRSpatialReference utm, wgs84;
 
-    explicit UtmPort(const std::string& name) : dir(test::scratch_dir(name)) {
+    explicit UtmPort(const std::string& name, int seconds = 4, float current = 0.5f) : dir(test::scratch_dir(name)) {
         gdal::init();
         utm.importFromEPSG(32653);
         wgs84.importFromEPSG(4326);
@@ -121,14 +121,14 @@ struct UtmPort {
         FlowFileDef def;
         def.window = grid;
         def.crs = s.crs;
-        for (int k = 0; k <= 4; ++k) def.frame_times.push_back(k);
+        for (int k = 0; k <= seconds; ++k) def.frame_times.push_back(k);
         def.z.assign(s.z.begin(), s.z.end());
         flow = dir + "/flow.nc";
         FlowWriter w(flow, def);
         std::vector<float> h(grid.size()), u(grid.size()), v(grid.size(), 0.0f);
         for (std::size_t c = 0; c < grid.size(); ++c) {
             h[c] = s.building[c] ? 0.0f : 2.0f;
-            u[c] = s.building[c] ? 0.0f : 0.5f;
+            u[c] = s.building[c] ? 0.0f : current;
         }
         for (std::size_t k = 0; k < def.frame_times.size(); ++k) w.write_frame(k, h, u, v);
         w.write_summary(v, v, v);
@@ -272,4 +272,65 @@ TEST(DebrisSourcesCli, ASweepTakesItsBodiesFromSourceLayers) {
     EXPECT_EQ(st.get_int(st.var("group_members")), (std::vector<int>{6, 6}));
     std::ifstream a(port.dir + "/whole.nc", std::ios::binary), b(port.dir + "/merged.nc", std::ios::binary);
     EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {}));
+}
+
+namespace {
+
+bool same_bytes(const std::string& a, const std::string& b) {
+    std::ifstream x(a, std::ios::binary), y(b, std::ios::binary);
+    return x && y && std::equal(std::istreambuf_iterator<char>(x), {}, std::istreambuf_iterator<char>(y), {});
+}
+
+}  // namespace
+
+// A yard of 40 ft containers packed 0.5 m apart (3 along x by 6 across: 18) 1.5 m from a
+// building's west face, carried onto it by a 1 m/s current over 40 s: its bodies share one world per
+// run and meet, the ones behind stopped by those in front. The sweep (two flows, the exact
+// start and one perturbed, the yard moved as a whole) gives the same bytes on 1 and 2
+// threads and from two shards merged; `flotsam debris` of the same layer lets them meet
+// too, and with --no-body-contact they pass through each other.
+TEST(DebrisSourcesCli, AYardsBodiesMeetInOneRunWithTheSameBytesOnAnyThreadsAndShards) {
+    const UtmPort port("sources_meet", 40, 1.0f);
+    const Ring yard = rectangle(518110.0, 3779080.5, 38.5, 17.5, 0.0);
+    const std::string layer = port.layer("yards", {port.polygon(yard, R"("type":"container_40ft","gap":0.5)")});
+    const std::string spec = test::write_file(port.dir, "meet.toml",
+                                              "[sweep]\noutput-interval = 1\nscene = \"" + port.scene + "\"\n[flows]\npaths = [\"" +
+                                                  port.flow + "\", \"" + port.flow + "\"]\n[[sources]]\nfile = \"" + layer +
+                                                  "\"\n[perturbation]\ncount = 1\nposition-std = 0.5\nheading-std = 2\nseed = 4\n");
+    std::string out;
+    const auto sweep = [&](const std::string& args, const std::string& file) {
+        return test::run_cli("sweep --spec " + spec + " --quiet " + args + " --out " + port.dir + "/" + file, &out);
+    };
+    ASSERT_EQ(sweep("--threads 1", "one.nc"), 0) << out;
+    ASSERT_EQ(sweep("--threads 2", "two.nc"), 0) << out;
+    ASSERT_EQ(sweep("--threads 2 --shard 0/2", "part0.nc"), 0) << out;
+    ASSERT_EQ(sweep("--threads 1 --shard 1/2", "part1.nc"), 0) << out;
+    ASSERT_EQ(test::run_cli("sweep merge " + port.dir + "/part0.nc " + port.dir + "/part1.nc --out " + port.dir + "/merged.nc", &out), 0)
+        << out;
+    EXPECT_TRUE(same_bytes(port.dir + "/one.nc", port.dir + "/two.nc"));
+    EXPECT_TRUE(same_bytes(port.dir + "/one.nc", port.dir + "/merged.nc"));
+    EXPECT_TRUE(same_bytes(port.dir + "/one.csv", port.dir + "/merged.csv"));
+    nc::File f = nc::File::open_read(port.dir + "/one.nc");
+    const auto runs = f.get_int(f.var("run")), contacts = f.get_int(f.var("body_contact_steps"));
+    const auto overlap = f.get_double(f.var("largest_body_overlap"));
+    ASSERT_EQ(runs.size(), 72u);  // 2 flows x 2 starts x 18 bodies: 4 runs of 18
+    for (std::size_t k = 0; k < runs.size(); ++k) EXPECT_EQ(runs[k], int(k / 18)) << k;
+    int met = 0;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        met += contacts[k] > 0 ? 1 : 0;
+        EXPECT_LE(overlap[k], 1e-3 * 2.0) << k;  // a thousandth of the 2 m cells
+    }
+    EXPECT_GT(met, 36) << "most bodies meet another";
+    // The perturbed start moves the yard as a whole: the same offset for all its bodies.
+    const auto x0 = f.get_double(f.var("x0")), y0 = f.get_double(f.var("y0"));
+    const double dx = x0[18] - x0[0], dy = y0[18] - y0[0];
+    EXPECT_GT(std::hypot(dx, dy), 1e-3);
+    // flotsam debris: the layer's bodies in one world; apart with --no-body-contact.
+    const std::string debris = "debris --flow " + port.flow + " --scene " + port.scene + " --sources " + layer + " --quiet --out ";
+    ASSERT_EQ(test::run_cli(debris + port.dir + "/together.nc", &out), 0) << out;
+    ASSERT_EQ(test::run_cli(debris + port.dir + "/alone.nc --no-body-contact", &out), 0) << out;
+    nc::File t = nc::File::open_read(port.dir + "/together.nc"), a = nc::File::open_read(port.dir + "/alone.nc");
+    const auto together = t.get_int(t.var("body_contact_steps")), alone = a.get_int(a.var("body_contact_steps"));
+    EXPECT_GT(*std::max_element(together.begin(), together.end()), 0);
+    EXPECT_EQ(*std::max_element(alone.begin(), alone.end()), 0);
 }
