@@ -93,6 +93,7 @@ int def_time(nc::File& f, int dim, const std::string& name, const std::string& l
     f.put_att(id, "calendar", std::string("standard"));
     if (axis) f.put_att(id, "axis", std::string("T"));
     if (!long_name.empty()) f.put_att(id, "long_name", long_name);
+    f.put_att(id, "comment", std::string(time_origin));
     return id;
 }
 

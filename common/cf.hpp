@@ -14,8 +14,12 @@
 namespace flotsam::cf {
 
 inline constexpr const char* conventions = "CF-1.11";
-// A flume run has no date; a fixed epoch lets CF tools decode the times anyway.
+// A flume run has no date; a fixed epoch lets CF tools decode the times anyway. It stands
+// for the start of the run, and every time variable says so (time_origin).
 inline constexpr const char* time_units = "seconds since 2000-01-01 00:00:00";
+inline constexpr const char* time_origin =
+    "t = 0 is the start of the run (time 0 of its boundary records); the run has no calendar date, so the units' "
+    "2000-01-01 00:00:00 stands for that start and a clock time (QGIS, ncview) reads as the time since it";
 // NetCDF's default fill value of doubles (NC_FILL_DOUBLE): "no value" in every file.
 inline constexpr double fill_value = 9.969209968386869e36;
 

@@ -47,8 +47,9 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
                                .grid_mapping = grid_mapping});
     };
     h_ = field3("h", flow_names::depth, "m", "water depth (0 where dry)");
-    u_ = field3("u", flow_names::x_velocity, "m s-1", "depth-averaged velocity toward +x (0 where dry)");
-    v_ = field3("v", flow_names::y_velocity, "m s-1", "depth-averaged velocity toward +y (0 where dry)");
+    // The long names differ only in "x-"/"y-component of": QGIS (MDAL) pairs them as one vector.
+    u_ = field3("u", flow_names::x_velocity, "m s-1", "x-component of depth-averaged velocity (0 where dry)");
+    v_ = field3("v", flow_names::y_velocity, "m s-1", "y-component of depth-averaged velocity (0 where dry)");
 
     auto field2 = [&](const char* name, const char* units, const char* long_name) {
         return cf::def_var(f, {.name = name,
@@ -74,7 +75,8 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
                                  .long_name = "highest water level over the run (z + max_depth)",
                                  .chunks = {cy, cx},
                                  .deflate = def.deflate_level,
-                                 .fill = true});
+                                 .fill = true,
+                                 .grid_mapping = grid_mapping});
     f.put_att(max_level_, "cell_methods", std::string("time: maximum"));
     f.put_att(max_level_, "comment", std::string("fill value where the cell was never wet"));
     flooded_ = cf::def_var(f, {.name = "flooded",
@@ -82,7 +84,8 @@ FlowWriter::FlowWriter(const std::string& path, const FlowFileDef& def) : file_(
                                .dims = {dy, dx},
                                .long_name = "1 where the water depth exceeded flood_depth at some time in the run",
                                .chunks = {cy, cx},
-                               .deflate = def.deflate_level});
+                               .deflate = def.deflate_level,
+                               .grid_mapping = grid_mapping});
     f.put_att(flooded_, "flag_values", std::vector<std::int8_t>{0, 1});
     f.put_att(flooded_, "flag_meanings", std::string("dry flooded"));
     f.put_att(flooded_, "flood_depth", def.flood_depth);

@@ -2,12 +2,14 @@
 // per run.
 //
 //   time(time)            double, "seconds since 2000-01-01 00:00:00" (a fixed epoch: a
-//                         flume run has no date; tools still parse the units)
+//                         flume run has no date; tools still parse the units); its
+//                         comment says the epoch stands for the start of the run
 //   x(x), y(y)            double [m], cell centres of the output window
 //   z(y, x)               float [m] bed elevation above still water, positive up
 //   h(time, y, x)         float [m]     standard_name sea_floor_depth_below_sea_surface
 //   u(time, y, x)         float [m s-1] standard_name sea_water_x_velocity
-//   v(time, y, x)         float [m s-1] standard_name sea_water_y_velocity
+//   v(time, y, x)         float [m s-1] standard_name sea_water_y_velocity; long names
+//                         "x-/y-component of ..." so QGIS pairs u, v as one vector
 //                         dry cells: h = 0, u = v = 0 (never NaN)
 //   max_depth(y, x), max_speed(y, x)        over the whole run, sampled every step
 //   arrival_time(y, x)    [s] first time h > arrival_depth (attribute); fill where never
@@ -18,7 +20,8 @@
 //   gauge_* (gauge_time, gauge)             level, depth and velocity at named points
 //   :dry_depth_m          global attribute, the run's dry tolerance [m] (text or number)
 //   crs                   the scene's CF grid mapping, when it has one; every (y, x) and
-//                         (time, y, x) field then names it (grid_mapping = "crs")
+//                         (time, y, x) field then names it (grid_mapping = "crs"), so
+//                         QGIS reads them all as one mesh
 //
 // h, u, v are chunked one frame deep in tiles (1, 64, 64) with shuffle + deflate, so a
 // reader that wants a small window of one or two frames decompresses little.
