@@ -71,7 +71,7 @@ def read_sweep(path):
 def read_scene(path):
     with netCDF4.Dataset(path) as ds:
         s = {"x": np.asarray(ds["x"][:], dtype=float), "y": np.asarray(ds["y"][:], dtype=float),
-             "z": np.asarray(ds["z"][:], dtype=float)}
+             "z": np.asarray(ds["z"][:], dtype=float), "crs": grid_mapping(ds)}
         if "building_id" in ds.variables:
             s["building_id"] = np.asarray(ds["building_id"][:], dtype=int)
         elif "building" in ds.variables:
@@ -79,6 +79,12 @@ def read_scene(path):
         else:
             s["building_id"] = np.zeros(s["z"].shape, dtype=int)
     return s
+
+
+def grid_mapping(ds):
+    """The attributes of the scene's CF grid-mapping variable (empty: local metres)."""
+    name = getattr(ds["z"], "grid_mapping", "")
+    return {a: ds[name].getncattr(a) for a in ds[name].ncattrs()} if name in ds.variables else {}
 
 
 def components(mask):
@@ -269,21 +275,38 @@ def write_masks(results, scene, path):
         ds.createDimension("source", len(results))
         ds.createDimension("y", len(scene["y"]))
         ds.createDimension("x", len(scene["x"]))
-        for axis in ("x", "y"):
+        # Georeferenced as the scene: projection coordinates and its grid mapping (GDAL, QGIS).
+        for axis, direction in (("x", "east"), ("y", "north")):
             v = ds.createVariable(axis, "f8", (axis,))
             v[:] = scene[axis]
             v.units = "m"
+            v.standard_name = f"projection_{axis}_coordinate"
+            v.axis = axis.upper()
+            v.long_name = f"{axis} of cell centre ({direction})"
+        if scene["crs"]:
+            crs = ds.createVariable("crs", "i4")
+            crs.setncatts(scene["crs"])
         name = ds.createVariable("source", str, ("source",))
+        name.long_name = "debris source (GIS feature or body) of each region"
         for k, r in enumerate(results):
             name[k] = r["source"]
+
+        def gridded(var, kind, long_name):
+            v = ds.createVariable(var, kind, ("source", "y", "x"), zlib=True)
+            v.long_name = long_name
+            v.coordinates = "source"
+            if scene["crs"]:
+                v.grid_mapping = "crs"
+            return v
         for var, key, long_name in (("region_inflow", "region_in", "within the half-angle of the inflow, flooded"),
                                     ("region_outflow", "region_out", "within the half-angle of the outflow, flooded")):
-            v = ds.createVariable(var, "i1", ("source", "y", "x"), zlib=True)
-            v.long_name = long_name
+            v = gridded(var, "i1", long_name)
+            v.flag_values = np.array([0, 1], dtype=np.int8)
+            v.flag_meanings = "outside inside"
             for k, r in enumerate(results):
                 v[k] = r[key].astype(np.int8)
-        v = ds.createVariable("pass_share", "f4", ("source", "y", "x"), zlib=True)
-        v.long_name = "share of the source's members whose centre passes the cell"
+        v = gridded("pass_share", "f4", "share of the source's members whose centre passes the cell")
+        v.units = "1"
         for k, r in enumerate(results):
             v[k] = r["passes"].astype(np.float32)
     os.replace(path + ".part", path)
