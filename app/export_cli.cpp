@@ -1,15 +1,20 @@
 // `flotsam export`: hazard maps as Cloud-Optimised GeoTIFF and tracks as GIS lines, in
 // the scene's CRS, for QGIS and the other GIS tools (export/gis_export.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "app/commands.hpp"
 #include "common/cf.hpp"
 #include "common/checks.hpp"
 #include "common/error.hpp"
+#include "common/netcdf.hpp"
+#include "data/gdal_support.hpp"
 #include "export/gis_export.hpp"
 
 namespace flotsam {
@@ -20,7 +25,17 @@ struct ExportOptions {
     std::string stats, scene, out_dir = "gis";
     std::vector<std::string> flows, trajectories;
     std::string tracks_format = "gpkg";
+    std::string sources, hazard_regions;
+    std::string project = "project.qgz";  // "" or "none": no project
 };
+
+// The style a written layer carries: a GeoPackage's default in layer_styles, else the
+// .qml beside the file.
+std::string style_of(const std::string& path, const std::string& layer) {
+    if (std::filesystem::path(path).extension() == ".gpkg") return gis::qgis::stored_style(path, layer);
+    std::ifstream in(std::filesystem::path(path).replace_extension(".qml"));
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 // Files of one scene only: the same CRS, the same cell size where both say, the same
 // building mask where both record it (scene_buildings_sha256).
@@ -43,6 +58,11 @@ void run_export(const ExportOptions& o) {
     check_input_file("--stats", o.stats);
     for (const auto& f : o.flows) check_input_file("--flow", f);
     for (const auto& t : o.trajectories) check_input_file("--trajectories", t);
+    check_input_file("--sources", o.sources);
+    check_input_file("--hazard-regions", o.hazard_regions);
+    const bool project = !o.project.empty() && o.project != "none";
+    if (project && std::filesystem::path(o.project).extension() != ".qgz")
+        fail("--project", o.project, "a QGIS project is written as .qgz (or give none)");
     // Everything is read and checked, each file and the files against each other, before
     // anything is written.
     std::vector<gis::SceneOf> scenes;
@@ -65,30 +85,115 @@ void run_export(const ExportOptions& o) {
         scenes.emplace_back();
         gis::write_tracks(t, track_path(t), &scenes.back(), true);
     }
+    if (!o.hazard_regions.empty()) {
+        scenes.push_back({o.hazard_regions, 0.0, "", {}});
+        gis::write_hazard_regions(o.hazard_regions, "", true, &scenes.back().crs);
+    }
+    if (!o.scene.empty() && o.stats.empty())
+        fail("--scene", o.scene, "needs --stats (the buildings layer carries its impact statistics)");
     for (std::size_t a = 1; a < scenes.size(); ++a) check_same_scene(scenes[a], scenes[0]);
+    const cf::GridMapping study_crs = scenes.empty() ? cf::GridMapping{} : scenes[0].crs;
+    if (!o.sources.empty()) gis::write_sources(o.sources, study_crs, "", true);
+    // The debris maps cover what the flows cover (bodies move only where a flow is stored).
+    if (!o.stats.empty() && !o.flows.empty()) gis::crop_maps(stats_layers, stats_grid, flow_grid);
+
+    using gis::qgis::ProjectLayer;
+    std::vector<ProjectLayer> layers;
+    double extent[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+    auto cover = [&](double x0, double y0, double x1, double y1) {
+        extent[0] = std::min(extent[0], x0);
+        extent[1] = std::min(extent[1], y0);
+        extent[2] = std::max(extent[2], x1);
+        extent[3] = std::max(extent[3], y1);
+    };
+    auto out = [&](const std::string& name) { return (std::filesystem::path(o.out_dir) / name).string(); };
+    auto add_vector = [&](const std::string& path, const std::string& layer, const std::string& name, const std::string& group,
+                          bool visible) {
+        layers.push_back({ProjectLayer::Kind::vector, path, layer, name, group, visible, style_of(path, layer)});
+    };
     auto write_maps = [&](const std::vector<gis::MapLayer>& maps, const Grid& g, const cf::GridMapping& crs,
-                          const std::string& from) {
+                          const std::string& from, const std::string& group, const std::vector<std::string>& shown) {
         for (const auto& m : maps) {
-            const std::string path = (std::filesystem::path(o.out_dir) / (m.name + ".tif")).string();
+            const std::string path = out(m.name + ".tif");
             gis::write_cog(path, g, crs, m, "flotsam export from " + from);
             std::printf("export: %s (%d x %d cells of %g m, %s)\n", path.c_str(), g.nx, g.ny, g.dx,
                         crs.empty() ? "no CRS: local metres" : crs.name().c_str());
+            const bool visible = std::find(shown.begin(), shown.end(), m.name) != shown.end();
+            const std::string units = m.units == "1" ? "" : m.units == "m s-1" ? " [m/s]" : " [" + m.units + "]";
+            layers.push_back({ProjectLayer::Kind::raster, path, "", m.title + units, group, visible, gis::qgis::raster_qml(m.style)});
         }
+        cover(g.x0 - 0.5 * g.dx, g.y0 - 0.5 * g.dy, g.x0 + (g.nx - 0.5) * g.dx, g.y0 + (g.ny - 0.5) * g.dy);
     };
-    if (!o.stats.empty()) write_maps(stats_layers, stats_grid, stats_crs, o.stats);
-    if (!o.flows.empty())
-        write_maps(flow_layers, flow_grid, flow_crs, o.flows.size() == 1 ? o.flows[0] : std::to_string(o.flows.size()) + " flows");
+    if (!o.flows.empty()) {
+        // The first flow in time, drawn over the maps when the temporal controller runs.
+        ProjectLayer mesh = gis::flow_mesh_layer(o.flows[0], flow_layers[0].style.stops.back().value);
+        mesh.group = "maps";
+        mesh.visible = false;
+        layers.push_back(mesh);
+        write_maps(flow_layers, flow_grid, flow_crs, o.flows.size() == 1 ? o.flows[0] : std::to_string(o.flows.size()) + " flows",
+                   "maps", {"inundation_depth", "max_depth"});
+    }
     for (const auto& t : o.trajectories) {
         const std::string path = track_path(t);
         const std::size_t n = gis::write_tracks(t, path);
         std::printf("export: %s (%zu tracks)\n", path.c_str(), n);
+        add_vector(path, "tracks", "tracks of " + std::filesystem::path(t).stem().string() + " (" + std::to_string(n) + ")", "debris",
+                   true);
     }
+    if (!o.stats.empty()) write_maps(stats_layers, stats_grid, stats_crs, o.stats, "debris", {"pass_probability_all"});
     if (!o.scene.empty()) {
-        if (o.stats.empty()) fail("--scene", o.scene, "needs --stats (the buildings layer carries its impact statistics)");
-        const std::string path = (std::filesystem::path(o.out_dir) / "buildings.gpkg").string();
+        const std::string path = out("buildings.gpkg");
         const std::size_t n = gis::write_building_footprints(o.scene, o.stats, path);
         std::printf("export: %s (%zu building footprints with their impact statistics)\n", path.c_str(), n);
+        add_vector(path, "buildings", "buildings: hit probability, p90 impact force", "buildings", true);
     }
+    if (!o.hazard_regions.empty()) {
+        const std::string path = out("hazard_regions.gpkg");
+        const std::size_t n = gis::write_hazard_regions(o.hazard_regions, path);
+        std::printf("export: %s (%zu hazard regions of the design standard)\n", path.c_str(), n);
+        add_vector(path, "hazard_regions", "hazard regions (±22.5°)", "regions", false);
+    }
+    if (!o.sources.empty()) {
+        const std::string path = out("sources.gpkg");
+        const std::size_t n = gis::write_sources(o.sources, study_crs, path);
+        std::printf("export: %s (%zu debris sources in the scene's CRS)\n", path.c_str(), n);
+        const gdal::Dataset d = gdal::open_vector(path);
+        for (const char* layer : {"source_points", "source_areas"})
+            if (d->GetLayerByName(layer))
+                add_vector(path, layer, std::string("sources: ") + (layer == std::string("source_areas") ? "yards" : "bodies"),
+                           "sources", true);
+    }
+    if (!project) return;
+    for (const ProjectLayer& l : layers)
+        if (l.kind == ProjectLayer::Kind::vector) {
+            const gdal::Dataset d = gdal::open_vector(l.path);
+            OGREnvelope e;
+            if (d->GetLayerByName(l.layer.c_str())->GetExtent(&e) == OGRERR_NONE) cover(e.MinX, e.MinY, e.MaxX, e.MaxY);
+        }
+    gis::qgis::Project p;
+    p.title = "flotsam: " + (o.scene.empty() ? o.out_dir : std::filesystem::path(o.scene).stem().string());
+    p.crs = study_crs;
+    // The view: where the flows are (the study's water), else everything.
+    if (!o.flows.empty())
+        std::copy_n(std::array{flow_grid.x0 - 0.5 * flow_grid.dx, flow_grid.y0 - 0.5 * flow_grid.dy,
+                               flow_grid.x0 + (flow_grid.nx - 0.5) * flow_grid.dx, flow_grid.y0 + (flow_grid.ny - 0.5) * flow_grid.dy}
+                        .begin(),
+                    4, extent);
+    p.x_min = extent[0];
+    p.y_min = extent[1];
+    p.x_max = extent[2];
+    p.y_max = extent[3];
+    p.groups = {"sources", "regions", "buildings", "debris", "maps"};
+    p.layers = layers;
+    if (!o.flows.empty()) {
+        const nc::File f = nc::File::open_read(o.flows[0]);
+        const std::vector<double> time = nc::read_finite(f, "time");
+        p.time_step = time.size() > 1 ? time[1] - time[0] : 1.0;
+    }
+    const std::string path = out(o.project);
+    gis::qgis::write_project(path, p);
+    std::printf("export: %s (QGIS project: %zu layers in groups sources, regions, buildings, debris, maps; %s)\n", path.c_str(),
+                layers.size(), study_crs.empty() ? "no CRS: local metres" : study_crs.name().c_str());
 }
 
 }  // namespace
@@ -107,7 +212,17 @@ void register_export_commands(CLI::App& app) {
     sub->add_option("--scene", o->scene,
                     "scene of --stats: also write buildings.gpkg, its building footprints with their impact statistics")
         ->check(CLI::ExistingFile);
-    sub->add_option("--out-dir", o->out_dir, "folder for the GeoTIFFs and track files")->capture_default_str();
+    sub->add_option("--sources", o->sources,
+                    "the study's debris sources (the vector file of flotsam debris --sources or a sweep's [[sources]]): "
+                    "written as sources.gpkg in the scene's CRS")
+        ->check(CLI::ExistingFile);
+    sub->add_option("--hazard-regions", o->hazard_regions,
+                    "hazard_regions.nc of pipelines/hazard_region.py: written as hazard_regions.gpkg (polygons)")
+        ->check(CLI::ExistingFile);
+    sub->add_option("--project", o->project,
+                    "the QGIS project of everything written, in --out-dir (.qgz; none: no project)")
+        ->capture_default_str();
+    sub->add_option("--out-dir", o->out_dir, "folder for the GeoTIFFs, GeoPackages and the project")->capture_default_str();
     sub->add_option("--tracks-format", o->tracks_format, "gpkg (GeoPackage), geojson or shp")
         ->check(CLI::IsMember({"gpkg", "geojson", "shp"}))
         ->capture_default_str();

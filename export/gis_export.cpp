@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -26,6 +27,15 @@ namespace flotsam::gis {
 namespace {
 
 constexpr float no_value = std::numeric_limits<float>::quiet_NaN();
+
+// Colours (light to strong): depths in blues (sea paler than land), speeds and
+// probabilities in warm colours, arrival from early (dark red) to late (blue).
+const std::vector<std::string> sea_depth_colours = {"#eff3ff", "#c6dbef", "#9ecae1", "#6baed6", "#3182bd"};
+const std::vector<std::string> land_depth_colours = {"#c7e9f8", "#6cc3ef", "#1f8fd6", "#1750a8", "#2a0f78"};
+const std::vector<std::string> flow_speed_colours = {"#fcfdbf", "#feb078", "#f1605d", "#b5367a", "#641a80"};
+const std::vector<std::string> arrival_colours = {"#67001f", "#d6604d", "#fddbc7", "#d1e5f0", "#4393c3"};
+const std::vector<std::string> probability_colours = {"#ffffb2", "#fed976", "#feb24c", "#fd8d3c", "#f03b20", "#bd0026"};
+const std::vector<std::string> debris_speed_colours = {"#0d0887", "#7e03a8", "#cc4778", "#f89540", "#f0f921"};
 
 // A value that CF files store as missing (fill value or NaN) becomes NaN.
 float as_map_value(double v, std::optional<double> fill) {
@@ -102,30 +112,159 @@ void add_field(OGRLayer& layer, const std::string& out_path, const std::string& 
 // `write(layer)`, which returns the features written, into a file of GDAL's
 // `driver_name` under a temporary name: renamed (with shapefile sidecars) when complete,
 // removed when `write` throws.
-template <class Write>
-std::size_t write_vector_layer(const std::string& out_path, const char* driver_name, const char* layer_name,
-                               const cf::GridMapping& crs, const std::string& crs_file, OGRwkbGeometryType geometry, Write write) {
+// One layer to write: its name, geometry, styles (the first the default) and writer, which
+// returns the features written.
+struct VectorLayerDef {
+    std::string name;
+    OGRwkbGeometryType geometry = wkbUnknown;
+    std::vector<qgis::NamedStyle> styles;
+    std::function<std::size_t(OGRLayer&)> write;
+};
+
+// Layers in `crs` (read from `crs_file` for messages), each written by its `write`, into a
+// file of GDAL's `driver_name` under a temporary name: renamed (with shapefile sidecars)
+// when complete, removed when a writer throws. A GeoPackage keeps the styles in its
+// layer_styles table; another format gets the default style as <stem>.qml beside it
+// (QGIS loads it with the file). The GeoPackage's dates are fixed: the same inputs give
+// the same bytes. Returns the features written.
+std::size_t write_vector_layers(const std::string& out_path, const char* driver_name, const cf::GridMapping& crs,
+                                const std::string& crs_file, const std::vector<VectorLayerDef>& defs) {
     ensure_parent_dir(out_path);
     const std::string temp = partial_name(out_path);
     remove_with_sidecars(temp);
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name);
     if (!driver) fail(out_path, "GDAL", std::string("no ") + driver_name + " driver");
+    const bool geopackage = std::string(driver_name) == "GPKG";
     std::size_t written = 0;
+    CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
     try {
         gdal::Dataset ds(driver->Create(temp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         if (!ds) fail(out_path, "GDAL", "cannot create: " + gdal::last_error());
         std::optional<OGRSpatialReference> srs;
         if (!crs.empty()) srs = gdal::spatial_ref(crs, crs_file);
-        OGRLayer* layer = ds->CreateLayer(layer_name, srs ? &*srs : nullptr, geometry, nullptr);
-        if (!layer) fail(out_path, std::string("layer '") + layer_name + "'", "cannot create: " + gdal::last_error());
-        written = write(*layer);
+        for (const VectorLayerDef& def : defs) {
+            OGRLayer* layer = ds->CreateLayer(def.name.c_str(), srs ? &*srs : nullptr, def.geometry, nullptr);
+            if (!layer) fail(out_path, "layer '" + def.name + "'", "cannot create: " + gdal::last_error());
+            written += def.write(*layer);
+            if (geopackage && !def.styles.empty()) qgis::store_styles(*ds, out_path, def.name, def.styles);
+        }
     } catch (...) {
+        CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", nullptr);
         remove_with_sidecars(temp);
         throw;
     }
+    CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", nullptr);
     remove_with_sidecars(out_path);
     rename_with_sidecars(temp, out_path);
+    if (!geopackage && defs.size() == 1 && !defs[0].styles.empty())
+        qgis::write_qml(std::filesystem::path(out_path).replace_extension(".qml").string(), defs[0].styles[0].qml);
     return written;
+}
+
+// The pieces (4-connected cells of one value) of every positive id of a grid of ids
+// (row-major, southern row first; 0: none), as polygons in the grid's coordinates.
+std::map<int, OGRMultiPolygon> polygons_of(const Grid& g, const std::vector<std::int32_t>& ids, const std::string& out_path) {
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    if (!mem) fail(out_path, "GDAL", "the MEM driver is missing");
+    gdal::Dataset raster(mem->Create("", g.nx, g.ny, 1, GDT_Int32, nullptr));
+    double gt[6];
+    gdal::geotransform(g, gt);
+    raster->SetGeoTransform(gt);
+    std::vector<std::int32_t> rows(ids.size());
+    for (int j = 0; j < g.ny; ++j)  // north-up
+        std::copy_n(ids.begin() + std::ptrdiff_t(j) * g.nx, g.nx, rows.begin() + std::ptrdiff_t(g.ny - 1 - j) * g.nx);
+    GDALRasterBand* band = raster->GetRasterBand(1);
+    if (band->RasterIO(GF_Write, 0, 0, g.nx, g.ny, rows.data(), g.nx, g.ny, GDT_Int32, 0, 0, nullptr) != CE_None)
+        fail(out_path, "polygons", "cannot fill the raster: " + gdal::last_error());
+    band->SetNoDataValue(0.0);
+    GDALDriver* memory = GetGDALDriverManager()->GetDriverByName("Memory");  // vector, in memory
+    if (!memory) memory = mem;
+    gdal::Dataset pieces(memory->Create("", 0, 0, 0, GDT_Unknown, nullptr));
+    OGRLayer* piece_layer = pieces ? pieces->CreateLayer("pieces", nullptr, wkbPolygon, nullptr) : nullptr;
+    if (!piece_layer) fail(out_path, "GDAL", "cannot create an in-memory vector layer: " + gdal::last_error());
+    OGRFieldDefn id_field("id", OFTInteger);
+    piece_layer->CreateField(&id_field);
+    if (GDALPolygonize(GDALRasterBand::ToHandle(band), GDALRasterBand::ToHandle(band->GetMaskBand()),
+                       OGRLayer::ToHandle(piece_layer), 0, nullptr, nullptr, nullptr) != CE_None)
+        fail(out_path, "polygons", "GDAL could not polygonise the cells: " + gdal::last_error());
+    std::map<int, OGRMultiPolygon> by_id;
+    piece_layer->ResetReading();
+    for (OGRFeature* raw; (raw = piece_layer->GetNextFeature()) != nullptr;) {
+        std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(raw, OGRFeature::DestroyFeature);
+        if (const OGRGeometry* geom = f->GetGeometryRef()) by_id[f->GetFieldAsInteger(0)].addGeometry(geom);
+    }
+    return by_id;
+}
+
+// ---- the styles the vector layers are written with ----
+
+// Distinct colours for categories (matplotlib's "tab10"), repeated beyond ten.
+const std::vector<std::string> category_colours = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                                   "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+
+qgis::Symbol fill(const std::string& colour, const std::string& outline, double width_mm, double opacity = 1.0) {
+    return {qgis::Symbol::Kind::fill, colour, outline, width_mm, 2.0, opacity, false};
+}
+
+std::string tracks_qml(const std::vector<std::string>& sources) {
+    qgis::VectorStyle s;
+    s.field = "source";
+    for (std::size_t k = 0; k < sources.size(); ++k)
+        s.categories.push_back(
+            {sources[k], sources[k], {qgis::Symbol::Kind::line, category_colours[k % category_colours.size()], "", 0.2, 2.0, 0.45}});
+    s.other = {qgis::Symbol::Kind::line, "#404040", "", 0.2, 2.0, 0.45};
+    if (sources.empty()) s.symbol = s.other;
+    return qgis::vector_qml(s);
+}
+
+std::string buildings_qml() {
+    qgis::VectorStyle s;
+    s.field = "hit_probability";
+    s.classes.push_back({0.0, 0.0, "not hit", fill("#dcdcdc", "#a0a0a0", 0.1)});
+    const qgis::RasterStyle p = qgis::probability_classes(probability_colours);
+    double lower = 0.0;
+    for (const qgis::ColourStop& c : p.stops) {
+        s.classes.push_back({lower, c.value, "hit by " + c.label + " of the tracks", fill(c.colour, "#5a5a5a", 0.15)});
+        lower = c.value;
+    }
+    s.labels.expression = "CASE WHEN \"force_p90_N\" IS NOT NULL THEN 'p90 ' || format_number(\"force_p90_N\" / 1000, 0) || ' kN' END";
+    s.labels.size_pt = 7;
+    return qgis::vector_qml(s);
+}
+
+std::string buildings_force_qml() {
+    qgis::VectorStyle s;
+    s.field = "coalesce(\"force_p90_N\", -1)";
+    s.classes = {{-1.0, -1.0, "not hit", fill("#dcdcdc", "#a0a0a0", 0.1)},
+                 {0.0, 1e4, "p90 force ≤ 10 kN", fill("#fee5d9", "#5a5a5a", 0.15)},
+                 {1e4, 1e5, "10 – 100 kN", fill("#fcae91", "#5a5a5a", 0.15)},
+                 {1e5, 1e6, "100 kN – 1 MN", fill("#fb6a4a", "#5a5a5a", 0.15)},
+                 {1e6, 1e15, "> 1 MN", fill("#cb181d", "#5a5a5a", 0.15)}};
+    return qgis::vector_qml(s);
+}
+
+std::string sources_qml(bool points) {
+    qgis::VectorStyle s;
+    s.symbol = points ? qgis::Symbol{qgis::Symbol::Kind::marker, "#7a0177", "#ffffff", 0.3, 2.6, 1.0, false}
+                      : fill("", "#7a0177", 0.7);
+    s.labels.expression = "\"layer\" || coalesce(' (' || \"type\" || ')', '')";
+    s.labels.size_pt = 8;
+    s.labels.colour = "#4a0048";
+    s.labels.polygon_inside = !points;
+    return qgis::vector_qml(s);
+}
+
+std::string hazard_regions_qml() {
+    qgis::VectorStyle s;
+    s.field = "flow";
+    s.categories = {{"inflow", "within ±22.5° of the inflow", {qgis::Symbol::Kind::fill, "#d7301f", "#d7301f", 0.5, 2.0, 0.8, true}},
+                    {"return flow", "within ±22.5° of the return flow",
+                     {qgis::Symbol::Kind::fill, "#f08c00", "#f08c00", 0.5, 2.0, 0.8, true}}};
+    s.other = fill("", "#808080", 0.4);
+    s.labels.expression = "\"source\"";
+    s.labels.size_pt = 7;
+    s.labels.colour = "#8a1c0f";
+    return qgis::vector_qml(s);
 }
 
 }  // namespace
@@ -167,9 +306,20 @@ void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& cr
     d->SetMetadataItem("units", layer.units.c_str());
     d->SetMetadataItem("source", source.c_str());
     d->SetMetadataItem("crs", crs.empty() ? "none: local metres" : crs.name().c_str());
+    // Exact statistics in the file (STATISTICS_*), so a GIS shows the range without a scan;
+    // a map without any value has none.
+    double lo = 0, hi = 0, mean = 0, sd = 0;
+    if (band->ComputeStatistics(FALSE, &lo, &hi, &mean, &sd, nullptr, nullptr) != CE_None) (void)gdal::last_error();
 
+    // Overviews halving the map until its larger side fits one 256-pixel tile, and at
+    // least one (a small map too opens with a pyramid).
+    int overviews = 1;
+    while ((std::max(g.nx, g.ny) >> overviews) > 256) ++overviews;
+    const std::string overview_count = "OVERVIEW_COUNT=" + std::to_string(overviews);
     AtomicOutput out(path);
-    const char* options[] = {"COMPRESS=DEFLATE", "PREDICTOR=YES", "BLOCKSIZE=256", "OVERVIEWS=AUTO", "RESAMPLING=AVERAGE", nullptr};
+    const char* options[] = {"COMPRESS=DEFLATE",        "PREDICTOR=YES",      "BLOCKSIZE=256",
+                             "OVERVIEWS=AUTO",          "RESAMPLING=AVERAGE", overview_count.c_str(),
+                             "OVERVIEW_COMPRESS=DEFLATE", "OVERVIEW_PREDICTOR=YES", nullptr};
     gdal::Dataset written(cog->CreateCopy(out.temp_path().c_str(), d.get(), FALSE, const_cast<char**>(options), nullptr, nullptr));
     if (!written) fail(path, layer.name, "GDAL could not write the Cloud-Optimised GeoTIFF: " + gdal::last_error());
     written.reset();  // flush and close before the rename
@@ -177,6 +327,50 @@ void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& cr
     std::error_code ec;
     std::filesystem::remove(out.temp_path() + ".aux.xml", ec);
     out.commit();
+    if (!qgis::empty(layer.style))
+        qgis::write_qml(std::filesystem::path(path).replace_extension(".qml").string(), qgis::raster_qml(layer.style));
+}
+
+void crop_maps(std::vector<MapLayer>& maps, Grid& g, const Grid& window) {
+    const double tol = 1e-6 * g.dx;
+    auto first_inside = [&](double origin, double step, int n, double edge) {
+        int k = 0;
+        while (k < n && origin + k * step < edge - tol) ++k;
+        return k;
+    };
+    auto last_inside = [&](double origin, double step, int n, double edge) {
+        int k = n - 1;
+        while (k >= 0 && origin + k * step > edge + tol) --k;
+        return k;
+    };
+    int i0 = first_inside(g.x0, g.dx, g.nx, window.x0 - 0.5 * window.dx);
+    int i1 = last_inside(g.x0, g.dx, g.nx, window.x0 + (window.nx - 0.5) * window.dx);
+    int j0 = first_inside(g.y0, g.dy, g.ny, window.y0 - 0.5 * window.dy);
+    int j1 = last_inside(g.y0, g.dy, g.ny, window.y0 + (window.ny - 0.5) * window.dy);
+    if (i0 > i1 || j0 > j1) return;  // no overlap: keep the maps whole
+    // Nothing with a value is cut away.
+    for (const MapLayer& m : maps)
+        for (int j = 0; j < g.ny; ++j)
+            for (int i = 0; i < g.nx; ++i)
+                if (!std::isnan(m.values[g.index(i, j)])) {
+                    i0 = std::min(i0, i);
+                    i1 = std::max(i1, i);
+                    j0 = std::min(j0, j);
+                    j1 = std::max(j1, j);
+                }
+    if (i0 == 0 && j0 == 0 && i1 == g.nx - 1 && j1 == g.ny - 1) return;
+    Grid c = g;
+    c.nx = i1 - i0 + 1;
+    c.ny = j1 - j0 + 1;
+    c.x0 = g.x0 + i0 * g.dx;
+    c.y0 = g.y0 + j0 * g.dy;
+    for (MapLayer& m : maps) {
+        std::vector<float> v(c.size());
+        for (int j = 0; j < c.ny; ++j)
+            for (int i = 0; i < c.nx; ++i) v[c.index(i, j)] = m.values[g.index(i + i0, j + j0)];
+        m.values = std::move(v);
+    }
+    g = c;
 }
 
 namespace {
@@ -220,20 +414,34 @@ std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::
         const std::string group = bodies[k] + " " + variants[k];
         const std::string stem = file_safe(bodies[k] + "_" + variants[k]);
         maps.push_back({probability + "_" + stem, "fraction of the trajectories of " + group + " whose centre passes the cell", "1",
-                        read_map(f, probability, grid, k)});
-        maps.push_back(
-            {speed + "_" + stem, "largest speed of " + group + " in the cell [m/s]", "m s-1", read_map(f, speed, grid, k)});
+                        read_map(f, probability, grid, k), "pass probability, " + group});
+        maps.push_back({speed + "_" + stem, "largest speed of " + group + " in the cell [m/s]", "m s-1",
+                        read_map(f, speed, grid, k), "largest debris speed, " + group});
     }
     maps.push_back({schema::pass_probability_all.name, "fraction of all trajectories whose centre passes the cell", "1",
-                    read_map(f, schema::pass_probability_all.name, grid)});
+                    read_map(f, schema::pass_probability_all.name, grid), "pass probability, all tracks"});
     maps.push_back({schema::max_debris_speed_all.name, "largest body speed in the cell over all trajectories [m/s]", "m s-1",
-                    read_map(f, schema::max_debris_speed_all.name, grid)});
+                    read_map(f, schema::max_debris_speed_all.name, grid), "largest debris speed, all tracks"});
     for (const MapLayer& m : maps) {
         if (m.name.rfind(probability, 0) == 0)
             check_map(stats_path, m, 0.0, 1.0, "a fraction of trajectories");
         else if (std::any_of(m.values.begin(), m.values.end(), [](float v) { return !std::isnan(v); }))
             check_map(stats_path, m, 0.0, 1000.0, "a speed in m/s");  // no trajectory passes a cell: all missing is fine
     }
+    // A cell no body passes holds nothing: no value, in the probability and the speed maps
+    // (each speed map follows the probability map before it).
+    float speed_top = 0;
+    for (std::size_t k = 0; k + 1 < maps.size(); k += 2) {
+        std::vector<float>& p = maps[k].values;
+        std::vector<float>& v = maps[k + 1].values;
+        for (std::size_t c = 0; c < p.size(); ++c)
+            if (!(p[c] > 0)) p[c] = v[c] = no_value;
+        for (float x : v)
+            if (x > speed_top) speed_top = x;
+    }
+    for (MapLayer& m : maps)
+        m.style = m.name.rfind(probability, 0) == 0 ? qgis::probability_classes(probability_colours)
+                                                    : qgis::ramp(qgis::round_ceiling(speed_top), debris_speed_colours, "m s-1");
     return maps;
 }
 
@@ -244,6 +452,7 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
                                   {"arrival_time", "time when the depth first exceeds the arrival depth", "s", {}}};
     std::vector<float> bed;
     std::string fingerprint;
+    double flood_depth = 0.0, end_time = 0.0;
     for (std::size_t k = 0; k < flow_paths.size(); ++k) {
         const nc::File f = nc::File::open_read(flow_paths[k]);
         cf::require_kind(f, {"flow"}, "--flow");
@@ -280,6 +489,11 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
                          fingerprint + "); an envelope is over one scene's flows");
         }
         const std::vector<double> time = nc::read_finite(f, "time");
+        end_time = std::max(end_time, time.back());
+        // Flooded: deeper than the flow's flood_depth (its `flooded` flag), else than its dry tolerance.
+        const double this_flood = f.has_var("flooded") ? f.att_double(f.var("flooded"), "flood_depth").value_or(0.0)
+                                                       : f.att_double(NC_GLOBAL, "dry_depth_m").value_or(0.0);
+        flood_depth = k == 0 ? this_flood : std::min(flood_depth, this_flood);
         MapLayer depth{"max_depth", "", "m", read_map(f, "max_depth", g)},
             speed{"max_speed", "", "m s-1", read_map(f, "max_speed", g)},
             arrival{"arrival_time", "", "s", read_map(f, "arrival_time", g)};
@@ -311,10 +525,33 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
             maps[2].values[c] = std::fmin(maps[2].values[c], arrival_values[c]);
         }
     }
+    // Never flooded: no depth, no speed. Onshore (bed above still water): the inundation depth.
+    MapLayer onshore{"inundation_depth", "largest water depth over the run where the bed (buildings included) stands above still water",
+                     "m", std::vector<float>(bed.size(), no_value)};
+    for (std::size_t c = 0; c < bed.size(); ++c) {
+        if (!(maps[0].values[c] > flood_depth)) maps[0].values[c] = maps[1].values[c] = no_value;
+        if (bed[c] > 0) onshore.values[c] = maps[0].values[c];
+    }
+    maps.insert(maps.begin() + 1, onshore);
     if (flow_paths.size() > 1)
         for (auto& m : maps)
             m.long_name = (m.name == "arrival_time" ? "earliest " : "envelope (largest) of the ") + m.long_name + " over " +
                           std::to_string(flow_paths.size()) + " flows";
+    const std::string over = flow_paths.size() > 1 ? " (" + std::to_string(flow_paths.size()) + " flows)" : "";
+    auto largest = [](const std::vector<float>& v) {
+        float top = 0;
+        for (float x : v)
+            if (x > top) top = x;
+        return double(top);
+    };
+    maps[0].title = "largest water depth" + over;
+    maps[0].style = qgis::ramp(qgis::round_ceiling(largest(maps[0].values)), sea_depth_colours, "m", 0.85);
+    maps[1].title = "inundation depth onshore" + over;
+    maps[1].style = qgis::ramp(qgis::round_ceiling(largest(maps[1].values)), land_depth_colours, "m");
+    maps[2].title = "largest flow speed" + over;
+    maps[2].style = qgis::ramp(qgis::round_ceiling(largest(maps[2].values)), flow_speed_colours, "m s-1");
+    maps[3].title = (flow_paths.size() > 1 ? "earliest arrival" : "arrival time") + over;
+    maps[3].style = qgis::ramp(end_time, arrival_colours, "s");
     return maps;
 }
 
@@ -401,7 +638,36 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
     if (scene) *scene = SceneOf{trajectory_path, 0.0, f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""), crs};
     if (check_only) return ntraj;
 
-    return write_vector_layer(out_path, driver_name, "tracks", crs, trajectory_path, wkbLineString, [&](OGRLayer& layer) {
+    // `source`: where each track's body came from, the GIS feature (a yard's bodies share
+    // it) or else the body itself; the tracks are coloured by it.
+    auto column_of = [&](const std::string& name) -> Column* {
+        for (Column& c : columns)
+            if (c.name == name && c.type == NC_STRING) return &c;
+        return nullptr;
+    };
+    if (Column* source = column_of("source")) {  // a debris file: empty where the body has no feature
+        const Column* id = column_of("trajectory_id");
+        for (std::size_t b = 0; b < ntraj; ++b)
+            if (source->text[b].empty() && id) source->text[b] = id->text[b];
+    } else if (const Column* body = column_of("body"); body && f.has_var("body_name")) {  // a sweep file: its body table
+        const auto names = f.get_strings(f.var("body_name"));
+        const auto sources = f.has_var("body_source") ? f.get_strings(f.var("body_source")) : std::vector<std::string>{};
+        Column c{"source", NC_STRING, {}, {}};
+        for (std::size_t b = 0; b < ntraj; ++b) {
+            const auto k = std::size_t(std::find(names.begin(), names.end(), body->text[b]) - names.begin());
+            c.text.push_back(k < sources.size() && !sources[k].empty() ? sources[k] : body->text[b]);
+        }
+        columns.push_back(std::move(c));
+    }
+    std::vector<std::string> source_names;
+    if (const Column* source = column_of("source"))
+        for (const std::string& name : source->text)
+            if (std::find(source_names.begin(), source_names.end(), name) == source_names.end()) source_names.push_back(name);
+
+    const std::vector<qgis::NamedStyle> styles = {
+        {"tracks by source", "thin translucent lines, one colour per debris source", tracks_qml(source_names), true}};
+    return write_vector_layers(out_path, driver_name, crs, trajectory_path,
+                               {{"tracks", wkbLineString, styles, [&](OGRLayer& layer) {
         std::size_t written = 0;
         for (const auto& c : columns)
             add_field(layer, out_path, c.name,
@@ -446,7 +712,7 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
             ++written;
         }
         return written;
-    });
+    }}});
 }
 
 std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path) {
@@ -476,43 +742,17 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
             fail(stats_path, std::string("variable '") + c->name + "'", "is not on dimension 'building'");
     }
 
-    // The ids as a north-up Int32 raster, polygonised (4-connected pieces of one value),
-    // then the pieces of each id joined.
     const Grid& g = scene.grid;
-    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-    if (!mem) fail(out_path, "GDAL", "the MEM driver is missing");
-    gdal::Dataset raster(mem->Create("", g.nx, g.ny, 1, GDT_Int32, nullptr));
-    double gt[6];
-    gdal::geotransform(g, gt);
-    raster->SetGeoTransform(gt);
-    std::vector<std::int32_t> rows(ids.size());
-    for (int j = 0; j < g.ny; ++j)
-        std::copy_n(ids.begin() + std::ptrdiff_t(j) * g.nx, g.nx, rows.begin() + std::ptrdiff_t(g.ny - 1 - j) * g.nx);
-    GDALRasterBand* band = raster->GetRasterBand(1);
-    if (band->RasterIO(GF_Write, 0, 0, g.nx, g.ny, rows.data(), g.nx, g.ny, GDT_Int32, 0, 0, nullptr) != CE_None)
-        fail(out_path, "buildings", "cannot fill the raster: " + gdal::last_error());
-    band->SetNoDataValue(0.0);
-    GDALDriver* memory = GetGDALDriverManager()->GetDriverByName("Memory");  // vector, in memory
-    if (!memory) memory = mem;
-    gdal::Dataset pieces(memory->Create("", 0, 0, 0, GDT_Unknown, nullptr));
-    OGRLayer* piece_layer = pieces ? pieces->CreateLayer("pieces", nullptr, wkbPolygon, nullptr) : nullptr;
-    if (!piece_layer) fail(out_path, "GDAL", "cannot create an in-memory vector layer: " + gdal::last_error());
-    OGRFieldDefn id_field("id", OFTInteger);
-    piece_layer->CreateField(&id_field);
-    if (GDALPolygonize(GDALRasterBand::ToHandle(band), GDALRasterBand::ToHandle(band->GetMaskBand()),
-                       OGRLayer::ToHandle(piece_layer), 0, nullptr, nullptr, nullptr) != CE_None)
-        fail(out_path, "buildings", "GDAL could not polygonise the building ids: " + gdal::last_error());
-    std::map<int, OGRMultiPolygon> by_id;
-    piece_layer->ResetReading();
-    for (OGRFeature* raw; (raw = piece_layer->GetNextFeature()) != nullptr;) {
-        std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(raw, OGRFeature::DestroyFeature);
-        if (const OGRGeometry* geom = f->GetGeometryRef()) by_id[f->GetFieldAsInteger(0)].addGeometry(geom);
-    }
+    std::map<int, OGRMultiPolygon> by_id = polygons_of(g, ids, out_path);
     std::map<int, int> cells;
     for (std::int32_t id : ids)
         if (id > 0) ++cells[id];
 
-    return write_vector_layer(out_path, "GPKG", "buildings", scene.crs, scene_path, wkbMultiPolygon, [&](OGRLayer& layer) {
+    const std::vector<qgis::NamedStyle> styles = {
+        {"hit probability", "footprints by the share of tracks that hit them; label: the 90th-percentile impact force",
+         buildings_qml(), true},
+        {"p90 force", "footprints by the 90th-percentile impact force", buildings_force_qml(), false}};
+    return write_vector_layers(out_path, "GPKG", scene.crs, scene_path, {{"buildings", wkbMultiPolygon, styles, [&](OGRLayer& layer) {
         std::size_t written = 0;
         add_field(layer, out_path, "building_id", OFTInteger);
         add_field(layer, out_path, "cells", OFTInteger);
@@ -542,7 +782,198 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
             ++written;
         }
         return written;
-    });
+    }}});
+}
+
+}  // namespace flotsam::gis
+
+namespace flotsam::gis {
+
+std::size_t write_sources(const std::string& sources_path, const cf::GridMapping& crs, const std::string& out_path,
+                          bool check_only) {
+    gdal::init();
+    gdal::Dataset in = gdal::open_vector(sources_path);
+    std::optional<OGRSpatialReference> target;
+    if (!crs.empty()) {
+        target = gdal::spatial_ref(crs, out_path);
+        target->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    }
+    // Every feature, carried into the scene's CRS, as an area or a point.
+    struct Source {
+        std::string layer, type;
+        GIntBig feature = 0;
+        int count = 0;
+        bool has_count = false;
+        std::unique_ptr<OGRGeometry> geometry;
+    };
+    std::vector<Source> areas, points;
+    for (int l = 0; l < in->GetLayerCount(); ++l) {
+        OGRLayer* layer = in->GetLayer(l);
+        const OGRSpatialReference* from = layer->GetSpatialRef();
+        if (bool(from) != bool(target))
+            fail(sources_path, std::string("layer '") + layer->GetName() + "'",
+                 from ? "has a CRS and the scene has none (local metres)" : "has no CRS and the scene has one");
+        std::unique_ptr<OGRCoordinateTransformation> to_scene;
+        if (from && !from->IsSame(&*target)) {
+            OGRSpatialReference source_crs(*from);
+            source_crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+            to_scene.reset(OGRCreateCoordinateTransformation(&source_crs, &*target));
+            if (!to_scene) fail(sources_path, std::string("layer '") + layer->GetName() + "'", "cannot be carried into the scene's CRS");
+        }
+        const int type_field = layer->GetLayerDefn()->GetFieldIndex("type");
+        const int count_field = layer->GetLayerDefn()->GetFieldIndex("count");
+        layer->ResetReading();
+        for (OGRFeature* raw; (raw = layer->GetNextFeature()) != nullptr;) {
+            std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(raw, OGRFeature::DestroyFeature);
+            const OGRGeometry* geometry = f->GetGeometryRef();
+            if (!geometry) continue;
+            Source s{layer->GetName(), type_field >= 0 ? f->GetFieldAsString(type_field) : "", f->GetFID(),
+                     count_field >= 0 ? f->GetFieldAsInteger(count_field) : 0,
+                     count_field >= 0 && f->IsFieldSetAndNotNull(count_field), std::unique_ptr<OGRGeometry>(geometry->clone())};
+            if (to_scene && s.geometry->transform(to_scene.get()) != OGRERR_NONE)
+                fail(sources_path, s.layer + " feature " + std::to_string(s.feature), "cannot be carried into the scene's CRS");
+            const auto flat = wkbFlatten(s.geometry->getGeometryType());
+            if (flat == wkbPolygon || flat == wkbMultiPolygon) {
+                s.geometry.reset(OGRGeometryFactory::forceToMultiPolygon(s.geometry.release()));
+                areas.push_back(std::move(s));
+            } else if (flat == wkbPoint) {
+                points.push_back(std::move(s));
+            } else {
+                fail(sources_path, s.layer + " feature " + std::to_string(s.feature), "is neither a point nor a polygon");
+            }
+        }
+    }
+    if (areas.empty() && points.empty()) fail(sources_path, "", "holds no point or polygon feature: no debris source to export");
+    if (check_only) return areas.size() + points.size();
+    auto writer = [&out_path](std::vector<Source>& sources) {
+        return [&out_path, list = &sources](OGRLayer& layer) {
+            add_field(layer, out_path, "layer", OFTString);
+            add_field(layer, out_path, "feature", OFTInteger64);
+            add_field(layer, out_path, "type", OFTString);
+            add_field(layer, out_path, "count", OFTInteger);
+            for (Source& s : *list) {
+                OGRFeature feature(layer.GetLayerDefn());
+                feature.SetField("layer", s.layer.c_str());
+                feature.SetField("feature", s.feature);
+                if (!s.type.empty()) feature.SetField("type", s.type.c_str());
+                if (s.has_count) feature.SetField("count", s.count);
+                feature.SetGeometry(s.geometry.get());
+                if (layer.CreateFeature(&feature) != OGRERR_NONE)
+                    fail(out_path, s.layer + " feature " + std::to_string(s.feature), "cannot write: " + gdal::last_error());
+            }
+            return list->size();
+        };
+    };
+    std::vector<VectorLayerDef> defs;
+    if (!areas.empty())
+        defs.push_back({"source_areas", wkbMultiPolygon, {{"outlined", "the yards, outlined and labelled", sources_qml(false), true}},
+                        writer(areas)});
+    if (!points.empty())
+        defs.push_back({"source_points", wkbPoint, {{"points", "single bodies, labelled", sources_qml(true), true}}, writer(points)});
+    return write_vector_layers(out_path, "GPKG", crs, sources_path, defs);
+}
+
+std::size_t write_hazard_regions(const std::string& regions_path, const std::string& out_path, bool check_only,
+                                 cf::GridMapping* crs_out) {
+    gdal::init();
+    const nc::File f = nc::File::open_read(regions_path);
+    for (const char* v : {"x", "y", "source", "region_inflow", "region_outflow"})
+        if (!f.has_var(v))
+            fail(regions_path, std::string("variable '") + v + "'", "missing: not hazard regions written by pipelines/hazard_region.py");
+    const Grid g = grid_of(f);
+    const cf::GridMapping crs = cf::read_crs(f, "region_inflow");
+    if (crs_out) *crs_out = crs;
+    const std::vector<std::string> sources = f.get_strings(f.var("source"));
+    struct Region {
+        std::string source, flow;
+        int cells;
+        OGRMultiPolygon shape;
+    };
+    std::vector<Region> regions;
+    for (const auto& [name, flow] : {std::pair{"region_inflow", "inflow"}, std::pair{"region_outflow", "return flow"}}) {
+        const int v = f.var(name);
+        if (f.shape(v) != std::vector<std::size_t>{sources.size(), std::size_t(g.ny), std::size_t(g.nx)})
+            fail(regions_path, std::string("variable '") + name + "'", "must be on (source, y, x)");
+        if (check_only) continue;
+        const std::vector<int> mask = f.get_int(v);
+        for (std::size_t k = 0; k < sources.size(); ++k) {
+            std::vector<std::int32_t> ids(g.size());
+            int cells = 0;
+            for (std::size_t c = 0; c < g.size(); ++c) cells += ids[c] = mask[k * g.size() + c] != 0;
+            if (cells == 0) continue;
+            std::map<int, OGRMultiPolygon> pieces = polygons_of(g, ids, out_path);
+            std::unique_ptr<OGRGeometry> joined(pieces[1].UnionCascaded());
+            if (!joined) fail(out_path, sources[k] + " " + flow, "GDAL could not join its cells: " + gdal::last_error());
+            std::unique_ptr<OGRGeometry> multi(OGRGeometryFactory::forceToMultiPolygon(joined.release()));
+            regions.push_back({sources[k], flow, cells, *multi->toMultiPolygon()});
+        }
+    }
+    if (check_only) return sources.size();
+    return write_vector_layers(out_path, "GPKG", crs, regions_path,
+                               {{"hazard_regions", wkbMultiPolygon,
+                                 {{"by flow", "the design standard's regions, hatched by flow direction", hazard_regions_qml(), true}},
+                                 [&](OGRLayer& layer) {
+                                     add_field(layer, out_path, "source", OFTString);
+                                     add_field(layer, out_path, "flow", OFTString);
+                                     add_field(layer, out_path, "cells", OFTInteger);
+                                     add_field(layer, out_path, "area_m2", OFTReal);
+                                     for (Region& r : regions) {
+                                         OGRFeature feature(layer.GetLayerDefn());
+                                         feature.SetField("source", r.source.c_str());
+                                         feature.SetField("flow", r.flow.c_str());
+                                         feature.SetField("cells", r.cells);
+                                         feature.SetField("area_m2", r.cells * g.dx * g.dy);
+                                         feature.SetGeometry(&r.shape);
+                                         if (layer.CreateFeature(&feature) != OGRERR_NONE)
+                                             fail(out_path, r.source, "cannot write: " + gdal::last_error());
+                                     }
+                                     return regions.size();
+                                 }}});
+}
+
+qgis::ProjectLayer flow_mesh_layer(const std::string& flow_path, double depth_top) {
+    const nc::File f = nc::File::open_read(flow_path);
+    cf::require_kind(f, {"flow"}, "--flow");
+    // QGIS (MDAL, through GDAL's netCDF driver) makes one dataset group of each gridded
+    // variable with the grid mapping, named by its long name, u and v joined into one
+    // named without "x-/y-component of", and orders the groups by name.
+    auto group_name = [&](int v) {
+        std::string n = f.att_text(v, "long_name").value_or(f.var_name(v));
+        for (const char* part : {"x-component of ", "y-component of "})
+            if (const auto at = n.find(part); at != std::string::npos) n.erase(at, std::string(part).size());
+        return n;
+    };
+    std::vector<std::string> names;
+    int nvars = 0;
+    nc_inq_nvars(f.id(), &nvars);
+    for (int v = 0; v < nvars; ++v) {
+        const auto dims = f.dim_names(v);
+        if (dims.size() < 2 || dims[dims.size() - 2] != "y" || dims.back() != "x" || !f.att_text(v, "grid_mapping")) continue;
+        if (std::find(names.begin(), names.end(), group_name(v)) == names.end()) names.push_back(group_name(v));
+    }
+    std::sort(names.begin(), names.end());
+    auto index_of = [&](const char* var) {
+        if (!f.has_var(var)) return -1;
+        const auto k = std::find(names.begin(), names.end(), group_name(f.var(var)));
+        return k == names.end() ? -1 : int(k - names.begin());
+    };
+    qgis::MeshStyle style;
+    style.scalar_group = index_of("h");
+    style.vector_group = index_of("u");
+    style.scalar = qgis::ramp(depth_top, land_depth_colours, "m", 0.8);
+    // Dry cells (below a thousandth of the range) stay clear.
+    style.scalar.stops.front().value = 1e-3 * depth_top;
+    style.scalar.stops.front().label = "wet (> " + qgis::value_label(1e-3 * depth_top, "m") + ")";
+    style.arrow_min_speed = 1e-3 * std::sqrt(9.81 * depth_top);  // a thousandth of the wave speed at the top depth
+    const std::vector<double> time = nc::read_finite(f, "time");
+    qgis::ProjectLayer layer;
+    layer.kind = qgis::ProjectLayer::Kind::mesh;
+    layer.path = flow_path;
+    layer.name = "flow " + std::filesystem::path(flow_path).stem().string() + ": depth and velocity in time";
+    layer.qml = qgis::mesh_qml(style);
+    layer.time_start = time.front();
+    layer.time_end = time.back();
+    return layer;
 }
 
 }  // namespace flotsam::gis

@@ -8,23 +8,34 @@
 
 #include "common/cf.hpp"
 #include "common/grid.hpp"
+#include "export/qgis_project.hpp"
+#include "export/qgis_style.hpp"
 
 namespace flotsam::gis {
 
 // One map on a flotsam grid: values row-major with x fastest and the southern row first
-// (as in every flotsam file); NaN where the map has no value (nodata in the GeoTIFF).
+// (as in every flotsam file); NaN where the map has no value (nodata in the GeoTIFF):
+// "nothing" (a dry cell, a cell no body passes) is no value, never 0.
 struct MapLayer {
     std::string name;       // file stem and band description, e.g. "pass_probability_FD_LC-MC"
     std::string long_name;  // what it is, with its group
     std::string units;      // UDUNITS, e.g. "m s-1"; "1" for a fraction
     std::vector<float> values;
+    std::string title;         // short name in a QGIS legend, e.g. "pass probability FD LC+MC"
+    qgis::RasterStyle style;   // its colours over a fixed physical range (none: QGIS's default grey)
 };
 
 // Writes `layer` as a Cloud-Optimised GeoTIFF (north-up, Float32, NaN nodata, DEFLATE,
-// internal tiles and overviews) on grid `g` in `crs` (none: local metres, said in the
-// file's metadata). Atomic: <path>.part, then renamed. `source` goes into the metadata.
+// internal tiles, at least one overview, the band's statistics) on grid `g` in `crs`
+// (none: local metres, said in the file's metadata), and its style as <stem>.qml beside
+// it (QGIS applies it when it opens the GeoTIFF). Atomic: <path>.part, then renamed.
+// `source` goes into the metadata.
 void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& crs, const MapLayer& layer,
                const std::string& source);
+
+// Crops `maps` on `g` to the cells inside `window` (the flow's output window, where bodies
+// can move) and any cell outside it that holds a value; `g` becomes the cropped grid.
+void crop_maps(std::vector<MapLayer>& maps, Grid& g, const Grid& window);
 
 // The scene an exported file was computed on, as far as the file says: its cell size
 // (0: not known) and its scene_buildings_sha256 (formats/scene.hpp; "" for files written
@@ -42,12 +53,14 @@ struct SceneOf {
 // outside [0, 1], negative speeds and maps without a value are named errors.
 std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs, SceneOf* scene = nullptr);
 
-// The maps of one or more flow files of one scene: maximum depth, maximum speed, arrival
-// time. Several flows (an ensemble) give their envelope: the largest depth and speed and
-// the earliest arrival of any flow, each cell on its own. The flows must share the grid,
-// the bed, the CRS and (where recorded) the building mask; a missing depth or speed,
-// a negative one, or an arrival outside the run is a named error. Units other than m, s
-// and m s-1 are converted (or refused by name).
+// The maps of one or more flow files of one scene: maximum depth, the onshore part of it
+// (inundation depth: cells whose bed, buildings included, stands above still water),
+// maximum speed, arrival time; cells never flooded (depth never above the flow's
+// flood_depth) have no value. Several flows (an ensemble) give their envelope: the largest
+// depth and speed and the earliest arrival of any flow, each cell on its own. The flows
+// must share the grid, the bed, the CRS and (where recorded) the building mask; a missing
+// depth or speed, a negative one, or an arrival outside the run is a named error. Units
+// other than m, s and m s-1 are converted (or refused by name).
 std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs,
                                 SceneOf* scene = nullptr);
 
@@ -72,6 +85,26 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
 // must come from this scene (scene_buildings_sha256). Returns the number of buildings.
 // Atomic as above.
 std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path);
+
+// The debris sources of a study (the vector file given to `flotsam debris --sources` or a
+// sweep's [[sources]]): every feature of every layer, carried into `crs` (the scene's),
+// as a GeoPackage with layers `source_areas` (yards) and `source_points` (single bodies),
+// each feature with its `layer`, `feature` id, `type` and `count`. Returns the features.
+// With `check_only`, it stops after reading and carrying them (nothing written).
+std::size_t write_sources(const std::string& sources_path, const cf::GridMapping& crs, const std::string& out_path,
+                          bool check_only = false);
+
+// The design standard's hazard regions (pipelines/hazard_region.py's hazard_regions.nc:
+// region_inflow and region_outflow per source on the scene grid) as polygons in a
+// GeoPackage layer `hazard_regions` with `source`, `flow` ("inflow" or "return flow"),
+// `cells` and `area_m2`. Returns the polygons. With `check_only`, it stops after reading
+// (nothing written) and returns the regions' CRS in `crs`.
+std::size_t write_hazard_regions(const std::string& regions_path, const std::string& out_path, bool check_only = false,
+                                 cf::GridMapping* crs = nullptr);
+
+// A flow file as a time-aware mesh layer of a QGIS project: water depth in colour over
+// `depth_top` [m], the velocity as arrows, its times on the temporal controller.
+qgis::ProjectLayer flow_mesh_layer(const std::string& flow_path, double depth_top);
 
 // File name part for a group label: letters, digits, '-', '_' kept, '+' becomes '-'.
 std::string file_safe(const std::string& label);

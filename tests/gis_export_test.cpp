@@ -8,7 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <memory>
 
 #include "common/netcdf.hpp"
 #include "data/gdal_support.hpp"
@@ -49,6 +52,7 @@ TEST(GisExport, CogReadsBackWithGeoreferencingAndValues) {
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) m.values[g.index(i, j)] = float(10 * j + i);
     m.values[g.index(5, 0)] = std::nanf("");
+    m.style = gis::qgis::probability_classes({"#ffffb2", "#fed976", "#feb24c", "#fd8d3c", "#f03b20", "#bd0026"});
     const std::string path = dir + "/map.tif";
     gis::write_cog(path, g, utm53(), m, "test");
 
@@ -92,6 +96,109 @@ TEST(GisExport, CogReadsBackWithGeoreferencingAndValues) {
     EXPECT_NE(info.find("WGS 84 / UTM zone 53N"), std::string::npos) << info;
     EXPECT_NE(info.find("ID[\"EPSG\",32653]"), std::string::npos) << info;
     EXPECT_NE(info.find("COMPRESSION=DEFLATE"), std::string::npos) << info;
+    // Even a small map has an overview, and its statistics are in the file.
+    EXPECT_EQ(d->GetRasterBand(1)->GetOverviewCount(), 1);
+    EXPECT_NE(info.find("Overviews: 3x2"), std::string::npos) << info;
+    EXPECT_NE(info.find("STATISTICS_MAXIMUM=35"), std::string::npos) << info;
+    EXPECT_NE(info.find("STATISTICS_MINIMUM=0"), std::string::npos) << info;
+    EXPECT_NE(info.find("STATISTICS_VALID_PERCENT=95.83"), std::string::npos) << info;  // 23 of 24 cells
+    // Its style beside it: QGIS's pseudocolour classes with their labels.
+    std::ifstream qml(dir + "/map.qml");
+    const std::string style((std::istreambuf_iterator<char>(qml)), std::istreambuf_iterator<char>());
+    EXPECT_NE(style.find("type=\"singlebandpseudocolor\""), std::string::npos) << style;
+    EXPECT_NE(style.find("colorRampType=\"DISCRETE\""), std::string::npos) << style;
+    EXPECT_NE(style.find("value=\"0.01\" color=\"#ffffb2\" alpha=\"255\" label=\"≤ 1 %\""), std::string::npos) << style;
+    EXPECT_NE(style.find("value=\"inf\" color=\"#bd0026\""), std::string::npos) << style;
+}
+
+TEST(GisExport, StyleRangesAreRoundAndLabelled) {
+    EXPECT_DOUBLE_EQ(gis::qgis::round_ceiling(14.2), 20.0);
+    EXPECT_DOUBLE_EQ(gis::qgis::round_ceiling(58.0), 100.0);
+    EXPECT_DOUBLE_EQ(gis::qgis::round_ceiling(0.037), 0.05);
+    EXPECT_DOUBLE_EQ(gis::qgis::round_ceiling(2.0), 2.0);
+    EXPECT_DOUBLE_EQ(gis::qgis::round_ceiling(0.0), 1.0);
+    const gis::qgis::RasterStyle r = gis::qgis::ramp(20.0, {"#000000", "#111111", "#222222", "#333333", "#444444"}, "m");
+    ASSERT_EQ(r.stops.size(), 5u);
+    EXPECT_DOUBLE_EQ(r.stops[1].value, 5.0);
+    EXPECT_EQ(r.stops[1].label, "5 m");
+    EXPECT_EQ(gis::qgis::value_label(0.25, "1"), "25 %");
+    EXPECT_EQ(gis::qgis::value_label(1.5, "m s-1"), "1.5 m/s");
+}
+
+TEST(GisExport, CropKeepsTheWindowAndEveryValue) {
+    // A 10 x 4 map of 2 m cells; the window covers columns 4..7, rows 1..2; one value
+    // outside it at column 1, row 0.
+    Grid g{.nx = 10, .ny = 4, .x0 = 1.0, .y0 = 1.0, .dx = 2.0, .dy = 2.0};
+    Grid window{.nx = 4, .ny = 2, .x0 = 9.0, .y0 = 3.0, .dx = 2.0, .dy = 2.0};
+    std::vector<gis::MapLayer> maps(1);
+    maps[0].values.assign(g.size(), std::nanf(""));
+    maps[0].values[g.index(1, 0)] = 7.0f;
+    maps[0].values[g.index(5, 2)] = 3.0f;
+    gis::crop_maps(maps, g, window);
+    EXPECT_EQ(g.nx, 7);  // columns 1..7
+    EXPECT_EQ(g.ny, 3);  // rows 0..2
+    EXPECT_DOUBLE_EQ(g.x0, 3.0);
+    EXPECT_DOUBLE_EQ(g.y0, 1.0);
+    EXPECT_EQ(maps[0].values[g.index(0, 0)], 7.0f);
+    EXPECT_EQ(maps[0].values[g.index(4, 2)], 3.0f);
+    // Without a value outside, exactly the window.
+    Grid g2{.nx = 10, .ny = 4, .x0 = 1.0, .y0 = 1.0, .dx = 2.0, .dy = 2.0};
+    std::vector<gis::MapLayer> maps2(1);
+    maps2[0].values.assign(g2.size(), std::nanf(""));
+    gis::crop_maps(maps2, g2, window);
+    EXPECT_EQ(g2.nx, 4);
+    EXPECT_EQ(g2.ny, 2);
+    EXPECT_DOUBLE_EQ(g2.x0, 9.0);
+    EXPECT_DOUBLE_EQ(g2.y0, 3.0);
+}
+
+TEST(GisExport, ProjectIsAZipQgisReadsWithRelativePaths) {
+    const std::string dir = test::scratch_dir("gis_project");
+    gis::qgis::Project p;
+    p.title = "t";
+    p.crs = utm53();
+    p.x_min = east0;
+    p.y_min = north0 - 100;
+    p.x_max = east0 + 200;
+    p.y_max = north0;
+    p.groups = {"debris", "maps"};
+    p.layers.push_back({gis::qgis::ProjectLayer::Kind::vector, dir + "/gis/tracks.gpkg", "tracks", "tracks & <lines>", "debris", true,
+                        "<qgis version=\"3.22.16\" labelsEnabled=\"1\"><renderer-v2 type=\"singleSymbol\"/></qgis>"});
+    p.layers.push_back({gis::qgis::ProjectLayer::Kind::raster, dir + "/gis/depth.tif", "", "depth [m]", "maps", false,
+                        gis::qgis::raster_qml(gis::qgis::ramp(1.0, {"#000000", "#ffffff"}, "m"))});
+    p.layers.push_back({gis::qgis::ProjectLayer::Kind::mesh, dir + "/flows/flow.nc", "", "flow", "maps", false,
+                        "<qgis version=\"3.22.16\"></qgis>", 0.0, 6640.0});
+    p.time_step = 15.8;
+    gis::qgis::write_project(dir + "/gis/project.qgz", p);
+    // GDAL reads the archive (a zip of one deflated file), as QGIS does.
+    const std::string inside = "/vsizip/{" + dir + "/gis/project.qgz}/project.qgs";  // braces: not a .zip name
+    VSIStatBufL st;
+    ASSERT_EQ(VSIStatL(inside.c_str(), &st), 0);
+    std::string xml(std::size_t(st.st_size), '\0');
+    VSILFILE* f = VSIFOpenL(inside.c_str(), "rb");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(VSIFReadL(xml.data(), 1, xml.size(), f), xml.size());
+    VSIFCloseL(f);
+    EXPECT_EQ(xml, gis::qgis::project_xml(p, dir + "/gis"));
+    EXPECT_NE(xml.find("<datasource>./tracks.gpkg|layername=tracks</datasource>"), std::string::npos) << xml;
+    EXPECT_NE(xml.find("<datasource>../flows/flow.nc</datasource>"), std::string::npos) << xml;
+    EXPECT_NE(xml.find("<Absolute type=\"bool\">false</Absolute>"), std::string::npos) << xml;
+    EXPECT_NE(xml.find("<authid>EPSG:32653</authid>"), std::string::npos) << xml;
+    EXPECT_NE(xml.find("name=\"tracks &amp; &lt;lines&gt;\""), std::string::npos) << xml;
+    EXPECT_NE(xml.find("<layer-tree-group name=\"debris\""), std::string::npos) << xml;
+    EXPECT_NE(xml.find("labelsEnabled=\"1\""), std::string::npos) << xml;
+    EXPECT_LT(xml.find("name=\"debris\""), xml.find("name=\"maps\""));  // the order given: debris drawn above maps
+    // The mesh on the temporal controller: the run's 0 to 6640 s (01:50:40) from the epoch that stands for its start.
+    EXPECT_NE(xml.find("start-time-extent=\"2000-01-01T00:00:00Z\" end-time-extent=\"2000-01-01T01:50:40Z\""),
+              std::string::npos)
+        << xml;
+    EXPECT_NE(xml.find("timeStepUnit=\"s\" timeStep=\"15.800000000000001\""), std::string::npos) << xml;
+    // The same project gives the same bytes.
+    std::ifstream a(dir + "/gis/project.qgz", std::ios::binary);
+    const std::string first((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+    gis::qgis::write_project(dir + "/gis/project.qgz", p);
+    std::ifstream b(dir + "/gis/project.qgz", std::ios::binary);
+    EXPECT_EQ(first, std::string((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>()));
 }
 
 TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
@@ -145,10 +252,47 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
         EXPECT_EQ(cf::read_crs(t, "yaw").name(), "EPSG:32653");
         EXPECT_DOUBLE_EQ(t.get_double(t.var("length"))[0], 4.5);  // the catalogue's car
     }
-    ASSERT_EQ(
-        test::run_cli("export --flow " + dir + "/flow.nc --trajectories " + dir + "/tracks.nc --out-dir " + dir + "/gis", &out), 0)
+    {
+        // The flow reads as one mesh in QGIS: every gridded variable georeferenced, u and v
+        // named as one vector's components, the time origin stated.
+        const nc::File f = nc::File::open_read(dir + "/flow.nc");
+        for (const char* v : {"z", "h", "u", "v", "max_depth", "max_speed", "arrival_time", "max_level", "flooded"})
+            EXPECT_EQ(f.att_text(f.var(v), "grid_mapping").value_or(""), "crs") << v;
+        EXPECT_EQ(f.att_text(f.var("u"), "long_name").value_or(""), "x-component of depth-averaged velocity (0 where dry)");
+        EXPECT_EQ(f.att_text(f.var("v"), "long_name").value_or(""), "y-component of depth-averaged velocity (0 where dry)");
+        EXPECT_EQ(f.att_text(f.var("u"), "standard_name").value_or(""), "sea_water_x_velocity");
+        EXPECT_NE(f.att_text(f.var("time"), "comment").value_or("").find("t = 0 is the start of the run"), std::string::npos);
+    }
+    // The car's source in the port's survey CRS (EPSG:6674), to be carried into the scene's.
+    {
+        OGRSpatialReference utm, survey;
+        utm.importFromEPSG(32653);
+        survey.importFromEPSG(6674);
+        utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        survey.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        std::unique_ptr<OGRCoordinateTransformation> to(OGRCreateCoordinateTransformation(&utm, &survey));
+        double px = 518120.0, py = 3779960.0;
+        ASSERT_TRUE(to->Transform(1, &px, &py));
+        gdal::Dataset d(GetGDALDriverManager()->GetDriverByName("GPKG")->Create((dir + "/port.gpkg").c_str(), 0, 0, 0, GDT_Unknown,
+                                                                                nullptr));
+        OGRLayer* l = d->CreateLayer("cars", &survey, wkbPoint, nullptr);
+        OGRFieldDefn type("type", OFTString);
+        l->CreateField(&type);
+        OGRFeature feature(l->GetLayerDefn());
+        feature.SetField("type", "car");
+        OGRPoint point(px, py);
+        feature.SetGeometry(&point);
+        ASSERT_EQ(l->CreateFeature(&feature), OGRERR_NONE);
+    }
+    ASSERT_EQ(test::run_cli("export --flow " + dir + "/flow.nc --trajectories " + dir + "/tracks.nc --sources " + dir +
+                                "/port.gpkg --out-dir " + dir + "/gis",
+                            &out),
+              0)
         << out;
-    ASSERT_EQ(test::run_cli("export --trajectories " + dir + "/tracks.nc --tracks-format geojson --out-dir " + dir + "/gis", &out),
+    EXPECT_NE(out.find("project.qgz (QGIS project: 7 layers"), std::string::npos) << out;
+    ASSERT_EQ(test::run_cli("export --trajectories " + dir + "/tracks.nc --tracks-format geojson --project none --out-dir " + dir +
+                                "/gis",
+                            &out),
               0)
         << out;
 
@@ -163,8 +307,21 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
     EXPECT_STREQ(m->GetSpatialRef()->GetAuthorityCode(nullptr), "32653");
     std::vector<float> depth(1200);
     ASSERT_EQ(m->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 60, 20, depth.data(), 60, 20, GDT_Float32, 0, 0, nullptr), CE_None);
-    EXPECT_GT(depth[10 * 60 + 2], 5.0f);   // the sea bed at -4.7 m under a 3 m rise
-    EXPECT_EQ(depth[10 * 60 + 59], 0.0f);  // +6.8 m ground, far above the water
+    EXPECT_GT(depth[10 * 60 + 2], 5.0f);          // the sea bed at -4.7 m under a 3 m rise
+    EXPECT_TRUE(std::isnan(depth[10 * 60 + 59]));  // +6.8 m ground, far above the water: never flooded, no value
+    // Onshore (bed above still water, from x = 25 m east) apart: the sea has no value there.
+    gdal::Dataset land = gdal::open_raster(dir + "/gis/inundation_depth.tif");
+    std::vector<float> onshore(1200);
+    ASSERT_EQ(land->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 60, 20, onshore.data(), 60, 20, GDT_Float32, 0, 0, nullptr), CE_None);
+    EXPECT_TRUE(std::isnan(onshore[10 * 60 + 2]));
+    EXPECT_TRUE(std::isnan(onshore[10 * 60 + 59]));
+    EXPECT_GT(onshore[10 * 60 + 27], 1.0f);  // bed +0.4 m under the 3 m rise
+    EXPECT_EQ(onshore[10 * 60 + 27], depth[10 * 60 + 27]);
+    for (const char* map : {"max_depth", "inundation_depth", "max_speed", "arrival_time"}) {
+        std::ifstream qml(dir + "/gis/" + map + ".qml");
+        const std::string style((std::istreambuf_iterator<char>(qml)), std::istreambuf_iterator<char>());
+        EXPECT_NE(style.find("singlebandpseudocolor"), std::string::npos) << map;
+    }
     gdal::Dataset arrival = gdal::open_raster(dir + "/gis/arrival_time.tif");
     std::vector<float> at(1200);
     ASSERT_EQ(arrival->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 60, 20, at.data(), 60, 20, GDT_Float32, 0, 0, nullptr), CE_None);
@@ -186,5 +343,86 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
         EXPECT_NEAR(line->getX(0), 518150.0, 1e-6) << name;
         EXPECT_NEAR(line->getY(0), 3779950.0, 1e-6) << name;
         EXPECT_GT(f->GetFieldAsDouble("path_length"), 0.0) << name;
+        EXPECT_STREQ(f->GetFieldAsString("source"), "CAR") << name;  // no GIS feature: the body itself
     }
+    // The styles travel with the data: the GeoPackage's layer_styles, a .qml beside the GeoJSON.
+    EXPECT_NE(gis::qgis::stored_style(dir + "/gis/tracks_tracks.gpkg", "tracks").find("categorizedSymbol"), std::string::npos);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/gis/tracks_tracks.qml"));
+    // The source in the scene's CRS, where it was given.
+    {
+        gdal::Dataset v = gdal::open_vector(dir + "/gis/sources.gpkg");
+        OGRLayer* layer = v->GetLayerByName("source_points");
+        ASSERT_NE(layer, nullptr);
+        EXPECT_STREQ(layer->GetSpatialRef()->GetAuthorityCode(nullptr), "32653");
+        std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(layer->GetNextFeature(), OGRFeature::DestroyFeature);
+        ASSERT_TRUE(f);
+        EXPECT_STREQ(f->GetFieldAsString("layer"), "cars");
+        EXPECT_NEAR(f->GetGeometryRef()->toPoint()->getX(), 518120.0, 1e-3);
+        EXPECT_NEAR(f->GetGeometryRef()->toPoint()->getY(), 3779960.0, 1e-3);
+        EXPECT_NE(gis::qgis::stored_style(dir + "/gis/sources.gpkg", "source_points").find("labelsEnabled=\"1\""),
+                  std::string::npos);
+    }
+    // The project: maps, the flow as a mesh, tracks and sources, paths relative to it.
+    VSIStatBufL st;
+    const std::string inside = "/vsizip/{" + dir + "/gis/project.qgz}/project.qgs";  // braces: not a .zip name
+    ASSERT_EQ(VSIStatL(inside.c_str(), &st), 0);
+    std::string project(std::size_t(st.st_size), '\0');
+    VSILFILE* pf = VSIFOpenL(inside.c_str(), "rb");
+    ASSERT_EQ(VSIFReadL(project.data(), 1, project.size(), pf), project.size());
+    VSIFCloseL(pf);
+    for (const char* source : {"./inundation_depth.tif", "./max_depth.tif", "./max_speed.tif", "./arrival_time.tif", "../flow.nc",
+                               "./tracks_tracks.gpkg|layername=tracks", "./sources.gpkg|layername=source_points"})
+        EXPECT_NE(project.find(std::string("<datasource>") + source + "</datasource>"), std::string::npos) << source;
+    EXPECT_NE(project.find("<authid>EPSG:32653</authid>"), std::string::npos);
+}
+
+TEST(GisExport, HazardRegionsBecomePolygonsInTheSceneCrs) {
+    // Two sources on 10 m cells in UTM 53N: A's inflow region a 3 x 2 block, its return
+    // flow none; B's return flow one cell.
+    const std::string dir = test::scratch_dir("gis_hazard");
+    const Grid g{.nx = 8, .ny = 5, .x0 = east0 + 5.0, .y0 = north0 - 45.0, .dx = 10.0, .dy = 10.0};
+    {
+        nc::File f = nc::File::create(dir + "/hazard_regions.nc");
+        const int ds = f.def_dim("source", 2), dy = f.def_dim("y", std::size_t(g.ny)), dx = f.def_dim("x", std::size_t(g.nx));
+        const cf::XYAxes axes = cf::def_xy(f, dx, dy, "cell centre");
+        cf::def_crs(f, utm53());
+        const int vs = f.def_text_var("source", {ds}, 1);
+        const int vin = cf::def_var(f, {.name = "region_inflow", .type = NC_BYTE, .dims = {ds, dy, dx}, .grid_mapping = "crs"});
+        const int vout = cf::def_var(f, {.name = "region_outflow", .type = NC_BYTE, .dims = {ds, dy, dx}, .grid_mapping = "crs"});
+        f.enddef();
+        std::vector<double> x(std::size_t(g.nx)), y(std::size_t(g.ny));
+        for (int i = 0; i < g.nx; ++i) x[std::size_t(i)] = g.x(i);
+        for (int j = 0; j < g.ny; ++j) y[std::size_t(j)] = g.y(j);
+        f.put(axes.x, x);
+        f.put(axes.y, y);
+        f.put(vs, std::vector<std::string>{"A", "B"});
+        std::vector<std::int8_t> in(2 * g.size(), 0), back(2 * g.size(), 0);
+        for (int j = 1; j <= 2; ++j)
+            for (int i = 2; i <= 4; ++i) in[g.index(i, j)] = 1;
+        back[g.size() + g.index(6, 3)] = 1;
+        f.put(vin, in);
+        f.put(vout, back);
+    }
+    ASSERT_EQ(gis::write_hazard_regions(dir + "/hazard_regions.nc", dir + "/hazard_regions.gpkg"), 2u);
+    gdal::Dataset v = gdal::open_vector(dir + "/hazard_regions.gpkg");
+    OGRLayer* layer = v->GetLayerByName("hazard_regions");
+    ASSERT_NE(layer, nullptr);
+    EXPECT_STREQ(layer->GetSpatialRef()->GetAuthorityCode(nullptr), "32653");
+    std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> a(layer->GetNextFeature(), OGRFeature::DestroyFeature);
+    ASSERT_TRUE(a);
+    EXPECT_STREQ(a->GetFieldAsString("source"), "A");
+    EXPECT_STREQ(a->GetFieldAsString("flow"), "inflow");
+    EXPECT_DOUBLE_EQ(a->GetFieldAsDouble("area_m2"), 600.0);
+    OGREnvelope e;
+    a->GetGeometryRef()->getEnvelope(&e);
+    EXPECT_DOUBLE_EQ(e.MinX, east0 + 20.0);  // columns 2..4, rows 1..2
+    EXPECT_DOUBLE_EQ(e.MaxX, east0 + 50.0);
+    EXPECT_DOUBLE_EQ(e.MinY, north0 - 40.0);
+    EXPECT_DOUBLE_EQ(e.MaxY, north0 - 20.0);
+    EXPECT_DOUBLE_EQ(a->GetGeometryRef()->toMultiPolygon()->get_Area(), 600.0);
+    std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> b(layer->GetNextFeature(), OGRFeature::DestroyFeature);
+    ASSERT_TRUE(b);
+    EXPECT_STREQ(b->GetFieldAsString("source"), "B");
+    EXPECT_STREQ(b->GetFieldAsString("flow"), "return flow");
+    EXPECT_NE(gis::qgis::stored_style(dir + "/hazard_regions.gpkg", "hazard_regions").find("categorizedSymbol"), std::string::npos);
 }
