@@ -24,21 +24,23 @@ FULL_BCS      := $(patsubst $(FULL)/flows/flow_r%.nc,$(FULL)/bc/wg1_r%.csv,$(FUL
 
 .PHONY: real-scale-demo real-scale-scene real-scale-flows real-scale-maps real-scale-nested
 
-$(FULL)/kainan_dsm.tif: $(REAL_DEM) | tool
-	@mkdir -p $(FULL)
+# The inputs a port would hand over (a DSM, roof footprints) live in input/, apart from
+# what flotsam writes.
+$(FULL)/input/kainan_dsm.tif: $(REAL_DEM) | tool
+	@mkdir -p $(@D)
 	gdal_translate -q -of GTiff -ot Float32 -a_srs EPSG:32653 -a_ullr $(FULL_ULLR) -scale 0 1 0.9 250.9 -a_nodata none \
 	  -co COMPRESS=DEFLATE -co PREDICTOR=3 -co TILED=YES NETCDF:"$(REAL_DEM)":z $@
 
-$(FULL)/buildings.gpkg: $(FULL)/kainan_dsm.tif data/examples/kainan_full_scale_buildings.toml
+$(FULL)/input/roof_footprints.gpkg: $(FULL)/input/kainan_dsm.tif data/examples/kainan_full_scale_buildings.toml
 	$(FLOTSAM) scene import --dem $< --still-water-level $(FULL_DATUM) \
-	  --features data/examples/kainan_full_scale_buildings.toml --resolution 2.5 --out $(FULL)/roofs.nc
-	gdal_translate -q -a_nodata 0 NETCDF:"$(FULL)/roofs.nc":building $(FULL)/roofs.tif
-	rm -f $@ && gdal_polygonize.py -q $(FULL)/roofs.tif -f GPKG $@ buildings
-	rm -f $(FULL)/roofs.nc $(FULL)/roofs.tif
+	  --features data/examples/kainan_full_scale_buildings.toml --resolution 2.5 --out $(@D)/roofs.nc
+	gdal_translate -q -a_nodata 0 NETCDF:"$(@D)/roofs.nc":building $(@D)/roofs.tif
+	rm -f $@ && gdal_polygonize.py -q $(@D)/roofs.tif -f GPKG $@ roofs
+	rm -f $(@D)/roofs.nc $(@D)/roofs.tif
 
-$(FULL)/scene.nc: $(FULL)/kainan_dsm.tif $(FULL)/buildings.gpkg $(FULL_FEATURES)
+$(FULL)/scene.nc: $(FULL)/input/kainan_dsm.tif $(FULL)/input/roof_footprints.gpkg $(FULL_FEATURES)
 	$(FLOTSAM) scene import --dem $< --still-water-level $(FULL_DATUM) --features $(FULL_FEATURES) \
-	  --buildings $(FULL)/buildings.gpkg --resolution $(FULL_RES) --out $@
+	  --buildings $(FULL)/input/roof_footprints.gpkg --resolution $(FULL_RES) --out $@
 
 $(FULL_BCS) &: | tool
 	$(FLOTSAM) boundary generate --out-dir $(FULL)/bc --count $(FULL_COUNT) --seed $(SEED) --duration 420 \
@@ -69,11 +71,12 @@ $(FULL)/stats.nc: $(FULL)/sweep.nc
 real-scale-scene: $(FULL)/scene.nc
 ## real-scale-flows  the full-scale flows
 real-scale-flows: $(FULL_FLOWS)
-## real-scale-maps   sweep, statistics, GeoTIFF maps, GeoPackage tracks and building impacts, hazard regions, charts
+## real-scale-maps   sweep, statistics, hazard regions, the GIS export (COG maps, GeoPackages, QGIS project), charts
 real-scale-maps: $(FULL)/stats.nc
-	$(FLOTSAM) export --stats $(FULL)/stats.nc --scene $(FULL)/scene.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) \
-	  --trajectories $(FULL)/sweep.nc --out-dir $(FULL)/gis
 	$(PYTHON) -m pipelines.hazard_region --sweep $(FULL)/sweep.nc --scene $(FULL)/scene.nc --out $(FULL)/hazard
+	$(FLOTSAM) export --stats $(FULL)/stats.nc --scene $(FULL)/scene.nc $(foreach f,$(FULL_FLOWS),--flow $(f)) \
+	  --trajectories $(FULL)/sweep.nc --sources $(FULL)/port_layers.gpkg --hazard-regions $(FULL)/hazard/hazard_regions.nc \
+	  --out-dir $(FULL)/gis
 	$(PYTHON) -m pipelines.charts --scene $(FULL)/scene.nc --stats $(FULL)/stats.nc --out $(FULL)/charts --only-buildings
 	gdalinfo $(FULL)/gis/pass_probability_all.tif | grep -E "^(Size|Origin|Pixel Size)|LAYOUT|ID\[\"EPSG\",32653\]\]$$"
 	$(PYTHON) -m pipelines.charts_full_scale --scene $(FULL)/scene.nc --stats $(FULL)/stats.nc --sweep $(FULL)/sweep.nc \
@@ -85,20 +88,20 @@ real-scale-maps: $(FULL)/stats.nc
 # gives it); a 10 m run of the port box alone is driven through its west and south sides
 # by it, and compared with the 10 m run of the whole area (flow_r00).
 FULL_BOX := 517748.75,520001.25,3779128.75,3779998.75
-$(FULL)/regional/scene.nc: $(FULL)/kainan_dsm.tif $(FULL)/buildings.gpkg $(FULL_FEATURES)
+$(FULL)/regional/scene.nc: $(FULL)/input/kainan_dsm.tif $(FULL)/input/roof_footprints.gpkg $(FULL_FEATURES)
 	@mkdir -p $(@D)
 	$(FLOTSAM) scene import --dem $< --still-water-level $(FULL_DATUM) --features $(FULL_FEATURES) \
-	  --buildings $(FULL)/buildings.gpkg --resolution 20 --out $@
+	  --buildings $(FULL)/input/roof_footprints.gpkg --resolution 20 --out $@
 $(FULL)/regional/outline.nc: $(FULL)/regional/scene.nc $(FULL)/bc/wg1_r00.csv | tool
 	$(FLOTSAM) hydro --scene $< --west level --west-series $(FULL)/bc/wg1_r00.csv --duration $(FULL_DURATION) \
 	  --boundary-output $@ --boundary-box $(FULL_BOX) --boundary-interval 10 --threads $(THREADS) --label "regional 20 m" \
 	  --out $(FULL)/regional/flow_r00.nc
 $(FULL)/regional/outline_lonlat.nc: $(FULL)/regional/outline.nc
 	$(PYTHON) -m pipelines.boundary_files to-lonlat $< $@
-$(FULL)/port/scene.nc: $(FULL)/kainan_dsm.tif $(FULL)/buildings.gpkg $(FULL_FEATURES)
+$(FULL)/port/scene.nc: $(FULL)/input/kainan_dsm.tif $(FULL)/input/roof_footprints.gpkg $(FULL_FEATURES)
 	@mkdir -p $(@D)
 	$(FLOTSAM) scene import --dem $< --still-water-level $(FULL_DATUM) --features $(FULL_FEATURES) \
-	  --buildings $(FULL)/buildings.gpkg --resolution $(FULL_RES) --extent $(FULL_BOX) --out $@
+	  --buildings $(FULL)/input/roof_footprints.gpkg --resolution $(FULL_RES) --extent $(FULL_BOX) --out $@
 $(FULL)/port/flow_r00.nc: $(FULL)/port/scene.nc $(FULL)/regional/outline_lonlat.nc | tool
 	$(FLOTSAM) hydro --scene $< --west-forcing $(FULL)/regional/outline_lonlat.nc \
 	  --south-forcing $(FULL)/regional/outline_lonlat.nc --nest-ratio 1 --duration $(FULL_DURATION) --threads $(THREADS) \
@@ -116,5 +119,6 @@ real-scale-demo: setup
 	$(MAKE) -f Makefile.pipeline real-scale-scene $(FULL_BCS) && \
 	$(MAKE) -f Makefile.pipeline -j$(JOBS) real-scale-flows && \
 	$(MAKE) -f Makefile.pipeline real-scale-maps && \
+	$(MAKE) -f Makefile.pipeline real-scale-animate && \
 	$(MAKE) -f Makefile.pipeline real-scale-nested && \
-	echo "real-scale-demo: done in $$(( $$(date +%s) - start )) s: GeoTIFFs and GeoPackages in $(FULL)/gis, hazard regions in $(FULL)/hazard, chart $(FULL)/kainan_full_scale.png"
+	echo "real-scale-demo: done in $$(( $$(date +%s) - start )) s: the QGIS project $(FULL)/gis/project.qgz (GeoTIFFs, GeoPackages), hazard regions in $(FULL)/hazard, chart $(FULL)/kainan_full_scale.png, animation in $(FULL)/animation"

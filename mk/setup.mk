@@ -2,7 +2,7 @@
 
 DEB_PACKAGES := cmake g++ make pkg-config git libeigen3-dev libhdf5-dev libnetcdf-dev libcli11-dev libdeflate-dev \
                 libgtest-dev googletest netcdf-bin python3-matplotlib python3-xarray python3-netcdf4 \
-                python3-numpy cdo libgdal-dev gdal-bin python3-gdal
+                python3-numpy cdo libgdal-dev gdal-bin python3-gdal ffmpeg
 
 # $(call apt_install,WHO,PACKAGES): installs those of PACKAGES that are missing (as root, or
 # through sudo), saying "WHO: installing ..."; prints OTHERWISE when all are present.
