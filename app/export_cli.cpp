@@ -126,7 +126,7 @@ void run_export(const ExportOptions& o) {
     };
     if (!o.flows.empty()) {
         // The first flow in time, drawn over the maps when the temporal controller runs.
-        ProjectLayer mesh = gis::flow_mesh_layer(o.flows[0], flow_layers[0].style.stops.back().value);
+        ProjectLayer mesh = gis::flow_mesh_layer(o.flows[0], flow_layers[1].style.stops.back().value);  // the onshore range
         mesh.group = "maps";
         mesh.visible = false;
         layers.push_back(mesh);

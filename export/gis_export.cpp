@@ -211,8 +211,8 @@ std::string tracks_qml(const std::vector<std::string>& sources) {
     s.field = "source";
     for (std::size_t k = 0; k < sources.size(); ++k)
         s.categories.push_back(
-            {sources[k], sources[k], {qgis::Symbol::Kind::line, category_colours[k % category_colours.size()], "", 0.2, 2.0, 0.45}});
-    s.other = {qgis::Symbol::Kind::line, "#404040", "", 0.2, 2.0, 0.45};
+            {sources[k], sources[k], {qgis::Symbol::Kind::line, category_colours[k % category_colours.size()], "", 0.15, 2.0, 0.3}});
+    s.other = {qgis::Symbol::Kind::line, "#404040", "", 0.15, 2.0, 0.3};
     if (sources.empty()) s.symbol = s.other;
     return qgis::vector_qml(s);
 }
@@ -227,7 +227,11 @@ std::string buildings_qml() {
         s.classes.push_back({lower, c.value, "hit by " + c.label + " of the tracks", fill(c.colour, "#5a5a5a", 0.15)});
         lower = c.value;
     }
-    s.labels.expression = "CASE WHEN \"force_p90_N\" IS NOT NULL THEN 'p90 ' || format_number(\"force_p90_N\" / 1000, 0) || ' kN' END";
+    // The force on the buildings that matter (hit by at least 5 % of the tracks): labels on
+    // every hit building would cover the map.
+    s.labels.expression =
+        "CASE WHEN \"hit_probability\" >= 0.05 AND \"force_p90_N\" IS NOT NULL "
+        "THEN 'p90 ' || format_number(\"force_p90_N\" / 1000, 0) || ' kN' END";
     s.labels.size_pt = 7;
     return qgis::vector_qml(s);
 }
@@ -440,7 +444,7 @@ std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::
             if (x > speed_top) speed_top = x;
     }
     for (MapLayer& m : maps)
-        m.style = m.name.rfind(probability, 0) == 0 ? qgis::probability_classes(probability_colours)
+        m.style = m.name.rfind(probability, 0) == 0 ? qgis::probability_classes(probability_colours, 0.8)
                                                     : qgis::ramp(qgis::round_ceiling(speed_top), debris_speed_colours, "m s-1");
     return maps;
 }
@@ -960,10 +964,15 @@ qgis::ProjectLayer flow_mesh_layer(const std::string& flow_path, double depth_to
     qgis::MeshStyle style;
     style.scalar_group = index_of("h");
     style.vector_group = index_of("u");
+    // Depths over the onshore range (deeper water takes the last colour); dry cells clear,
+    // from clear at 0 to the first colour at a thousandth of the range.
     style.scalar = qgis::ramp(depth_top, land_depth_colours, "m", 0.8);
-    // Dry cells (below a thousandth of the range) stay clear.
+    qgis::ColourStop dry = style.scalar.stops.front();
+    dry.alpha = 0;
+    dry.label = "dry";
     style.scalar.stops.front().value = 1e-3 * depth_top;
-    style.scalar.stops.front().label = "wet (> " + qgis::value_label(1e-3 * depth_top, "m") + ")";
+    style.scalar.stops.front().label = qgis::value_label(1e-3 * depth_top, "m");
+    style.scalar.stops.insert(style.scalar.stops.begin(), dry);
     style.arrow_min_speed = 1e-3 * std::sqrt(9.81 * depth_top);  // a thousandth of the wave speed at the top depth
     const std::vector<double> time = nc::read_finite(f, "time");
     qgis::ProjectLayer layer;

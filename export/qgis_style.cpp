@@ -40,17 +40,18 @@ std::string head(const std::string& attributes = "") {
            "\" styleCategories=\"AllStyleCategories\"" + attributes + ">\n";
 }
 
-std::string colour_ramp_shader(const RasterStyle& s, bool clip) {
+std::string colour_ramp_shader(const RasterStyle& s) {
     if (s.stops.empty()) fail("style", "colour ramp", "has no stops");
     std::string x = "<colorrampshader colorRampType=\"" + std::string(s.discrete ? "DISCRETE" : "INTERPOLATED") +
-                    "\" classificationMode=\"1\" clip=\"" + (clip ? "1" : "0") + "\" minimumValue=\"" +
+                    "\" classificationMode=\"1\" clip=\"0\" minimumValue=\"" +
                     num(s.stops.front().value) + "\" maximumValue=\"" + num(s.stops.back().value) +
                     "\" labelPrecision=\"4\">\n";
     for (std::size_t k = 0; k < s.stops.size(); ++k) {
         const ColourStop& c = s.stops[k];
         // A discrete ramp's last class takes everything above as well.
         const double value = s.discrete && k + 1 == s.stops.size() ? INFINITY : c.value;
-        x += "  <item value=\"" + num(value) + "\" color=\"" + c.colour + "\" alpha=\"255\" label=\"" + xml_escape(c.label) + "\"/>\n";
+        x += "  <item value=\"" + num(value) + "\" color=\"" + c.colour + "\" alpha=\"" + std::to_string(c.alpha) + "\" label=\"" +
+             xml_escape(c.label) + "\"/>\n";
     }
     return x + "</colorrampshader>\n";
 }
@@ -176,7 +177,7 @@ std::string raster_qml(const RasterStyle& s) {
            "\">\n<rasterTransparency/>\n<minMaxOrigin><limits>None</limits><extent>WholeRaster</extent>"
            "<statAccuracy>Exact</statAccuracy><cumulativeCutLower>0.02</cumulativeCutLower>"
            "<cumulativeCutUpper>0.98</cumulativeCutUpper><stdDevFactor>2</stdDevFactor></minMaxOrigin>\n<rastershader>\n" +
-           colour_ramp_shader(s, false) +
+           colour_ramp_shader(s) +
            "</rastershader>\n</rasterrenderer>\n<rasterresampler maxOversampling=\"2\"/>\n"
            "<resamplingStage>resamplingFilter</resamplingStage>\n</pipe>\n<blendMode>0</blendMode>\n</qgis>\n";
 }
@@ -221,10 +222,9 @@ std::string mesh_qml(const MeshStyle& s) {
     std::string x = head() + "<mesh-renderer-settings>\n<active-dataset-group scalar=\"" + std::to_string(s.scalar_group) +
                     "\" vector=\"" + std::to_string(s.vector_group) + "\"/>\n";
     if (s.scalar_group >= 0)
-        // Clipped: values below the first stop (dry cells) are not drawn.
         x += "<scalar-settings group=\"" + std::to_string(s.scalar_group) + "\" opacity=\"" + num(s.scalar.opacity) +
              "\" interpolation-method=\"none\" min-val=\"" + num(s.scalar.stops.front().value) + "\" max-val=\"" +
-             num(s.scalar.stops.back().value) + "\">\n" + colour_ramp_shader(s.scalar, true) +
+             num(s.scalar.stops.back().value) + "\">\n" + colour_ramp_shader(s.scalar) +
              "<edge-settings stroke-width-unit=\"0\"/>\n</scalar-settings>\n";
     if (s.vector_group >= 0)
         x += "<vector-settings group=\"" + std::to_string(s.vector_group) +

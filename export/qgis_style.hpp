@@ -18,6 +18,7 @@ struct ColourStop {
     double value = 0.0;  // in the map's units; a discrete ramp's class holds values up to it
     std::string colour;  // "#rrggbb"
     std::string label;   // legend text with units, e.g. "2 m", "≤ 1 %"
+    int alpha = 255;     // 0 (clear) .. 255
 };
 
 struct RasterStyle {
@@ -82,7 +83,7 @@ struct VectorStyle {
 
 struct MeshStyle {
     int scalar_group = -1;        // the dataset group drawn as colours (QGIS's order of the file's variables)
-    RasterStyle scalar;           // its ramp; values below the first stop are left clear (dry cells)
+    RasterStyle scalar;           // its ramp (a clear first stop leaves dry cells clear)
     int vector_group = -1;        // the dataset group drawn as arrows; -1: none
     double arrow_spacing_px = 30; // arrows on a grid of this spacing [pixels]
     double arrow_min_speed = 0;   // [m s-1] no arrow below it (dry cells have none)
