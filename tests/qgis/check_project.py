@@ -12,7 +12,8 @@ temporal controller, never QGIS's default grey or single random colour). Each fi
 opened on its own (as a planner drags it in) gets the same style: a GeoTIFF its .qml,
 a GeoPackage layer its default style in layer_styles.
 
-Then renders PNGs (DIR/NAME_*.png) and checks pixels at known cells, read from the data
+Then renders PNGs (DIR/NAME_*.png: the project as it opens, the inundation, the debris,
+the flow at mid-run, and close-ups) and checks pixels at known cells, read from the data
 with GDAL: the deepest onshore flooded cell is drawn in the inundation ramp's blue, a
 never-flooded cell is left clear, the most-hit building in its hit-probability class's
 colour and a building never hit in grey, the cell most tracks pass in the probability
@@ -21,7 +22,6 @@ Prints the layer table (layer, loads, CRS, style) and exits 1 if any check faile
 Needs Debian's qgis and python3-qgis (make -f Makefile.pipeline test-qgis installs them).
 """
 import argparse
-import math
 import os
 import sys
 
@@ -112,6 +112,12 @@ def pixel(image, settings, x, y):
     p = settings.mapToPixel().transform(QgsPointXY(x, y))
     c = image.pixelColor(int(p.x()), int(p.y()))
     return c.red(), c.green(), c.blue()
+
+
+def over_white(layer, rgb):
+    """The colour a raster layer draws over a white background, with its opacity."""
+    o = layer.renderer().opacity()
+    return tuple(int(round(o * c + (1 - o) * 255)) for c in rgb)
 
 
 def near(a, b, tol=12):
@@ -213,12 +219,14 @@ def main(argv=None):
             image, s = render(project, [onshore, sea], box, os.path.join(a.png_dir, f"{a.prefix}_flood.png"), width=800)
             got = pixel(image, s, x, y)
             colour = onshore.renderer().shader().rasterShaderFunction().shade(float(depth[r, c]))
-            expected = (colour[1], colour[2], colour[3]) if colour[0] else None
+            expected = over_white(onshore, colour[1:4]) if colour[0] else None
             blue = got[2] > got[0] + 30 and got[2] >= got[1]
             check(blue and expected is not None and near(got, expected),
                   f"flood: the deepest onshore cell ({x:.1f}, {y:.1f}, {depth[r, c]:.2f} m) is {got}, not the ramp's {expected}")
             print(f"check_project: {a.prefix}_flood.png: the deepest onshore cell ({x:.1f}, {y:.1f}), {depth[r, c]:.2f} m, "
                   f"drawn {got} (ramp {expected}){'' if blue else ' NOT BLUE'}")
+        render(project, [onshore, sea], extent, os.path.join(a.png_dir, f"{a.prefix}_inundation.png"))
+        print(f"check_project: {a.prefix}_inundation.png: the inundation depth onshore over the sea's largest depth")
         dry = away_from_edges(~np.isfinite(allwet), 3)
         if dry.any():
             rr, cc = np.argwhere(dry)[len(np.argwhere(dry)) // 2]
@@ -280,7 +288,7 @@ def main(argv=None):
         image, s = render(project, [passing], QgsRectangle(x - span, y - span / 2, x + span, y + span / 2),
                           os.path.join(a.png_dir, f"{a.prefix}_pass.png"), width=600)
         colour = passing.renderer().shader().rasterShaderFunction().shade(float(prob[r, c]))
-        expected = (colour[1], colour[2], colour[3]) if colour[0] else None
+        expected = over_white(passing, colour[1:4]) if colour[0] else None
         got = pixel(image, s, x, y)
         check(expected is not None and near(got, expected), f"debris: the most-passed cell is drawn {got}, not its class {expected}")
         print(f"check_project: the cell passed by {100 * prob[r, c]:.0f} % of the tracks drawn {got} (class {expected})")
