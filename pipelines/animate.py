@@ -13,14 +13,16 @@ track over the last --tail seconds, fading. Bodies are coloured by source (the G
 feature they came from, else the body). The view is the tracks' extent with a margin
 (--box: given; --whole: the flow's window).
 
-Writes an H.264 MP4 (Debian's ffmpeg) and, with --gif, a GIF of it (half the frame rate,
---gif-width pixels wide, its own palette). Files appear only when complete (<name>.part
-first). A progress bar goes to stderr; the last line gives the cost: seconds of wall
-time per second of video. Uses numpy, netCDF4, matplotlib and ffmpeg.
+Writes an H.264 MP4 (Debian's ffmpeg) and, with --gif, a GIF of it (--gif-fps frames a
+second, --gif-width pixels wide, its own palette). Files appear only when complete
+(<name>.part first). A progress bar goes to stderr; the last line gives the cost: seconds
+of wall (and of processor, ffmpeg included) per second of video. Uses numpy, netCDF4,
+matplotlib and ffmpeg.
 """
 import argparse
 import math
 import os
+import resource
 import shutil
 import subprocess
 import sys
@@ -165,17 +167,27 @@ class Progress:
         sys.stderr.flush()
 
 
-def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_width):
+def processor_seconds():
+    """Processor time of this process and its finished children (ffmpeg) [s]."""
+    me, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime + children.ru_utime + children.ru_stime
+
+
+def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_width, gif_fps):
     if not shutil.which("ffmpeg"):
         sys.exit("animate: ffmpeg is missing (Debian: apt-get install ffmpeg; make -f Makefile.pipeline setup)")
     dx = flow.x[1] - flow.x[0]
     aspect = (box[3] - box[2]) / (box[1] - box[0])
     dpi = 100
     fig_w = width_px / dpi
-    fig_h = max(3.0, min(9.0, fig_w * aspect + 1.2))
+    # Margins [inch]: left for the y labels, right for the colour bar, below for the x label.
+    left, right, bottom, top = 1.0, 1.2, 0.65, 0.35
+    ax_w = fig_w - left - right
+    ax_h = min(ax_w * aspect, 9.0)
+    fig_h = ax_h + bottom + top
     fig = plt.figure(figsize=(fig_w, fig_h), dpi=dpi)
-    ax = fig.add_axes([0.07, 0.12, 0.78, 0.8])
-    cax = fig.add_axes([0.88, 0.12, 0.018, 0.8])
+    ax = fig.add_axes([left / fig_w, bottom / fig_h, ax_w / fig_w, ax_h / fig_h])
+    cax = fig.add_axes([(left + ax_w + 0.2) / fig_w, bottom / fig_h, 0.15 / fig_w, ax_h / fig_h])
 
     # The ground: sea floor and land in greys by height, buildings dark.
     z = flow.z
@@ -230,7 +242,7 @@ def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_wid
            "-preset", "medium", "-movflags", "+faststart", "-fflags", "+bitexact", "-flags:v", "+bitexact",
            "-map_metadata", "-1", part]
     enc = subprocess.Popen(cmd, stdin=subprocess.PIPE)
-    start = time.monotonic()
+    start, cpu_start = time.monotonic(), processor_seconds()
     frames = range(len(flow.time))
     bar = Progress(len(frames), "animate " + os.path.basename(out))
     lengths, widths = bodies["length"], bodies["width"]
@@ -278,7 +290,7 @@ def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_wid
     if gif:
         gpart = gif + ".part.gif"
         gif_start = time.monotonic()
-        vf = (f"fps={fps / 2:g},scale={gif_width}:-2:flags=lanczos,split[a][b];[a]palettegen=max_colors=128:stats_mode=diff[p];"
+        vf = (f"fps={gif_fps:g},scale={gif_width}:-2:flags=lanczos,split[a][b];[a]palettegen=max_colors=128:stats_mode=diff[p];"
               f"[b][p]paletteuse=dither=bayer:bayer_scale=4:diff_mode=rectangle")
         r = subprocess.run(["ffmpeg", "-y", "-loglevel", "error", "-i", out, "-vf", vf, "-fflags", "+bitexact", gpart])
         if r.returncode != 0:
@@ -287,8 +299,10 @@ def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_wid
             sys.exit(f"animate: ffmpeg could not write {gif}")
         os.replace(gpart, gif)
         wall += time.monotonic() - gif_start
+    cpu = processor_seconds() - cpu_start
     print(f"animate: {out}{' and ' + gif if gif else ''}: {len(frames)} frames, {seconds:.1f} s of video at {fps} fps, "
-          f"{len(bodies['source'])} bodies; {wall:.1f} s of wall: {wall / seconds:.2f} s of wall per second of video")
+          f"{len(bodies['source'])} bodies; {wall:.1f} s of wall ({cpu:.1f} s of processor): {wall / seconds:.2f} s of wall "
+          f"({cpu / seconds:.2f} s of processor) per second of video")
 
 
 def main(argv=None):
@@ -303,7 +317,8 @@ def main(argv=None):
     ap.add_argument("--box", help="x0,x1,y0,y1 [m]: the view")
     ap.add_argument("--whole", action="store_true", help="the view: the flow's whole window")
     ap.add_argument("--width", type=int, default=1280, help="[pixel] of the video")
-    ap.add_argument("--gif-width", type=int, default=640, help="[pixel] of the GIF")
+    ap.add_argument("--gif-width", type=int, default=480, help="[pixel] of the GIF")
+    ap.add_argument("--gif-fps", type=float, default=6, help="frames per second of the GIF (every fourth frame at 24)")
     a = ap.parse_args(argv)
     if a.fps < 1:
         sys.exit(f"animate: --fps {a.fps}: must be at least 1")
@@ -325,7 +340,7 @@ def main(argv=None):
     for path in (a.out, a.gif):
         if path and os.path.dirname(path):
             os.makedirs(os.path.dirname(path), exist_ok=True)
-    render(flow, bodies, a.scene, a.out, a.gif, a.fps, tail, box, a.width, a.gif_width)
+    render(flow, bodies, a.scene, a.out, a.gif, a.fps, tail, box, a.width, a.gif_width, a.gif_fps)
 
 
 if __name__ == "__main__":
