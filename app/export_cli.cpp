@@ -89,8 +89,6 @@ void run_export(const ExportOptions& o) {
         scenes.push_back({o.hazard_regions, 0.0, "", {}});
         gis::write_hazard_regions(o.hazard_regions, "", true, &scenes.back().crs);
     }
-    if (!o.scene.empty() && o.stats.empty())
-        fail("--scene", o.scene, "needs --stats (the buildings layer carries its impact statistics)");
     for (std::size_t a = 1; a < scenes.size(); ++a) check_same_scene(scenes[a], scenes[0]);
     const cf::GridMapping study_crs = scenes.empty() ? cf::GridMapping{} : scenes[0].crs;
     if (!o.sources.empty()) gis::write_sources(o.sources, study_crs, "", true);
@@ -141,11 +139,24 @@ void run_export(const ExportOptions& o) {
                    true);
     }
     if (!o.stats.empty()) write_maps(stats_layers, stats_grid, stats_crs, o.stats, "debris", {"pass_probability_all"});
-    if (!o.scene.empty()) {
+    if (!o.scene.empty() && !o.stats.empty()) {
         const std::string path = out("buildings.gpkg");
         const std::size_t n = gis::write_building_footprints(o.scene, o.stats, path);
         std::printf("export: %s (%zu building footprints with their impact statistics)\n", path.c_str(), n);
         add_vector(path, "buildings", "buildings: hit probability, p90 impact force", "buildings", true);
+    }
+    if (!o.scene.empty()) {
+        const std::string path = out("scene_features.gpkg");
+        if (const std::size_t n = gis::write_scene_features(o.scene, path)) {
+            std::printf("export: %s (%zu named points, sections and regions of the scene)\n", path.c_str(), n);
+            const gdal::Dataset d = gdal::open_vector(path);
+            const std::pair<const char*, const char*> shown[] = {
+                {"starts", "debris starts"}, {"gauges", "gauges"}, {"sections", "passage sections"}, {"regions", "arrival regions"}};
+            for (const auto& [layer, name] : shown)
+                if (d->GetLayerByName(layer))
+                    add_vector(path, layer, name, layer == std::string("starts") ? "sources" : layer == std::string("gauges") ? "maps" : "regions",
+                               layer == std::string("starts"));
+        }
     }
     if (!o.hazard_regions.empty()) {
         const std::string path = out("hazard_regions.gpkg");
@@ -164,12 +175,24 @@ void run_export(const ExportOptions& o) {
                            "sources", true);
     }
     if (!project) return;
-    for (const ProjectLayer& l : layers)
-        if (l.kind == ProjectLayer::Kind::vector) {
-            const gdal::Dataset d = gdal::open_vector(l.path);
-            OGREnvelope e;
-            if (d->GetLayerByName(l.layer.c_str())->GetExtent(&e) == OGRERR_NONE) cover(e.MinX, e.MinY, e.MaxX, e.MaxY);
+    // Within a group points over lines over areas over the mesh over rasters, else in the
+    // order written.
+    std::vector<int> rank;
+    for (const ProjectLayer& l : layers) {
+        if (l.kind != ProjectLayer::Kind::vector) {
+            rank.push_back(l.kind == ProjectLayer::Kind::mesh ? 3 : 4);
+            continue;
         }
+        const gdal::Dataset d = gdal::open_vector(l.path);
+        OGRLayer* layer = d->GetLayerByName(l.layer.c_str());
+        OGREnvelope e;
+        if (layer->GetExtent(&e) == OGRERR_NONE) cover(e.MinX, e.MinY, e.MaxX, e.MaxY);
+        const OGRwkbGeometryType g = wkbFlatten(layer->GetGeomType());
+        rank.push_back(g == wkbPoint || g == wkbMultiPoint ? 0 : g == wkbLineString || g == wkbMultiLineString ? 1 : 2);
+    }
+    std::vector<std::size_t> order(layers.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
     gis::qgis::Project p;
     p.title = "flotsam: " + (o.scene.empty() ? o.out_dir : std::filesystem::path(o.scene).stem().string());
     p.crs = study_crs;
@@ -184,7 +207,7 @@ void run_export(const ExportOptions& o) {
     p.x_max = extent[2];
     p.y_max = extent[3];
     p.groups = {"sources", "regions", "buildings", "debris", "maps"};
-    p.layers = layers;
+    for (std::size_t k : order) p.layers.push_back(layers[k]);
     if (!o.flows.empty()) {
         const nc::File f = nc::File::open_read(o.flows[0]);
         const std::vector<double> time = nc::read_finite(f, "time");
@@ -210,7 +233,8 @@ void register_export_commands(CLI::App& app) {
     sub->add_option("--flow", o->flows, "flow file (repeatable: the envelope of an ensemble)")->check(CLI::ExistingFile);
     sub->add_option("--trajectories", o->trajectories, "trajectory or sweep file (repeatable)")->check(CLI::ExistingFile);
     sub->add_option("--scene", o->scene,
-                    "scene of --stats: also write buildings.gpkg, its building footprints with their impact statistics")
+                    "the study's scene: scene_features.gpkg (its debris starts, gauges, sections and regions) and, with "
+                    "--stats, buildings.gpkg (its building footprints with their impact statistics)")
         ->check(CLI::ExistingFile);
     sub->add_option("--sources", o->sources,
                     "the study's debris sources (the vector file of flotsam debris --sources or a sweep's [[sources]]): "

@@ -247,14 +247,29 @@ std::string buildings_force_qml() {
     return qgis::vector_qml(s);
 }
 
-std::string sources_qml(bool points) {
+// Debris sources in purple, labelled by `label` (a QGIS expression).
+std::string sources_qml(bool points, const std::string& label) {
     qgis::VectorStyle s;
     s.symbol = points ? qgis::Symbol{qgis::Symbol::Kind::marker, "#7a0177", "#ffffff", 0.3, 2.6, 1.0, false}
                       : fill("", "#7a0177", 0.7);
-    s.labels.expression = "\"layer\" || coalesce(' (' || \"type\" || ')', '')";
+    s.labels.expression = label;
     s.labels.size_pt = 8;
     s.labels.colour = "#4a0048";
     s.labels.polygon_inside = !points;
+    return qgis::vector_qml(s);
+}
+const char* source_label = "\"layer\" || coalesce(' (' || \"type\" || ')', '')";
+
+// The scene's named features: gauges black, sections and regions (of the statistics) teal.
+std::string feature_qml(qgis::Symbol::Kind kind) {
+    qgis::VectorStyle s;
+    s.symbol = kind == qgis::Symbol::Kind::marker ? qgis::Symbol{kind, "#202020", "#ffffff", 0.3, 2.0, 1.0, false}
+               : kind == qgis::Symbol::Kind::line ? qgis::Symbol{kind, "#00747a", "", 0.6, 2.0, 1.0, false}
+                                                  : fill("", "#00747a", 0.5);
+    s.labels.expression = "\"name\"";
+    s.labels.size_pt = 7;
+    s.labels.colour = kind == qgis::Symbol::Kind::marker ? "#202020" : "#00474b";
+    s.labels.polygon_inside = kind == qgis::Symbol::Kind::fill;
     return qgis::vector_qml(s);
 }
 
@@ -870,10 +885,10 @@ std::size_t write_sources(const std::string& sources_path, const cf::GridMapping
     };
     std::vector<VectorLayerDef> defs;
     if (!areas.empty())
-        defs.push_back({"source_areas", wkbMultiPolygon, {{"outlined", "the yards, outlined and labelled", sources_qml(false), true}},
+        defs.push_back({"source_areas", wkbMultiPolygon, {{"outlined", "the yards, outlined and labelled", sources_qml(false, source_label), true}},
                         writer(areas)});
     if (!points.empty())
-        defs.push_back({"source_points", wkbPoint, {{"points", "single bodies, labelled", sources_qml(true), true}}, writer(points)});
+        defs.push_back({"source_points", wkbPoint, {{"points", "single bodies, labelled", sources_qml(true, source_label), true}}, writer(points)});
     return write_vector_layers(out_path, "GPKG", crs, sources_path, defs);
 }
 
@@ -933,6 +948,64 @@ std::size_t write_hazard_regions(const std::string& regions_path, const std::str
                                      }
                                      return regions.size();
                                  }}});
+}
+
+std::size_t write_scene_features(const std::string& scene_path, const std::string& out_path) {
+    gdal::init();
+    const Scene scene = read_scene(scene_path);
+    auto name_field = [&](OGRLayer& layer) { add_field(layer, out_path, "name", OFTString); };
+    auto add = [&](OGRLayer& layer, const std::string& name, const OGRGeometry& g, double heading = std::nan("")) {
+        OGRFeature feature(layer.GetLayerDefn());
+        feature.SetField("name", name.c_str());
+        if (!std::isnan(heading)) feature.SetField("heading_deg", heading);
+        feature.SetGeometry(&g);
+        if (layer.CreateFeature(&feature) != OGRERR_NONE) fail(out_path, name, "cannot write: " + gdal::last_error());
+    };
+    std::vector<VectorLayerDef> defs;
+    for (const char* kind : {"start", "gauge"}) {
+        std::vector<ScenePoint> points;
+        for (const ScenePoint& p : scene.points)
+            if (p.kind == kind) points.push_back(p);
+        if (points.empty()) continue;
+        const bool start = std::string(kind) == "start";
+        defs.push_back({start ? "starts" : "gauges", wkbPoint,
+                        {{"labelled", start ? "the scene's debris starts" : "the scene's gauges",
+                          start ? sources_qml(true, "\"name\"") : feature_qml(qgis::Symbol::Kind::marker), true}},
+                        [&, points, start](OGRLayer& layer) {
+                            name_field(layer);
+                            if (start) add_field(layer, out_path, "heading_deg", OFTReal);
+                            for (const ScenePoint& p : points) add(layer, p.name, OGRPoint(p.x, p.y), start ? p.heading_deg : std::nan(""));
+                            return points.size();
+                        }});
+    }
+    if (!scene.sections.empty())
+        defs.push_back({"sections", wkbLineString, {{"labelled", "the passage sections", feature_qml(qgis::Symbol::Kind::line), true}},
+                        [&](OGRLayer& layer) {
+                            name_field(layer);
+                            for (const Section& c : scene.sections) {
+                                OGRLineString line;
+                                line.addPoint(c.x, c.y_min);
+                                line.addPoint(c.x, c.y_max);
+                                add(layer, c.name, line);
+                            }
+                            return scene.sections.size();
+                        }});
+    if (!scene.regions.empty())
+        defs.push_back({"regions", wkbPolygon, {{"labelled", "the arrival-count regions", feature_qml(qgis::Symbol::Kind::fill), true}},
+                        [&](OGRLayer& layer) {
+                            name_field(layer);
+                            for (const Region& r : scene.regions) {
+                                OGRLinearRing ring;
+                                for (const auto& v : r.polygon) ring.addPoint(v[0], v[1]);
+                                ring.closeRings();
+                                OGRPolygon polygon;
+                                polygon.addRing(&ring);
+                                add(layer, r.name, polygon);
+                            }
+                            return scene.regions.size();
+                        }});
+    if (defs.empty()) return 0;
+    return write_vector_layers(out_path, "GPKG", scene.crs, scene_path, defs);
 }
 
 qgis::ProjectLayer flow_mesh_layer(const std::string& flow_path, double depth_top) {

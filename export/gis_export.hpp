@@ -102,6 +102,12 @@ std::size_t write_sources(const std::string& sources_path, const cf::GridMapping
 std::size_t write_hazard_regions(const std::string& regions_path, const std::string& out_path, bool check_only = false,
                                  cf::GridMapping* crs = nullptr);
 
+// The scene's named features as a GeoPackage in its CRS: layers `starts` (debris starts,
+// with their heading), `gauges`, `sections` (the passage lines) and `regions` (the
+// arrival-count polygons), those the scene has, each feature with its `name`. Returns the
+// features (0: none, nothing written).
+std::size_t write_scene_features(const std::string& scene_path, const std::string& out_path);
+
 // A flow file as a time-aware mesh layer of a QGIS project: water depth in colour over
 // `depth_top` [m], the velocity as arrows, its times on the temporal controller.
 qgis::ProjectLayer flow_mesh_layer(const std::string& flow_path, double depth_top);

@@ -285,11 +285,23 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
         ASSERT_EQ(l->CreateFeature(&feature), OGRERR_NONE);
     }
     ASSERT_EQ(test::run_cli("export --flow " + dir + "/flow.nc --trajectories " + dir + "/tracks.nc --sources " + dir +
-                                "/port.gpkg --out-dir " + dir + "/gis",
+                                "/port.gpkg --scene " + dir + "/scene.nc --out-dir " + dir + "/gis",
                             &out),
               0)
         << out;
-    EXPECT_NE(out.find("project.qgz (QGIS project: 7 layers"), std::string::npos) << out;
+    EXPECT_NE(out.find("project.qgz (QGIS project: 8 layers"), std::string::npos) << out;
+    {
+        // The scene's start point, named, in its CRS.
+        gdal::Dataset v = gdal::open_vector(dir + "/gis/scene_features.gpkg");
+        OGRLayer* layer = v->GetLayerByName("starts");
+        ASSERT_NE(layer, nullptr);
+        EXPECT_EQ(v->GetLayerByName("regions"), nullptr);  // the scene has none
+        std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(layer->GetNextFeature(), OGRFeature::DestroyFeature);
+        ASSERT_TRUE(f);
+        EXPECT_STREQ(f->GetFieldAsString("name"), "CAR");
+        EXPECT_DOUBLE_EQ(f->GetGeometryRef()->toPoint()->getX(), 518150.0);
+        EXPECT_STREQ(layer->GetSpatialRef()->GetAuthorityCode(nullptr), "32653");
+    }
     ASSERT_EQ(test::run_cli("export --trajectories " + dir + "/tracks.nc --tracks-format geojson --project none --out-dir " + dir +
                                 "/gis",
                             &out),
@@ -371,7 +383,8 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
     ASSERT_EQ(VSIFReadL(project.data(), 1, project.size(), pf), project.size());
     VSIFCloseL(pf);
     for (const char* source : {"./inundation_depth.tif", "./max_depth.tif", "./max_speed.tif", "./arrival_time.tif", "../flow.nc",
-                               "./tracks_tracks.gpkg|layername=tracks", "./sources.gpkg|layername=source_points"})
+                               "./tracks_tracks.gpkg|layername=tracks", "./sources.gpkg|layername=source_points",
+                               "./scene_features.gpkg|layername=starts"})
         EXPECT_NE(project.find(std::string("<datasource>") + source + "</datasource>"), std::string::npos) << source;
     EXPECT_NE(project.find("<authid>EPSG:32653</authid>"), std::string::npos);
 }
