@@ -184,7 +184,7 @@ def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_wid
     left, right, bottom, top = 1.0, 1.2, 0.65, 0.35
     ax_w = fig_w - left - right
     ax_h = min(ax_w * aspect, 9.0)
-    fig_h = ax_h + bottom + top
+    fig_h = round((ax_h + bottom + top) * dpi / 2) * 2 / dpi  # an even number of pixels (H.264's 4:2:0)
     fig = plt.figure(figsize=(fig_w, fig_h), dpi=dpi)
     ax = fig.add_axes([left / fig_w, bottom / fig_h, ax_w / fig_w, ax_h / fig_h])
     cax = fig.add_axes([(left + ax_w + 0.2) / fig_w, bottom / fig_h, 0.15 / fig_w, ax_h / fig_h])
@@ -238,7 +238,7 @@ def render(flow, bodies, scene_path, out, gif, fps, tail, box, width_px, gif_wid
     w, h = fig.canvas.get_width_height()
     part = out + ".part.mp4"
     cmd = ["ffmpeg", "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgba", "-s", f"{w}x{h}", "-r", str(fps),
-           "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "23",
+           "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "23",
            "-preset", "medium", "-movflags", "+faststart", "-fflags", "+bitexact", "-flags:v", "+bitexact",
            "-map_metadata", "-1", part]
     enc = subprocess.Popen(cmd, stdin=subprocess.PIPE)
