@@ -1,7 +1,6 @@
 // `flotsam export`: hazard maps as Cloud-Optimised GeoTIFF and tracks as GIS lines, in
 // the scene's CRS, for QGIS and the other GIS tools (export/gis_export.hpp).
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -50,6 +49,54 @@ void check_same_scene(const gis::SceneOf& a, const gis::SceneOf& b) {
              "comes from another scene than " + b.path + " (their scenes' grid or building mask differ: scene_buildings_sha256 " +
                  a.fingerprint + " and " + b.fingerprint +
                  "): one export combines the files of one scene (export them in two runs)");
+}
+
+// The QGIS project of what was written: its layers (top first within each group: points,
+// lines, areas, the mesh, rasters, else in the order written), the view on the flows'
+// window (else on everything, `extent`: x0, y0, x1, y1), the temporal controller stepping
+// by the first flow's frames.
+void write_study_project(const ExportOptions& o, const std::vector<gis::qgis::ProjectLayer>& layers, const cf::GridMapping& crs,
+                         const Grid* window, double extent[4]) {
+    using gis::qgis::ProjectLayer;
+    std::vector<int> rank;
+    for (const ProjectLayer& l : layers) {
+        if (l.kind != ProjectLayer::Kind::vector) {
+            rank.push_back(l.kind == ProjectLayer::Kind::mesh ? 3 : 4);
+            continue;
+        }
+        const gdal::Dataset d = gdal::open_vector(l.path);
+        OGRLayer* layer = d->GetLayerByName(l.layer.c_str());
+        OGREnvelope e;
+        if (layer->GetExtent(&e) == OGRERR_NONE) {
+            extent[0] = std::min(extent[0], e.MinX);
+            extent[1] = std::min(extent[1], e.MinY);
+            extent[2] = std::max(extent[2], e.MaxX);
+            extent[3] = std::max(extent[3], e.MaxY);
+        }
+        const OGRwkbGeometryType g = wkbFlatten(layer->GetGeomType());
+        rank.push_back(g == wkbPoint || g == wkbMultiPoint ? 0 : g == wkbLineString || g == wkbMultiLineString ? 1 : 2);
+    }
+    std::vector<std::size_t> order(layers.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+    gis::qgis::Project p;
+    p.title = "flotsam: " + (o.scene.empty() ? o.out_dir : std::filesystem::path(o.scene).stem().string());
+    p.crs = crs;
+    p.x_min = window ? window->x0 - 0.5 * window->dx : extent[0];
+    p.y_min = window ? window->y0 - 0.5 * window->dy : extent[1];
+    p.x_max = window ? window->x0 + (window->nx - 0.5) * window->dx : extent[2];
+    p.y_max = window ? window->y0 + (window->ny - 0.5) * window->dy : extent[3];
+    p.groups = {"sources", "regions", "buildings", "debris", "maps"};
+    for (std::size_t k : order) p.layers.push_back(layers[k]);
+    if (!o.flows.empty()) {
+        const nc::File f = nc::File::open_read(o.flows[0]);
+        const std::vector<double> time = nc::read_finite(f, "time");
+        p.time_step = time.size() > 1 ? time[1] - time[0] : 1.0;
+    }
+    const std::string path = (std::filesystem::path(o.out_dir) / o.project).string();
+    gis::qgis::write_project(path, p);
+    std::printf("export: %s (QGIS project: %zu layers in groups sources, regions, buildings, debris, maps; %s)\n", path.c_str(),
+                layers.size(), crs.empty() ? "no CRS: local metres" : crs.name().c_str());
 }
 
 void run_export(const ExportOptions& o) {
@@ -118,7 +165,8 @@ void run_export(const ExportOptions& o) {
                         crs.empty() ? "no CRS: local metres" : crs.name().c_str());
             const bool visible = std::find(shown.begin(), shown.end(), m.name) != shown.end();
             const std::string units = m.units == "1" ? "" : m.units == "m s-1" ? " [m/s]" : " [" + m.units + "]";
-            layers.push_back({ProjectLayer::Kind::raster, path, "", m.title + units, group, visible, gis::qgis::raster_qml(m.style)});
+            layers.push_back(
+                {ProjectLayer::Kind::raster, path, "", m.title + units, group, visible, gis::qgis::raster_qml(m.style)});
         }
         cover(g.x0 - 0.5 * g.dx, g.y0 - 0.5 * g.dy, g.x0 + (g.nx - 0.5) * g.dx, g.y0 + (g.ny - 0.5) * g.dy);
     };
@@ -135,8 +183,8 @@ void run_export(const ExportOptions& o) {
         const std::string path = track_path(t);
         const std::size_t n = gis::write_tracks(t, path);
         std::printf("export: %s (%zu tracks)\n", path.c_str(), n);
-        add_vector(path, "tracks", "tracks of " + std::filesystem::path(t).stem().string() + " (" + std::to_string(n) + ")", "debris",
-                   true);
+        add_vector(path, "tracks", "tracks of " + std::filesystem::path(t).stem().string() + " (" + std::to_string(n) + ")",
+                   "debris", true);
     }
     if (!o.stats.empty()) write_maps(stats_layers, stats_grid, stats_crs, o.stats, "debris", {"pass_probability_all"});
     if (!o.scene.empty() && !o.stats.empty()) {
@@ -150,11 +198,16 @@ void run_export(const ExportOptions& o) {
         if (const std::size_t n = gis::write_scene_features(o.scene, path)) {
             std::printf("export: %s (%zu named points, sections and regions of the scene)\n", path.c_str(), n);
             const gdal::Dataset d = gdal::open_vector(path);
-            const std::pair<const char*, const char*> shown[] = {
-                {"starts", "debris starts"}, {"gauges", "gauges"}, {"sections", "passage sections"}, {"regions", "arrival regions"}};
+            const std::pair<const char*, const char*> shown[] = {{"starts", "debris starts"},
+                                                                 {"gauges", "gauges"},
+                                                                 {"sections", "passage sections"},
+                                                                 {"regions", "arrival regions"}};
             for (const auto& [layer, name] : shown)
                 if (d->GetLayerByName(layer))
-                    add_vector(path, layer, name, layer == std::string("starts") ? "sources" : layer == std::string("gauges") ? "maps" : "regions",
+                    add_vector(path, layer, name,
+                               layer == std::string("starts")   ? "sources"
+                               : layer == std::string("gauges") ? "maps"
+                                                                : "regions",
                                layer == std::string("starts"));
         }
     }
@@ -174,49 +227,7 @@ void run_export(const ExportOptions& o) {
                 add_vector(path, layer, std::string("sources: ") + (layer == std::string("source_areas") ? "yards" : "bodies"),
                            "sources", true);
     }
-    if (!project) return;
-    // Within a group points over lines over areas over the mesh over rasters, else in the
-    // order written.
-    std::vector<int> rank;
-    for (const ProjectLayer& l : layers) {
-        if (l.kind != ProjectLayer::Kind::vector) {
-            rank.push_back(l.kind == ProjectLayer::Kind::mesh ? 3 : 4);
-            continue;
-        }
-        const gdal::Dataset d = gdal::open_vector(l.path);
-        OGRLayer* layer = d->GetLayerByName(l.layer.c_str());
-        OGREnvelope e;
-        if (layer->GetExtent(&e) == OGRERR_NONE) cover(e.MinX, e.MinY, e.MaxX, e.MaxY);
-        const OGRwkbGeometryType g = wkbFlatten(layer->GetGeomType());
-        rank.push_back(g == wkbPoint || g == wkbMultiPoint ? 0 : g == wkbLineString || g == wkbMultiLineString ? 1 : 2);
-    }
-    std::vector<std::size_t> order(layers.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
-    gis::qgis::Project p;
-    p.title = "flotsam: " + (o.scene.empty() ? o.out_dir : std::filesystem::path(o.scene).stem().string());
-    p.crs = study_crs;
-    // The view: where the flows are (the study's water), else everything.
-    if (!o.flows.empty())
-        std::copy_n(std::array{flow_grid.x0 - 0.5 * flow_grid.dx, flow_grid.y0 - 0.5 * flow_grid.dy,
-                               flow_grid.x0 + (flow_grid.nx - 0.5) * flow_grid.dx, flow_grid.y0 + (flow_grid.ny - 0.5) * flow_grid.dy}
-                        .begin(),
-                    4, extent);
-    p.x_min = extent[0];
-    p.y_min = extent[1];
-    p.x_max = extent[2];
-    p.y_max = extent[3];
-    p.groups = {"sources", "regions", "buildings", "debris", "maps"};
-    for (std::size_t k : order) p.layers.push_back(layers[k]);
-    if (!o.flows.empty()) {
-        const nc::File f = nc::File::open_read(o.flows[0]);
-        const std::vector<double> time = nc::read_finite(f, "time");
-        p.time_step = time.size() > 1 ? time[1] - time[0] : 1.0;
-    }
-    const std::string path = out(o.project);
-    gis::qgis::write_project(path, p);
-    std::printf("export: %s (QGIS project: %zu layers in groups sources, regions, buildings, debris, maps; %s)\n", path.c_str(),
-                layers.size(), study_crs.empty() ? "no CRS: local metres" : study_crs.name().c_str());
+    if (project) write_study_project(o, layers, study_crs, o.flows.empty() ? nullptr : &flow_grid, extent);
 }
 
 }  // namespace
@@ -243,8 +254,7 @@ void register_export_commands(CLI::App& app) {
     sub->add_option("--hazard-regions", o->hazard_regions,
                     "hazard_regions.nc of pipelines/hazard_region.py: written as hazard_regions.gpkg (polygons)")
         ->check(CLI::ExistingFile);
-    sub->add_option("--project", o->project,
-                    "the QGIS project of everything written, in --out-dir (.qgz; none: no project)")
+    sub->add_option("--project", o->project, "the QGIS project of everything written, in --out-dir (.qgz; none: no project)")
         ->capture_default_str();
     sub->add_option("--out-dir", o->out_dir, "folder for the GeoTIFFs, GeoPackages and the project")->capture_default_str();
     sub->add_option("--tracks-format", o->tracks_format, "gpkg (GeoPackage), geojson or shp")

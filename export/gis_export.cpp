@@ -210,8 +210,9 @@ std::string tracks_qml(const std::vector<std::string>& sources) {
     qgis::VectorStyle s;
     s.field = "source";
     for (std::size_t k = 0; k < sources.size(); ++k)
-        s.categories.push_back(
-            {sources[k], sources[k], {qgis::Symbol::Kind::line, category_colours[k % category_colours.size()], "", 0.15, 2.0, 0.3}});
+        s.categories.push_back({sources[k],
+                                sources[k],
+                                {qgis::Symbol::Kind::line, category_colours[k % category_colours.size()], "", 0.15, 2.0, 0.3}});
     s.other = {qgis::Symbol::Kind::line, "#404040", "", 0.15, 2.0, 0.3};
     if (sources.empty()) s.symbol = s.other;
     return qgis::vector_qml(s);
@@ -250,8 +251,8 @@ std::string buildings_force_qml() {
 // Debris sources in purple, labelled by `label` (a QGIS expression).
 std::string sources_qml(bool points, const std::string& label) {
     qgis::VectorStyle s;
-    s.symbol = points ? qgis::Symbol{qgis::Symbol::Kind::marker, "#7a0177", "#ffffff", 0.3, 2.6, 1.0, false}
-                      : fill("", "#7a0177", 0.7);
+    s.symbol =
+        points ? qgis::Symbol{qgis::Symbol::Kind::marker, "#7a0177", "#ffffff", 0.3, 2.6, 1.0, false} : fill("", "#7a0177", 0.7);
     s.labels.expression = label;
     s.labels.size_pt = 8;
     s.labels.colour = "#4a0048";
@@ -276,9 +277,9 @@ std::string feature_qml(qgis::Symbol::Kind kind) {
 std::string hazard_regions_qml() {
     qgis::VectorStyle s;
     s.field = "flow";
-    s.categories = {{"inflow", "within ±22.5° of the inflow", {qgis::Symbol::Kind::fill, "#d7301f", "#d7301f", 0.5, 2.0, 0.8, true}},
-                    {"return flow", "within ±22.5° of the return flow",
-                     {qgis::Symbol::Kind::fill, "#f08c00", "#f08c00", 0.5, 2.0, 0.8, true}}};
+    s.categories = {
+        {"inflow", "within ±22.5° of the inflow", {qgis::Symbol::Kind::fill, "#d7301f", "#d7301f", 0.5, 2.0, 0.8, true}},
+        {"return flow", "within ±22.5° of the return flow", {qgis::Symbol::Kind::fill, "#f08c00", "#f08c00", 0.5, 2.0, 0.8, true}}};
     s.other = fill("", "#808080", 0.4);
     s.labels.expression = "\"source\"";
     s.labels.size_pt = 7;
@@ -336,9 +337,15 @@ void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& cr
     while ((std::max(g.nx, g.ny) >> overviews) > 256) ++overviews;
     const std::string overview_count = "OVERVIEW_COUNT=" + std::to_string(overviews);
     AtomicOutput out(path);
-    const char* options[] = {"COMPRESS=DEFLATE",        "PREDICTOR=YES",      "BLOCKSIZE=256",
-                             "OVERVIEWS=AUTO",          "RESAMPLING=AVERAGE", overview_count.c_str(),
-                             "OVERVIEW_COMPRESS=DEFLATE", "OVERVIEW_PREDICTOR=YES", nullptr};
+    const char* options[] = {"COMPRESS=DEFLATE",
+                             "PREDICTOR=YES",
+                             "BLOCKSIZE=256",
+                             "OVERVIEWS=AUTO",
+                             "RESAMPLING=AVERAGE",
+                             overview_count.c_str(),
+                             "OVERVIEW_COMPRESS=DEFLATE",
+                             "OVERVIEW_PREDICTOR=YES",
+                             nullptr};
     gdal::Dataset written(cog->CreateCopy(out.temp_path().c_str(), d.get(), FALSE, const_cast<char**>(options), nullptr, nullptr));
     if (!written) fail(path, layer.name, "GDAL could not write the Cloud-Optimised GeoTIFF: " + gdal::last_error());
     written.reset();  // flush and close before the rename
@@ -545,8 +552,9 @@ std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid
         }
     }
     // Never flooded: no depth, no speed. Onshore (bed above still water): the inundation depth.
-    MapLayer onshore{"inundation_depth", "largest water depth over the run where the bed (buildings included) stands above still water",
-                     "m", std::vector<float>(bed.size(), no_value)};
+    MapLayer onshore{"inundation_depth",
+                     "largest water depth over the run where the bed (buildings included) stands above still water", "m",
+                     std::vector<float>(bed.size(), no_value)};
     for (std::size_t c = 0; c < bed.size(); ++c) {
         if (!(maps[0].values[c] > flood_depth)) maps[0].values[c] = maps[1].values[c] = no_value;
         if (bed[c] > 0) onshore.values[c] = maps[0].values[c];
@@ -687,51 +695,55 @@ std::size_t write_tracks(const std::string& trajectory_path, const std::string& 
         {"tracks by source", "thin translucent lines, one colour per debris source", tracks_qml(source_names), true}};
     return write_vector_layers(out_path, driver_name, crs, trajectory_path,
                                {{"tracks", wkbLineString, styles, [&](OGRLayer& layer) {
-        std::size_t written = 0;
-        for (const auto& c : columns)
-            add_field(layer, out_path, c.name,
-                      c.type == NC_STRING                                             ? OFTString
-                      : (c.type == NC_INT || c.type == NC_BYTE || c.type == NC_SHORT) ? OFTInteger
-                                                                                      : OFTReal);
-        for (const char* name : {"t_start", "t_end", "path_length", "max_speed"}) add_field(layer, out_path, name, OFTReal);
-        for (std::size_t b = 0; b < ntraj; ++b) {
-            OGRLineString line;
-            double length = 0.0, vmax = 0.0, t0 = std::nan(""), t1 = std::nan("");
-            double px = 0.0, py = 0.0;
-            for (std::size_t k = 0; k < nt; ++k) {
-                const double xb = x[b * nt + k], yb = y[b * nt + k];
-                if (!std::isfinite(xb) || !std::isfinite(yb) || std::abs(xb) >= 0.5 * cf::fill_value) continue;
-                if (line.getNumPoints() > 0) length += std::hypot(xb - px, yb - py);
-                line.addPoint(xb, yb);
-                px = xb;
-                py = yb;
-                if (std::isnan(t0)) t0 = time[k];
-                t1 = time[k];
-                if (has_speed) vmax = std::max(vmax, std::hypot(u[b * nt + k], v[b * nt + k]));
-            }
-            if (line.getNumPoints() == 0) continue;
-            if (line.getNumPoints() == 1) line.addPoint(px, py);  // one sample: a line needs two points
-            OGRFeature feature(layer.GetLayerDefn());
-            for (std::size_t c = 0; c < columns.size(); ++c) {
-                const auto& col = columns[c];
-                if (col.type == NC_STRING)
-                    feature.SetField(int(c), col.text[b].c_str());
-                else if (col.type == NC_INT || col.type == NC_BYTE || col.type == NC_SHORT)
-                    feature.SetField(int(c), int(col.number[b]));
-                else
-                    feature.SetField(int(c), col.number[b]);
-            }
-            feature.SetField("t_start", t0);
-            feature.SetField("t_end", t1);
-            feature.SetField("path_length", length);
-            feature.SetField("max_speed", vmax);
-            feature.SetGeometry(&line);
-            if (layer.CreateFeature(&feature) != OGRERR_NONE)
-                fail(out_path, "trajectory " + std::to_string(b), "cannot write: " + gdal::last_error());
-            ++written;
-        }
-        return written;
-    }}});
+                                     std::size_t written = 0;
+                                     for (const auto& c : columns)
+                                         add_field(layer, out_path, c.name,
+                                                   c.type == NC_STRING                                             ? OFTString
+                                                   : (c.type == NC_INT || c.type == NC_BYTE || c.type == NC_SHORT) ? OFTInteger
+                                                                                                                   : OFTReal);
+                                     for (const char* name : {"t_start", "t_end", "path_length", "max_speed"})
+                                         add_field(layer, out_path, name, OFTReal);
+                                     for (std::size_t b = 0; b < ntraj; ++b) {
+                                         OGRLineString line;
+                                         double length = 0.0, vmax = 0.0, t0 = std::nan(""), t1 = std::nan("");
+                                         double px = 0.0, py = 0.0;
+                                         for (std::size_t k = 0; k < nt; ++k) {
+                                             const double xb = x[b * nt + k], yb = y[b * nt + k];
+                                             if (!std::isfinite(xb) || !std::isfinite(yb) || std::abs(xb) >= 0.5 * cf::fill_value)
+                                                 continue;
+                                             if (line.getNumPoints() > 0) length += std::hypot(xb - px, yb - py);
+                                             line.addPoint(xb, yb);
+                                             px = xb;
+                                             py = yb;
+                                             if (std::isnan(t0)) t0 = time[k];
+                                             t1 = time[k];
+                                             if (has_speed) vmax = std::max(vmax, std::hypot(u[b * nt + k], v[b * nt + k]));
+                                         }
+                                         if (line.getNumPoints() == 0) continue;
+                                         if (line.getNumPoints() == 1)
+                                             line.addPoint(px, py);  // one sample: a line needs two points
+                                         OGRFeature feature(layer.GetLayerDefn());
+                                         for (std::size_t c = 0; c < columns.size(); ++c) {
+                                             const auto& col = columns[c];
+                                             if (col.type == NC_STRING)
+                                                 feature.SetField(int(c), col.text[b].c_str());
+                                             else if (col.type == NC_INT || col.type == NC_BYTE || col.type == NC_SHORT)
+                                                 feature.SetField(int(c), int(col.number[b]));
+                                             else
+                                                 feature.SetField(int(c), col.number[b]);
+                                         }
+                                         feature.SetField("t_start", t0);
+                                         feature.SetField("t_end", t1);
+                                         feature.SetField("path_length", length);
+                                         feature.SetField("max_speed", vmax);
+                                         feature.SetGeometry(&line);
+                                         if (layer.CreateFeature(&feature) != OGRERR_NONE)
+                                             fail(out_path, "trajectory " + std::to_string(b),
+                                                  "cannot write: " + gdal::last_error());
+                                         ++written;
+                                     }
+                                     return written;
+                                 }}});
 }
 
 std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path) {
@@ -771,37 +783,40 @@ std::size_t write_building_footprints(const std::string& scene_path, const std::
         {"hit probability", "footprints by the share of tracks that hit them; label: the 90th-percentile impact force",
          buildings_qml(), true},
         {"p90 force", "footprints by the 90th-percentile impact force", buildings_force_qml(), false}};
-    return write_vector_layers(out_path, "GPKG", scene.crs, scene_path, {{"buildings", wkbMultiPolygon, styles, [&](OGRLayer& layer) {
-        std::size_t written = 0;
-        add_field(layer, out_path, "building_id", OFTInteger);
-        add_field(layer, out_path, "cells", OFTInteger);
-        add_field(layer, out_path, "area_m2", OFTReal);
-        for (std::size_t c = 0; c < 9; ++c) add_field(layer, out_path, field_names[c], c == 2 ? OFTInteger : OFTReal);
-        for (auto& [id, parts] : by_id) {
-            std::unique_ptr<OGRGeometry> joined(parts.UnionCascaded());
-            if (!joined) fail(out_path, "building " + std::to_string(id), "GDAL could not join its cells: " + gdal::last_error());
-            std::unique_ptr<OGRGeometry> multi(OGRGeometryFactory::forceToMultiPolygon(joined.release()));
-            OGRFeature feature(layer.GetLayerDefn());
-            feature.SetField("building_id", id);
-            feature.SetField("cells", cells[id]);
-            feature.SetField("area_m2", double(cells[id]) * g.dx * g.dy);
-            const auto k = std::find(stat_ids.begin(), stat_ids.end(), id);
-            for (std::size_t c = 0; c < 9; ++c) {
-                const double v = k == stat_ids.end() ? std::nan("") : values[c][std::size_t(k - stat_ids.begin())];
-                if (c == 0 || c == 2)
-                    feature.SetField(field_names[c], std::isnan(v) ? 0.0 : v);  // never hit: 0 and no impacts
-                else if (std::isfinite(v) && std::fabs(v) < 0.5 * cf::fill_value)
-                    feature.SetField(field_names[c], v);
-                else
-                    feature.SetFieldNull(feature.GetFieldIndex(field_names[c]));
-            }
-            feature.SetGeometry(multi.get());
-            if (layer.CreateFeature(&feature) != OGRERR_NONE)
-                fail(out_path, "building " + std::to_string(id), "cannot write: " + gdal::last_error());
-            ++written;
-        }
-        return written;
-    }}});
+    return write_vector_layers(
+        out_path, "GPKG", scene.crs, scene_path,
+        {{"buildings", wkbMultiPolygon, styles, [&](OGRLayer& layer) {
+              std::size_t written = 0;
+              add_field(layer, out_path, "building_id", OFTInteger);
+              add_field(layer, out_path, "cells", OFTInteger);
+              add_field(layer, out_path, "area_m2", OFTReal);
+              for (std::size_t c = 0; c < 9; ++c) add_field(layer, out_path, field_names[c], c == 2 ? OFTInteger : OFTReal);
+              for (auto& [id, parts] : by_id) {
+                  std::unique_ptr<OGRGeometry> joined(parts.UnionCascaded());
+                  if (!joined)
+                      fail(out_path, "building " + std::to_string(id), "GDAL could not join its cells: " + gdal::last_error());
+                  std::unique_ptr<OGRGeometry> multi(OGRGeometryFactory::forceToMultiPolygon(joined.release()));
+                  OGRFeature feature(layer.GetLayerDefn());
+                  feature.SetField("building_id", id);
+                  feature.SetField("cells", cells[id]);
+                  feature.SetField("area_m2", double(cells[id]) * g.dx * g.dy);
+                  const auto k = std::find(stat_ids.begin(), stat_ids.end(), id);
+                  for (std::size_t c = 0; c < 9; ++c) {
+                      const double v = k == stat_ids.end() ? std::nan("") : values[c][std::size_t(k - stat_ids.begin())];
+                      if (c == 0 || c == 2)
+                          feature.SetField(field_names[c], std::isnan(v) ? 0.0 : v);  // never hit: 0 and no impacts
+                      else if (std::isfinite(v) && std::fabs(v) < 0.5 * cf::fill_value)
+                          feature.SetField(field_names[c], v);
+                      else
+                          feature.SetFieldNull(feature.GetFieldIndex(field_names[c]));
+                  }
+                  feature.SetGeometry(multi.get());
+                  if (layer.CreateFeature(&feature) != OGRERR_NONE)
+                      fail(out_path, "building " + std::to_string(id), "cannot write: " + gdal::last_error());
+                  ++written;
+              }
+              return written;
+          }}});
 }
 
 }  // namespace flotsam::gis
@@ -837,7 +852,8 @@ std::size_t write_sources(const std::string& sources_path, const cf::GridMapping
             OGRSpatialReference source_crs(*from);
             source_crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
             to_scene.reset(OGRCreateCoordinateTransformation(&source_crs, &*target));
-            if (!to_scene) fail(sources_path, std::string("layer '") + layer->GetName() + "'", "cannot be carried into the scene's CRS");
+            if (!to_scene)
+                fail(sources_path, std::string("layer '") + layer->GetName() + "'", "cannot be carried into the scene's CRS");
         }
         const int type_field = layer->GetLayerDefn()->GetFieldIndex("type");
         const int count_field = layer->GetLayerDefn()->GetFieldIndex("count");
@@ -846,9 +862,12 @@ std::size_t write_sources(const std::string& sources_path, const cf::GridMapping
             std::unique_ptr<OGRFeature, void (*)(OGRFeature*)> f(raw, OGRFeature::DestroyFeature);
             const OGRGeometry* geometry = f->GetGeometryRef();
             if (!geometry) continue;
-            Source s{layer->GetName(), type_field >= 0 ? f->GetFieldAsString(type_field) : "", f->GetFID(),
+            Source s{layer->GetName(),
+                     type_field >= 0 ? f->GetFieldAsString(type_field) : "",
+                     f->GetFID(),
                      count_field >= 0 ? f->GetFieldAsInteger(count_field) : 0,
-                     count_field >= 0 && f->IsFieldSetAndNotNull(count_field), std::unique_ptr<OGRGeometry>(geometry->clone())};
+                     count_field >= 0 && f->IsFieldSetAndNotNull(count_field),
+                     std::unique_ptr<OGRGeometry>(geometry->clone())};
             if (to_scene && s.geometry->transform(to_scene.get()) != OGRERR_NONE)
                 fail(sources_path, s.layer + " feature " + std::to_string(s.feature), "cannot be carried into the scene's CRS");
             const auto flat = wkbFlatten(s.geometry->getGeometryType());
@@ -885,10 +904,15 @@ std::size_t write_sources(const std::string& sources_path, const cf::GridMapping
     };
     std::vector<VectorLayerDef> defs;
     if (!areas.empty())
-        defs.push_back({"source_areas", wkbMultiPolygon, {{"outlined", "the yards, outlined and labelled", sources_qml(false, source_label), true}},
+        defs.push_back({"source_areas",
+                        wkbMultiPolygon,
+                        {{"outlined", "the yards, outlined and labelled", sources_qml(false, source_label), true}},
                         writer(areas)});
     if (!points.empty())
-        defs.push_back({"source_points", wkbPoint, {{"points", "single bodies, labelled", sources_qml(true, source_label), true}}, writer(points)});
+        defs.push_back({"source_points",
+                        wkbPoint,
+                        {{"points", "single bodies, labelled", sources_qml(true, source_label), true}},
+                        writer(points)});
     return write_vector_layers(out_path, "GPKG", crs, sources_path, defs);
 }
 
@@ -898,7 +922,8 @@ std::size_t write_hazard_regions(const std::string& regions_path, const std::str
     const nc::File f = nc::File::open_read(regions_path);
     for (const char* v : {"x", "y", "source", "region_inflow", "region_outflow"})
         if (!f.has_var(v))
-            fail(regions_path, std::string("variable '") + v + "'", "missing: not hazard regions written by pipelines/hazard_region.py");
+            fail(regions_path, std::string("variable '") + v + "'",
+                 "missing: not hazard regions written by pipelines/hazard_region.py");
     const Grid g = grid_of(f);
     const cf::GridMapping crs = cf::read_crs(f, "region_inflow");
     if (crs_out) *crs_out = crs;
@@ -928,26 +953,27 @@ std::size_t write_hazard_regions(const std::string& regions_path, const std::str
         }
     }
     if (check_only) return sources.size();
-    return write_vector_layers(out_path, "GPKG", crs, regions_path,
-                               {{"hazard_regions", wkbMultiPolygon,
-                                 {{"by flow", "the design standard's regions, hatched by flow direction", hazard_regions_qml(), true}},
-                                 [&](OGRLayer& layer) {
-                                     add_field(layer, out_path, "source", OFTString);
-                                     add_field(layer, out_path, "flow", OFTString);
-                                     add_field(layer, out_path, "cells", OFTInteger);
-                                     add_field(layer, out_path, "area_m2", OFTReal);
-                                     for (Region& r : regions) {
-                                         OGRFeature feature(layer.GetLayerDefn());
-                                         feature.SetField("source", r.source.c_str());
-                                         feature.SetField("flow", r.flow.c_str());
-                                         feature.SetField("cells", r.cells);
-                                         feature.SetField("area_m2", r.cells * g.dx * g.dy);
-                                         feature.SetGeometry(&r.shape);
-                                         if (layer.CreateFeature(&feature) != OGRERR_NONE)
-                                             fail(out_path, r.source, "cannot write: " + gdal::last_error());
-                                     }
-                                     return regions.size();
-                                 }}});
+    return write_vector_layers(
+        out_path, "GPKG", crs, regions_path,
+        {{"hazard_regions",
+          wkbMultiPolygon,
+          {{"by flow", "the design standard's regions, hatched by flow direction", hazard_regions_qml(), true}},
+          [&](OGRLayer& layer) {
+              add_field(layer, out_path, "source", OFTString);
+              add_field(layer, out_path, "flow", OFTString);
+              add_field(layer, out_path, "cells", OFTInteger);
+              add_field(layer, out_path, "area_m2", OFTReal);
+              for (Region& r : regions) {
+                  OGRFeature feature(layer.GetLayerDefn());
+                  feature.SetField("source", r.source.c_str());
+                  feature.SetField("flow", r.flow.c_str());
+                  feature.SetField("cells", r.cells);
+                  feature.SetField("area_m2", r.cells * g.dx * g.dy);
+                  feature.SetGeometry(&r.shape);
+                  if (layer.CreateFeature(&feature) != OGRERR_NONE) fail(out_path, r.source, "cannot write: " + gdal::last_error());
+              }
+              return regions.size();
+          }}});
 }
 
 std::size_t write_scene_features(const std::string& scene_path, const std::string& out_path) {
@@ -968,18 +994,22 @@ std::size_t write_scene_features(const std::string& scene_path, const std::strin
             if (p.kind == kind) points.push_back(p);
         if (points.empty()) continue;
         const bool start = std::string(kind) == "start";
-        defs.push_back({start ? "starts" : "gauges", wkbPoint,
+        defs.push_back({start ? "starts" : "gauges",
+                        wkbPoint,
                         {{"labelled", start ? "the scene's debris starts" : "the scene's gauges",
                           start ? sources_qml(true, "\"name\"") : feature_qml(qgis::Symbol::Kind::marker), true}},
                         [&, points, start](OGRLayer& layer) {
                             name_field(layer);
                             if (start) add_field(layer, out_path, "heading_deg", OFTReal);
-                            for (const ScenePoint& p : points) add(layer, p.name, OGRPoint(p.x, p.y), start ? p.heading_deg : std::nan(""));
+                            for (const ScenePoint& p : points)
+                                add(layer, p.name, OGRPoint(p.x, p.y), start ? p.heading_deg : std::nan(""));
                             return points.size();
                         }});
     }
     if (!scene.sections.empty())
-        defs.push_back({"sections", wkbLineString, {{"labelled", "the passage sections", feature_qml(qgis::Symbol::Kind::line), true}},
+        defs.push_back({"sections",
+                        wkbLineString,
+                        {{"labelled", "the passage sections", feature_qml(qgis::Symbol::Kind::line), true}},
                         [&](OGRLayer& layer) {
                             name_field(layer);
                             for (const Section& c : scene.sections) {
@@ -991,7 +1021,9 @@ std::size_t write_scene_features(const std::string& scene_path, const std::strin
                             return scene.sections.size();
                         }});
     if (!scene.regions.empty())
-        defs.push_back({"regions", wkbPolygon, {{"labelled", "the arrival-count regions", feature_qml(qgis::Symbol::Kind::fill), true}},
+        defs.push_back({"regions",
+                        wkbPolygon,
+                        {{"labelled", "the arrival-count regions", feature_qml(qgis::Symbol::Kind::fill), true}},
                         [&](OGRLayer& layer) {
                             name_field(layer);
                             for (const Region& r : scene.regions) {

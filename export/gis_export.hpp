@@ -21,8 +21,8 @@ struct MapLayer {
     std::string long_name;  // what it is, with its group
     std::string units;      // UDUNITS, e.g. "m s-1"; "1" for a fraction
     std::vector<float> values;
-    std::string title;         // short name in a QGIS legend, e.g. "pass probability FD LC+MC"
-    qgis::RasterStyle style;   // its colours over a fixed physical range (none: QGIS's default grey)
+    std::string title;        // short name in a QGIS legend, e.g. "pass probability FD LC+MC"
+    qgis::RasterStyle style;  // its colours over a fixed physical range (none: QGIS's default grey)
 };
 
 // Writes `layer` as a Cloud-Optimised GeoTIFF (north-up, Float32, NaN nodata, DEFLATE,

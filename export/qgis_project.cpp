@@ -27,8 +27,9 @@ std::string num(double v) {
 // The project's CRS as QGIS stores it; QGIS builds it from the WKT (which names the
 // authority when there is one).
 std::string spatial_ref_xml(const cf::GridMapping& crs) {
-    if (crs.empty()) return "<spatialrefsys><wkt></wkt><proj4></proj4><srsid>0</srsid><srid>0</srid><authid></authid>"
-                            "<description></description></spatialrefsys>\n";
+    if (crs.empty())
+        return "<spatialrefsys><wkt></wkt><proj4></proj4><srsid>0</srsid><srid>0</srid><authid></authid>"
+               "<description></description></spatialrefsys>\n";
     const OGRSpatialReference s = gdal::spatial_ref(crs, "project");
     char* wkt = nullptr;
     const char* options[] = {"FORMAT=WKT2_2018", nullptr};
@@ -44,8 +45,8 @@ std::string spatial_ref_xml(const cf::GridMapping& crs) {
     const std::string authid = authority && code ? std::string(authority) + ":" + code : "";
     return "<spatialrefsys><wkt>" + xml_escape(wkt_text) + "</wkt><proj4>" + xml_escape(proj4_text) + "</proj4><srid>" +
            (code ? xml_escape(code) : "0") + "</srid><authid>" + xml_escape(authid) + "</authid><description>" +
-           xml_escape(s.GetName() ? s.GetName() : "") + "</description><geographicflag>" +
-           (s.IsGeographic() ? "true" : "false") + "</geographicflag></spatialrefsys>\n";
+           xml_escape(s.GetName() ? s.GetName() : "") + "</description><geographicflag>" + (s.IsGeographic() ? "true" : "false") +
+           "</geographicflag></spatialrefsys>\n";
 }
 
 // Seconds from the files' epoch (2000-01-01 00:00:00 UTC, which stands for the start of
@@ -107,8 +108,8 @@ std::string project_xml(const Project& p, const std::string& folder) {
                        "\"><customproperties/></layer-tree-layer>\n";
             layers += std::string("<maplayer type=\"") + type_of(l.kind) + "\" labelsEnabled=\"" +
                       (qml_labels_enabled(l.qml) ? "1" : "0") + "\" styleCategories=\"AllStyleCategories\">\n<id>" +
-                      layer_id(k, l) + "</id>\n<datasource>" + xml_escape(source) + "</datasource>\n<layername>" + xml_escape(l.name) +
-                      "</layername>\n<srs>" + srs + "</srs>\n";
+                      layer_id(k, l) + "</id>\n<datasource>" + xml_escape(source) + "</datasource>\n<layername>" +
+                      xml_escape(l.name) + "</layername>\n<srs>" + srs + "</srs>\n";
             if (l.kind == ProjectLayer::Kind::mesh)
                 layers += "<provider time-unit=\"3\">mdal</provider>\n<temporal reference-time=\"" + iso_time(0) +
                           "\" start-time-extent=\"" + iso_time(l.time_start) + "\" end-time-extent=\"" + iso_time(l.time_end) +
@@ -118,11 +119,11 @@ std::string project_xml(const Project& p, const std::string& folder) {
             layers += qml_body(l.qml) + "</maplayer>\n";
         }
         if (members.empty()) continue;
-        tree += "<layer-tree-group name=\"" + xml_escape(group) + "\" checked=\"Qt::Checked\" expanded=\"1\">\n<customproperties/>\n" +
-                members + "</layer-tree-group>\n";
+        tree += "<layer-tree-group name=\"" + xml_escape(group) +
+                "\" checked=\"Qt::Checked\" expanded=\"1\">\n<customproperties/>\n" + members + "</layer-tree-group>\n";
     }
-    const std::string extent = "xmin=\"" + num(p.x_min) + "\" ymin=\"" + num(p.y_min) + "\" xmax=\"" + num(p.x_max) +
-                               "\" ymax=\"" + num(p.y_max) + "\"";
+    const std::string extent =
+        "xmin=\"" + num(p.x_min) + "\" ymin=\"" + num(p.y_min) + "\" xmax=\"" + num(p.x_max) + "\" ymax=\"" + num(p.y_max) + "\"";
     std::string x = "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n<qgis projectname=\"" + xml_escape(p.title) +
                     "\" version=\"3.22.16\">\n<homePath path=\"\"/>\n<title>" + xml_escape(p.title) + "</title>\n<projectCrs>" +
                     srs + "</projectCrs>\n<layer-tree-group>\n<customproperties/>\n" + tree +
@@ -171,7 +172,7 @@ void write_zip(const std::string& path, const std::vector<std::pair<std::string,
         const std::uint32_t crc = libdeflate_crc32(0, data.data(), data.size());
         const std::uint32_t offset = std::uint32_t(out.size());
         auto common = [&](std::string& s) {
-            put_u16(s, 20);  // version needed: 2.0
+            put_u16(s, 20);      // version needed: 2.0
             put_u16(s, 0x0800);  // UTF-8 names
             put_u16(s, 8);
             put_u16(s, dos_time);

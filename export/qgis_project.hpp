@@ -13,22 +13,22 @@ namespace flotsam::gis::qgis {
 
 struct ProjectLayer {
     enum class Kind { raster, vector, mesh } kind = Kind::raster;
-    std::string path;    // the file (absolute or relative to the working directory)
-    std::string layer;   // vector: the layer in the file
-    std::string name;    // as QGIS lists it
-    std::string group;   // the layer tree group it goes in
+    std::string path;   // the file (absolute or relative to the working directory)
+    std::string layer;  // vector: the layer in the file
+    std::string name;   // as QGIS lists it
+    std::string group;  // the layer tree group it goes in
     bool visible = true;
-    std::string qml;                        // its style (qgis_style.hpp)
-    double time_start = 0, time_end = 0;    // mesh: its first and last time [s from the run's start]
+    std::string qml;                      // its style (qgis_style.hpp)
+    double time_start = 0, time_end = 0;  // mesh: its first and last time [s from the run's start]
 };
 
 struct Project {
     std::string title;
-    cf::GridMapping crs;                  // the scene's; empty: a local scene (no CRS)
+    cf::GridMapping crs;                                // the scene's; empty: a local scene (no CRS)
     double x_min = 0, y_min = 0, x_max = 0, y_max = 0;  // the view it opens on [m]
-    std::vector<std::string> groups;      // top (drawn last) first
-    std::vector<ProjectLayer> layers;     // top first within each group
-    double time_step = 0;                 // temporal controller step [s]; 0: no time-aware layer
+    std::vector<std::string> groups;                    // top (drawn last) first
+    std::vector<ProjectLayer> layers;                   // top first within each group
+    double time_step = 0;                               // temporal controller step [s]; 0: no time-aware layer
 };
 
 // The project XML with paths relative to `folder` (the .qgz's folder).

@@ -43,9 +43,8 @@ std::string head(const std::string& attributes = "") {
 std::string colour_ramp_shader(const RasterStyle& s) {
     if (s.stops.empty()) fail("style", "colour ramp", "has no stops");
     std::string x = "<colorrampshader colorRampType=\"" + std::string(s.discrete ? "DISCRETE" : "INTERPOLATED") +
-                    "\" classificationMode=\"1\" clip=\"0\" minimumValue=\"" +
-                    num(s.stops.front().value) + "\" maximumValue=\"" + num(s.stops.back().value) +
-                    "\" labelPrecision=\"4\">\n";
+                    "\" classificationMode=\"1\" clip=\"0\" minimumValue=\"" + num(s.stops.front().value) + "\" maximumValue=\"" +
+                    num(s.stops.back().value) + "\" labelPrecision=\"4\">\n";
     for (std::size_t k = 0; k < s.stops.size(); ++k) {
         const ColourStop& c = s.stops[k];
         // A discrete ramp's last class takes everything above as well.
@@ -115,12 +114,23 @@ std::string labeling_xml(const Labels& l) {
 std::string xml_escape(const std::string& s) {
     std::string out;
     for (char c : s) switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            default:
+                out += c;
         }
     return out;
 }
@@ -229,14 +239,15 @@ std::string mesh_qml(const MeshStyle& s) {
     if (s.vector_group >= 0)
         x += "<vector-settings group=\"" + std::to_string(s.vector_group) +
              "\" color=\"20,20,20,255\" line-width=\"0.3\" coloring-method=\"0\" symbology=\"0\" filter-min=\"" +
-             num(s.arrow_min_speed) + "\" filter-max=\"-1\" user-grid-enabled=\"1\" user-grid-width=\"" +
-             num(s.arrow_spacing_px) + "\" user-grid-height=\"" + num(s.arrow_spacing_px) +
+             num(s.arrow_min_speed) + "\" filter-max=\"-1\" user-grid-enabled=\"1\" user-grid-width=\"" + num(s.arrow_spacing_px) +
+             "\" user-grid-height=\"" + num(s.arrow_spacing_px) +
              "\">\n<vector-arrow-settings arrow-head-width-ratio=\"0.15\" arrow-head-length-ratio=\"0.4\">\n"
              "<shaft-length method=\"minmax\" min=\"1\" max=\"" +
              num(0.9 * s.arrow_spacing_px) + "\"/>\n</vector-arrow-settings>\n</vector-settings>\n";
-    return x + "<mesh-settings-native enabled=\"0\" line-width=\"0.26\" line-width-unit=\"MM\" color=\"0,0,0,255\"/>\n"
-               "<mesh-settings-triangular enabled=\"0\" line-width=\"0.26\" line-width-unit=\"MM\" color=\"0,0,0,255\"/>\n"
-               "</mesh-renderer-settings>\n<blendMode>0</blendMode>\n<layerOpacity>1</layerOpacity>\n</qgis>\n";
+    return x +
+           "<mesh-settings-native enabled=\"0\" line-width=\"0.26\" line-width-unit=\"MM\" color=\"0,0,0,255\"/>\n"
+           "<mesh-settings-triangular enabled=\"0\" line-width=\"0.26\" line-width-unit=\"MM\" color=\"0,0,0,255\"/>\n"
+           "</mesh-renderer-settings>\n<blendMode>0</blendMode>\n<layerOpacity>1</layerOpacity>\n</qgis>\n";
 }
 
 std::string qml_body(const std::string& qml) {

@@ -43,7 +43,7 @@ std::string value_label(double v, const std::string& units);
 
 struct Symbol {
     enum class Kind { fill, line, marker } kind = Kind::fill;
-    std::string colour = "#808080";  // fill, line or marker colour; "" for a hollow fill
+    std::string colour = "#808080";   // fill, line or marker colour; "" for a hollow fill
     std::string outline = "#404040";  // fill or marker outline; "" for none
     double width_mm = 0.26;           // line width or outline width [mm]
     double size_mm = 2.0;             // marker size [mm]
@@ -82,11 +82,11 @@ struct VectorStyle {
 // ---- a flow as a time-aware mesh ----
 
 struct MeshStyle {
-    int scalar_group = -1;        // the dataset group drawn as colours (QGIS's order of the file's variables)
-    RasterStyle scalar;           // its ramp (a clear first stop leaves dry cells clear)
-    int vector_group = -1;        // the dataset group drawn as arrows; -1: none
-    double arrow_spacing_px = 30; // arrows on a grid of this spacing [pixels]
-    double arrow_min_speed = 0;   // [m s-1] no arrow below it (dry cells have none)
+    int scalar_group = -1;         // the dataset group drawn as colours (QGIS's order of the file's variables)
+    RasterStyle scalar;            // its ramp (a clear first stop leaves dry cells clear)
+    int vector_group = -1;         // the dataset group drawn as arrows; -1: none
+    double arrow_spacing_px = 30;  // arrows on a grid of this spacing [pixels]
+    double arrow_min_speed = 0;    // [m s-1] no arrow below it (dry cells have none)
 };
 
 // The style XML, as the content of a .qml file or a layer_styles row.

@@ -162,8 +162,8 @@ TEST(GisExport, ProjectIsAZipQgisReadsWithRelativePaths) {
     p.x_max = east0 + 200;
     p.y_max = north0;
     p.groups = {"debris", "maps"};
-    p.layers.push_back({gis::qgis::ProjectLayer::Kind::vector, dir + "/gis/tracks.gpkg", "tracks", "tracks & <lines>", "debris", true,
-                        "<qgis version=\"3.22.16\" labelsEnabled=\"1\"><renderer-v2 type=\"singleSymbol\"/></qgis>"});
+    p.layers.push_back({gis::qgis::ProjectLayer::Kind::vector, dir + "/gis/tracks.gpkg", "tracks", "tracks & <lines>", "debris",
+                        true, "<qgis version=\"3.22.16\" labelsEnabled=\"1\"><renderer-v2 type=\"singleSymbol\"/></qgis>"});
     p.layers.push_back({gis::qgis::ProjectLayer::Kind::raster, dir + "/gis/depth.tif", "", "depth [m]", "maps", false,
                         gis::qgis::raster_qml(gis::qgis::ramp(1.0, {"#000000", "#ffffff"}, "m"))});
     p.layers.push_back({gis::qgis::ProjectLayer::Kind::mesh, dir + "/flows/flow.nc", "", "flow", "maps", false,
@@ -189,8 +189,7 @@ TEST(GisExport, ProjectIsAZipQgisReadsWithRelativePaths) {
     EXPECT_NE(xml.find("labelsEnabled=\"1\""), std::string::npos) << xml;
     EXPECT_LT(xml.find("name=\"debris\""), xml.find("name=\"maps\""));  // the order given: debris drawn above maps
     // The mesh on the temporal controller: the run's 0 to 6640 s (01:50:40) from the epoch that stands for its start.
-    EXPECT_NE(xml.find("start-time-extent=\"2000-01-01T00:00:00Z\" end-time-extent=\"2000-01-01T01:50:40Z\""),
-              std::string::npos)
+    EXPECT_NE(xml.find("start-time-extent=\"2000-01-01T00:00:00Z\" end-time-extent=\"2000-01-01T01:50:40Z\""), std::string::npos)
         << xml;
     EXPECT_NE(xml.find("timeStepUnit=\"s\" timeStep=\"15.800000000000001\""), std::string::npos) << xml;
     // The same project gives the same bytes.
@@ -273,8 +272,8 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
         std::unique_ptr<OGRCoordinateTransformation> to(OGRCreateCoordinateTransformation(&utm, &survey));
         double px = 518120.0, py = 3779960.0;
         ASSERT_TRUE(to->Transform(1, &px, &py));
-        gdal::Dataset d(GetGDALDriverManager()->GetDriverByName("GPKG")->Create((dir + "/port.gpkg").c_str(), 0, 0, 0, GDT_Unknown,
-                                                                                nullptr));
+        gdal::Dataset d(
+            GetGDALDriverManager()->GetDriverByName("GPKG")->Create((dir + "/port.gpkg").c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         OGRLayer* l = d->CreateLayer("cars", &survey, wkbPoint, nullptr);
         OGRFieldDefn type("type", OFTString);
         l->CreateField(&type);
@@ -302,10 +301,10 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
         EXPECT_DOUBLE_EQ(f->GetGeometryRef()->toPoint()->getX(), 518150.0);
         EXPECT_STREQ(layer->GetSpatialRef()->GetAuthorityCode(nullptr), "32653");
     }
-    ASSERT_EQ(test::run_cli("export --trajectories " + dir + "/tracks.nc --tracks-format geojson --project none --out-dir " + dir +
-                                "/gis",
-                            &out),
-              0)
+    ASSERT_EQ(
+        test::run_cli(
+            "export --trajectories " + dir + "/tracks.nc --tracks-format geojson --project none --out-dir " + dir + "/gis", &out),
+        0)
         << out;
 
     // The depth map: georeferenced like the DEM, wet in the west, dry on the high ground.
@@ -319,7 +318,7 @@ TEST(GisExport, GeoTiffSceneThroughHydroDebrisAndExportKeepsTheCrs) {
     EXPECT_STREQ(m->GetSpatialRef()->GetAuthorityCode(nullptr), "32653");
     std::vector<float> depth(1200);
     ASSERT_EQ(m->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 60, 20, depth.data(), 60, 20, GDT_Float32, 0, 0, nullptr), CE_None);
-    EXPECT_GT(depth[10 * 60 + 2], 5.0f);          // the sea bed at -4.7 m under a 3 m rise
+    EXPECT_GT(depth[10 * 60 + 2], 5.0f);           // the sea bed at -4.7 m under a 3 m rise
     EXPECT_TRUE(std::isnan(depth[10 * 60 + 59]));  // +6.8 m ground, far above the water: never flooded, no value
     // Onshore (bed above still water, from x = 25 m east) apart: the sea has no value there.
     gdal::Dataset land = gdal::open_raster(dir + "/gis/inundation_depth.tif");
