@@ -14,9 +14,9 @@ bench-hydro: build
 	$(BUILD)/precision_bench $(if $(REAL_DEM),--dem $(REAL_DEM))
 	$(PYTHON) -m pipelines.speed_ratio --flotsam $(FLOTSAM) --dem $(REAL_DEM) --runs $(RUNS) --csv $(RUNS)/speed-ratio.csv
 
-## bench-debris  the debris integrator's speed, and body steps per second at 100, 1 000, 5 000 bodies in one run
+## bench-debris  the debris integrator's speed; body steps per second at 100, 1 000, 5 000 bodies alone and in yards that meet
 bench-debris: build
-	$(BUILD)/debris_bench $(RUNS)/bench --bodies 100,1000,5000 --threads $(JOBS)
+	$(BUILD)/debris_bench $(RUNS)/bench --bodies 100,1000,5000 --yards 100,1000,5000 --threads $(JOBS)
 
 # The wet/dry suite (docs/studies/wetdry_suite.md) at CI's size, both front treatments:
 # errors against exact solutions, orders, volume, the smallest step, how each run ended.

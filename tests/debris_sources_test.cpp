@@ -28,7 +28,9 @@ constexpr double deg = std::numbers::pi / 180.0;
 // A rectangle of `length` x `width` [m] from (x0, y0), its long side at `heading_deg`.
 Ring rectangle(double x0, double y0, double length, double width, double heading_deg) {
     const double c = std::cos(heading_deg * deg), s = std::sin(heading_deg * deg);
-    return {{x0, y0}, {x0 + c * length, y0 + s * length}, {x0 + c * length - s * width, y0 + s * length + c * width},
+    return {{x0, y0},
+            {x0 + c * length, y0 + s * length},
+            {x0 + c * length - s * width, y0 + s * length + c * width},
             {x0 - s * width, y0 + c * width}};
 }
 
@@ -228,10 +230,11 @@ TEST(DebrisSourcesCli, BadSourcesAreNamedByFeature) {
         EXPECT_FALSE(std::filesystem::exists(traj)) << k;
     }
     std::string out;
-    EXPECT_NE(test::run_cli("debris --flow " + port.flow + " --sources " + port.layer("port", {port.point(518040, 3779040, R"("type":"car")")}) +
-                                " --out " + port.dir + "/x.nc",
-                            &out),
-              0);
+    EXPECT_NE(
+        test::run_cli("debris --flow " + port.flow + " --sources " +
+                          port.layer("port", {port.point(518040, 3779040, R"("type":"car")")}) + " --out " + port.dir + "/x.nc",
+                      &out),
+        0);
     EXPECT_NE(out.find("needs --scene"), std::string::npos) << out;
 }
 
@@ -254,7 +257,8 @@ TEST(DebrisSourcesCli, ASweepTakesItsBodiesFromSourceLayers) {
                                 &out),
                   0)
             << out;
-    ASSERT_EQ(test::run_cli("sweep merge " + port.dir + "/part1.nc " + port.dir + "/part0.nc --out " + port.dir + "/merged.nc", &out), 0)
+    ASSERT_EQ(
+        test::run_cli("sweep merge " + port.dir + "/part1.nc " + port.dir + "/part0.nc --out " + port.dir + "/merged.nc", &out), 0)
         << out;
     nc::File f = nc::File::open_read(port.dir + "/whole.nc");
     const auto bodies = f.get_strings(f.var("body_name")), sources = f.get_strings(f.var("body_source"));
@@ -305,7 +309,8 @@ TEST(DebrisSourcesCli, AYardsBodiesMeetInOneRunWithTheSameBytesOnAnyThreadsAndSh
     ASSERT_EQ(sweep("--threads 2", "two.nc"), 0) << out;
     ASSERT_EQ(sweep("--threads 2 --shard 0/2", "part0.nc"), 0) << out;
     ASSERT_EQ(sweep("--threads 1 --shard 1/2", "part1.nc"), 0) << out;
-    ASSERT_EQ(test::run_cli("sweep merge " + port.dir + "/part0.nc " + port.dir + "/part1.nc --out " + port.dir + "/merged.nc", &out), 0)
+    ASSERT_EQ(
+        test::run_cli("sweep merge " + port.dir + "/part0.nc " + port.dir + "/part1.nc --out " + port.dir + "/merged.nc", &out), 0)
         << out;
     EXPECT_TRUE(same_bytes(port.dir + "/one.nc", port.dir + "/two.nc"));
     EXPECT_TRUE(same_bytes(port.dir + "/one.nc", port.dir + "/merged.nc"));
