@@ -17,10 +17,10 @@ constexpr double separation_slop = 1e-9;
 Box pose(const BodyState& s, const BodyParams& b) { return Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width); }
 
 // The impulse at one contact (zero unless it approaches).
-void apply_impulse(const ObstacleContact& c, const BodyParams& b, double mass, double inertia, BodyState& s) {
+void apply_impulse(const ObstacleCollision& c, const BodyParams& b, double mass, double inertia, BodyState& s) {
     const Vec2 r = c.point - Vec2{s.x, s.y};
     const Vec2 vp = Vec2{s.vx, s.vy} + spin(s.omega, r);
-    const double j = contact_impulse(dot(vp, c.normal), b.def.restitution, mass, inertia, r, c.normal);
+    const double j = collision_impulse(dot(vp, c.normal), b.def.restitution, mass, inertia, r, c.normal);
     s.vx += j / mass * c.normal.x;
     s.vy += j / mass * c.normal.y;
     s.omega += j * cross(r, c.normal) / inertia;
@@ -28,7 +28,7 @@ void apply_impulse(const ObstacleContact& c, const BodyParams& b, double mass, d
 
 // The buildings among `contacts` not yet in `touches`, each with its fastest approach
 // (before any impulse of this pass) and that contact's point.
-void note_buildings(const std::vector<ObstacleContact>& contacts, const BodyState& s, std::vector<BuildingTouch>& touches) {
+void note_buildings(const std::vector<ObstacleCollision>& contacts, const BodyState& s, std::vector<BuildingTouch>& touches) {
     const std::size_t seen_before = touches.size();
     for (const auto& c : contacts) {
         if (c.building <= 0) continue;
@@ -44,7 +44,7 @@ void note_buildings(const std::vector<ObstacleContact>& contacts, const BodyStat
     }
 }
 
-double deepest(const std::vector<ObstacleContact>& cs) {
+double deepest(const std::vector<ObstacleCollision>& cs) {
     double d = 0.0;
     for (const auto& c : cs) d = std::max(d, c.depth);
     return d;
@@ -128,13 +128,13 @@ bool shortest_clearing(const std::vector<ClearingRow>& rows, std::size_t n_try, 
 // order, with the least M |Δx|² + I Δθ²: translation and rotation shared as impulses
 // share them. Where the rows tried admit none (more contacts than the linearisation can
 // clear together), out of each contact in turn by what is left of its depth.
-SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 centre, double mass, double inertia) {
+SeparatingMove clearing_move(const std::vector<ObstacleCollision>& contacts, Vec2 centre, double mass, double inertia) {
     constexpr std::size_t max_tried = 6;  // the deepest distinct contacts tried as active sets: at most 41 solves
     const double sm = std::sqrt(mass), si = std::sqrt(inertia);
     std::vector<ClearingRow> rows;
     rows.reserve(contacts.size());
     std::size_t tried = 0;
-    for (const ObstacleContact& c : contacts) {
+    for (const ObstacleCollision& c : contacts) {
         const Vec2 r = c.point - centre;
         // b: the depth to clear, or (negative) the gap the move may close [m].
         const ClearingRow row{{c.normal.x / sm, c.normal.y / sm, cross(r, c.normal) / si}, c.depth + separation_slop};
@@ -158,7 +158,7 @@ SeparatingMove clearing_move(const std::vector<ObstacleContact>& contacts, Vec2 
     double u[3];
     if (shortest_clearing(rows, tried, u)) return {Vec2{u[0] / sm, u[1] / sm}, u[2] / si};
     SeparatingMove total;
-    for (const ObstacleContact& c : contacts) {
+    for (const ObstacleCollision& c : contacts) {
         const Vec2 r = c.point - centre;
         const double left = c.depth - (dot(total.shift, c.normal) + total.turn * cross(r, c.normal));
         if (!(left > 0.0)) continue;
@@ -183,14 +183,14 @@ void hand_pivot_to_centre(BodyState& s) {
 }
 
 double deepest_overlap(const ObstacleMap& obstacles, const Blocking& blocking, const Box& box,
-                       std::vector<ObstacleContact>& scratch) {
+                       std::vector<ObstacleCollision>& scratch) {
     scratch.clear();
     obstacles.find_contacts(box, blocking, scratch);
     return deepest(scratch);
 }
 
 CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& state, const Box& footprint,
-                                    std::vector<ObstacleContact>& contacts, std::vector<BuildingTouch>* touches) {
+                                    std::vector<ObstacleCollision>& contacts, std::vector<BuildingTouch>* touches) {
     const ObstacleMap& obstacles = setup.obstacles;
     const BodyParams& body = setup.body;
     const double mass = setup.mass, inertia = setup.inertia;
@@ -209,7 +209,7 @@ CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& stat
     if (contacts.empty()) return out;
     out.touched = true;
     hand_pivot_to_centre(state);
-    auto by_depth = [](const ObstacleContact& a, const ObstacleContact& b) { return a.depth > b.depth; };
+    auto by_depth = [](const ObstacleCollision& a, const ObstacleCollision& b) { return a.depth > b.depth; };
 
     if (body.def.collision == CollisionModel::single) {
         if (touches) note_buildings(contacts, state, *touches);

@@ -72,7 +72,7 @@ struct CollisionSetup {
 // With `touches`, appends each building contacted (debris/impacts.hpp, BuildingTouch):
 // nothing of the motion depends on it.
 CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& state, const Box& footprint,
-                                    std::vector<ObstacleContact>& scratch, std::vector<BuildingTouch>* touches = nullptr);
+                                    std::vector<ObstacleCollision>& scratch, std::vector<BuildingTouch>* touches = nullptr);
 
 // The axis shift's rotation about x_sub (a body turning about its contact centroid) as the
 // centre's velocity and yaw rate, before an impulse changes them.
@@ -81,6 +81,6 @@ void hand_pivot_to_centre(BodyState& state);
 // The deepest overlap of the pose `box` with what blocks the body [m]; `scratch` is left
 // holding the overlaps.
 double deepest_overlap(const ObstacleMap& obstacles, const Blocking& blocking, const Box& box,
-                       std::vector<ObstacleContact>& scratch);
+                       std::vector<ObstacleCollision>& scratch);
 
 }  // namespace flotsam::debris

@@ -157,12 +157,12 @@ void track_impacts(const StepContext& ctx, const BodyParams& b, const BodyState&
         Box near = Box::make({s.x, s.y}, s.theta, b.def.length, b.def.width);
         near.half_length += b.impact_separation;
         near.half_width += b.impact_separation;
-        std::vector<ObstacleContact>& found = scratch.contacts;
+        std::vector<ObstacleCollision>& found = scratch.contacts;
         found.clear();
         ctx.obstacles.find_contacts(near, 1e30, 0.0, found, 0.0, BlockingGround::none);  // only buildings block at that bottom
         std::erase_if(impacts.open, [&](std::int32_t id) {
             return !touched(id) &&
-                   std::none_of(found.begin(), found.end(), [&](const ObstacleContact& c) { return c.building == id; });
+                   std::none_of(found.begin(), found.end(), [&](const ObstacleCollision& c) { return c.building == id; });
         });
     }
     for (const BuildingTouch& k : scratch.touches) {
@@ -215,7 +215,7 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
             s.theta = start.now.theta;
             Vec2 v{s.vx, s.vy};
             for (int sweep = 0; sweep < 2; ++sweep)
-                for (const ObstacleContact& c : scratch.jammed_at)
+                for (const ObstacleCollision& c : scratch.jammed_at)
                     if (const double vn = dot(v, c.normal); vn < 0.0) v = v - vn * c.normal;
             s.vx = v.x;
             s.vy = v.y;
@@ -232,7 +232,7 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
 }  // namespace
 
 Resting resting_place(const StepContext& ctx, const BodyParams& b, const Box& box, double centre_depth,
-                      const std::vector<ContactPatch>& patches) {
+                      const std::vector<GroundPatch>& patches) {
     const double afloat = ctx.obstacles.ground(box.centre.x, box.centre.y) + centre_depth - b.draft;
     const bool shallow =
         b.def.contact == ContactModel::local
@@ -269,7 +269,7 @@ StepOutcome take_step(const StepContext& ctx, const BodyParams& b, BodyState& s,
         s.flags |= flag_released;
     }
     // A body grounded at its last step most likely is again: the depth bound is not tried.
-    contact_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
+    ground_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
                     scratch.footprint, scratch.patches, !(s.flags & flag_grounded));
     st.rest = resting_place(ctx, b, st.box, centre.depth, scratch.patches);
     const Loads loads = integrate_loads(ctx, b, s, st, dt);
@@ -362,7 +362,7 @@ bool advance_group(const StepContext& ctx, BodyGroup& group, double t_end, Group
     gs.saved_events.resize(n);
     gs.saved_open.resize(n);
     std::vector<StepOutcome> outcome(n);
-    const BodyContactDef contact_def{
+    const BodyCollisionDef contact_def{
         ctx.def.max_collision_passes,
         {0.0, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)},
         group.impacts != nullptr};
@@ -422,9 +422,9 @@ bool advance_group(const StepContext& ctx, BodyGroup& group, double t_end, Group
             gb.inertia = outcome[k].eff.inertia;
             gb.blocking = Blocking{outcome[k].bottom, b.step_height, b.def.blocking_ground, &water, b.draft};
         }
-        BodyContactDef def = contact_def;
+        BodyCollisionDef def = contact_def;
         def.move.dt = dt;
-        const bool met = ctx.def.body_contact && n > 1 && resolve_body_contacts(ctx.obstacles, gs.bodies, def, gs.contacts);
+        const bool met = ctx.def.body_contact && n > 1 && resolve_body_collisions(ctx.obstacles, gs.bodies, def, gs.contacts);
         for (std::size_t k = 0; k < n; ++k) {
             const std::size_t m = std::size_t(members[k]);
             const GroupBody& gb = gs.bodies[k];

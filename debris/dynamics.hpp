@@ -7,8 +7,8 @@
 
 #include "common/enum_names.hpp"
 #include "debris/body.hpp"
-#include "debris/body_contact.hpp"
-#include "debris/contact.hpp"
+#include "debris/body_collision.hpp"
+#include "debris/ground_contact.hpp"
 #include "debris/flow_sampler.hpp"
 #include "debris/footprint.hpp"
 #include "debris/impacts.hpp"
@@ -33,7 +33,7 @@ struct StepDef {
     double vertex_step_fraction = 0.25;  // largest corner displacement per step, in cells [-]
     int max_collision_passes = 10;       // MC pass bound [-]
     Integrator integrator = Integrator::euler;
-    // The bodies of one run meet each other (debris/body_contact.hpp); false: each body
+    // The bodies of one run meet each other (debris/body_collision.hpp); false: each body
     // goes through the flow as if alone.
     bool body_contact = true;
 };
@@ -42,11 +42,11 @@ StepDef default_step_def();
 // Working memory of one thread (reused, so steps do not allocate).
 struct StepScratch {
     FootprintCache footprint;
-    std::vector<ContactPatch> patches;
-    std::vector<ObstacleContact> contacts;
+    std::vector<GroundPatch> patches;
+    std::vector<ObstacleCollision> contacts;
     std::vector<BuildingTouch> touches;
     std::vector<std::int32_t> open_saved;    // a body's open contact episodes before a step that may be redone
-    std::vector<ObstacleContact> jammed_at;  // the overlaps a jammed step left
+    std::vector<ObstacleCollision> jammed_at;  // the overlaps a jammed step left
 };
 
 struct StepContext {
@@ -62,7 +62,7 @@ struct StepContext {
 // ground is looked at only where some of it under the body may be shallower than the
 // draft (a contact patch; for centre contact, the depth's lower bound under the footprint).
 Resting resting_place(const StepContext& ctx, const BodyParams& body, const Box& box, double centre_depth,
-                      const std::vector<ContactPatch>& patches);
+                      const std::vector<GroundPatch>& patches);
 
 // One step of length dt from state.time. Returns the largest displacement of a corner
 // by the free motion (before collisions) [m], which the caller checks against the cell.
@@ -84,14 +84,14 @@ bool advance_body(const StepContext& ctx, const BodyParams& body, BodyState& sta
                   StepScratch& scratch, BodyImpacts* impacts = nullptr);
 
 // The bodies of one run, stepped together so that they meet each other
-// (debris/body_contact.hpp): every step as long as the one its fastest body allows (no
+// (debris/body_collision.hpp): every step as long as the one its fastest body allows (no
 // corner moving more than the vertex-step fraction of the smaller of a cell and the
 // narrowest body), each body's own step, then the contacts between them. Deterministic:
 // the bodies are stepped and their contacts resolved in a fixed order. A body another one
 // hits is released (it moves; the ground's friction holds it where it is grounded).
 struct GroupScratch {
     StepScratch step;
-    BodyContactScratch contacts;
+    BodyCollisionScratch contacts;
     std::vector<GroupBody> bodies;
     std::vector<BodyState> saved;
     std::vector<BodyStats> saved_stats;

@@ -83,7 +83,7 @@ inline Vec2 pivot_shift(Vec2 arm, double turn) { return rotate(arm, turn) - arm;
 // lever arm r from the centre: j = −(1 + e) v_n / (1/M + (r × n)² / I). Zero unless the
 // contact point approaches the obstacle (v_n < 0), so a resting or separating contact
 // gets nothing and the impulse can only remove kinetic energy for e ≤ 1.
-inline double contact_impulse(double v_normal, double restitution, double mass, double inertia, Vec2 r, Vec2 n) {
+inline double collision_impulse(double v_normal, double restitution, double mass, double inertia, Vec2 r, Vec2 n) {
     if (v_normal >= 0.0) return 0.0;
     const double rn = cross(r, n);
     return -(1.0 + restitution) * v_normal / (1.0 / mass + rn * rn / inertia);

@@ -242,7 +242,7 @@ bool gap_across(const Box& box, Vec2 cell, double hx, double hy, Vec2 n, Vec2& p
 
 }  // namespace
 
-void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleContact>& out, double min_depth,
+void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleCollision>& out, double min_depth,
                                 double margin) const {
     const std::vector<float>& wall_top = walls(by.rule).top;
     const double reach = by.bottom + by.step_height;
@@ -290,7 +290,7 @@ void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<
             // Candidate normals. A cell face shared with another blocked cell is inside a
             // wall and is never a push-out direction (no snagging on internal edges); a body
             // axis is used only in the direction pointing from the cell toward the body.
-            ObstacleContact best;
+            ObstacleCollision best;
             best.depth = 1e300;
             auto consider = [&](Vec2 n, double depth) {
                 if (depth < best.depth) {

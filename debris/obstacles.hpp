@@ -33,7 +33,7 @@ inline constexpr EnumNames<BlockingGround, 3> blocking_ground_names{
     {{{BlockingGround::land, "land"}, {BlockingGround::any, "any"}, {BlockingGround::none, "none"}}}};
 constexpr const auto& enum_names(BlockingGround) { return blocking_ground_names; }
 
-struct ObstacleContact {
+struct ObstacleCollision {
     Vec2 normal;         // unit, from the obstacle into the body (the direction that separates) [-]
     double depth = 0.0;  // penetration along normal [m]; negative: the gap to a cell near the body
     Vec2 point;          // where the impulse acts: on the body (a corner, or the middle of its part of a face) [m]
@@ -95,9 +95,9 @@ public:
     // margin, every blocked cell within `margin` of it (depth down to −margin: the gap). The
     // contacts are the box's own: normal and depth from the separating-axis test of the box
     // itself, the point on it (the margin chooses only which cells are looked at).
-    void find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleContact>& out, double min_depth = 1e-10,
+    void find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleCollision>& out, double min_depth = 1e-10,
                        double margin = 0.0) const;
-    void find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleContact>& out,
+    void find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleCollision>& out,
                        double min_depth = 1e-10, BlockingGround rule = BlockingGround::any) const {
         find_contacts(box, Blocking{bottom, step_height, rule}, out, min_depth);
     }

@@ -2,7 +2,7 @@
 // advance_to(t) walks frame interval by frame interval, loading each pair of frames once,
 // and advances every body through it. Bodies of one group (a run: a yard's bodies, the
 // bodies of one `flotsam debris`) meet each other and step together
-// (debris/body_contact.hpp); bodies of different groups never meet. Groups go in
+// (debris/body_collision.hpp); bodies of different groups never meet. Groups go in
 // parallel with OpenMP, each in a fixed order, so results do not depend on the thread
 // count.
 // With read_ahead, the frame the next interval needs is read meanwhile on one more

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "cases/debris_flows.hpp"
-#include "debris/contact.hpp"
+#include "debris/ground_contact.hpp"
 #include "debris/loads.hpp"
 #include "debris/world.hpp"
 #include "tests/test_support.hpp"
@@ -50,8 +50,8 @@ double friction_capacity_at_rest(const std::string& path, ContactModel contact) 
     BodyDef def = body_at(0.0, 0.0, 0.3, contact);
     const BodyParams p = make_body_params(def, rho);
     FootprintCache footprint;
-    std::vector<ContactPatch> patches;
-    contact_patches(flow, flow.grid(), p, Box::make({0.0, 0.0}, 0.3, def.length, def.width), flow.depth(0.0, 0.0, 0.5), 0.5, rho, g,
+    std::vector<GroundPatch> patches;
+    ground_patches(flow, flow.grid(), p, Box::make({0.0, 0.0}, 0.3, def.length, def.width), flow.depth(0.0, 0.0, 0.5), 0.5, rho, g,
                     footprint, patches);
     double sum = 0.0;
     for (const auto& q : patches) sum += q.capacity;
@@ -380,8 +380,8 @@ TEST(DebrisBody, AxisShiftTurnsAboutTheContactCentroidWithHandValues) {
         FlowReader flow(path);
         flow.prepare(0.0);
         FootprintCache footprint;
-        std::vector<ContactPatch> patches;
-        contact_patches(flow, flow.grid(), p, Box::make({0.0, 0.0}, 0.0, def.length, def.width), flow.depth(0.0, 0.0, 0.0), 0.0,
+        std::vector<GroundPatch> patches;
+        ground_patches(flow, flow.grid(), p, Box::make({0.0, 0.0}, 0.0, def.length, def.width), flow.depth(0.0, 0.0, 0.0), 0.0,
                         rho, g, footprint, patches);
         double capacity = 0.0, area = 0.0;
         Vec2 centroid;

@@ -28,7 +28,7 @@ std::vector<std::uint8_t> mask(const std::function<bool(double, double)>& inside
 double overlap(const World& w, std::size_t b) {
     const BodyState& s = w.states()[b];
     const BodyParams& p = w.params()[b];
-    std::vector<ObstacleContact> cs;
+    std::vector<ObstacleCollision> cs;
     const double bottom = 1e9;  // so that only the building mask blocks
     w.obstacles().find_contacts(Box::make({s.x, s.y}, s.theta, p.def.length, p.def.width), bottom, p.step_height, cs, 0.0);
     double d = 0.0;

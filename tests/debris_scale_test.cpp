@@ -10,7 +10,7 @@
 #include "cases/debris_flows.hpp"
 #include "debris/catalogue.hpp"
 #include "debris/collision.hpp"
-#include "debris/contact.hpp"
+#include "debris/ground_contact.hpp"
 #include "debris/dynamics.hpp"
 #include "debris/world.hpp"
 #include "tests/test_support.hpp"
@@ -26,7 +26,7 @@ constexpr double deg = M_PI / 180.0;
 double overlap_with_buildings(const World& w, std::size_t b) {
     const BodyState& s = w.states()[b];
     const BodyParams& p = w.params()[b];
-    std::vector<ObstacleContact> cs;
+    std::vector<ObstacleCollision> cs;
     w.obstacles().find_contacts(Box::make({s.x, s.y}, s.theta, p.def.length, p.def.width), 1e9, p.step_height, cs, 0.0);
     double d = 0.0;
     for (const auto& c : cs) d = std::max(d, c.depth);
@@ -184,8 +184,8 @@ TEST(DebrisScale, GroundedBodyFacesAreWettedFromItsBottom) {
     const Box box = Box::make({0.0, 0.0}, 0.0, def.length, def.width);
     const FlowPointAccel centre = flow.sample_accel(0.0, 0.0, 0.0);
     FootprintCache footprint;
-    std::vector<ContactPatch> patches;
-    contact_patches(flow, flow.grid(), p, box, centre.depth, 0.0, 1000.0, 9.81, footprint, patches);
+    std::vector<GroundPatch> patches;
+    ground_patches(flow, flow.grid(), p, box, centre.depth, 0.0, 1000.0, 9.81, footprint, patches);
     const Resting rest = resting_place(ctx, p, box, centre.depth, patches);
     ASSERT_TRUE(rest.on_ground);
     EXPECT_NEAR(rest.bottom, -0.015, 1e-9);

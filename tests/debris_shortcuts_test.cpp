@@ -13,7 +13,7 @@
 #include <random>
 
 #include "cases/debris_flows.hpp"
-#include "debris/contact.hpp"
+#include "debris/ground_contact.hpp"
 #include "debris/flow_reader.hpp"
 #include "debris/footprint.hpp"
 #include "debris/obstacles.hpp"
@@ -134,7 +134,7 @@ TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
                 if (!building[g.index(i, j)] && overlap_depth(box, Vec2{g.x0 + i * g.dx, g.y0 + j * g.dy}, hx, hy) > 1e-6)
                     highest = std::max(highest, double(bed[g.index(i, j)]));
         EXPECT_EQ(map.highest_ground(box, 1e-6), highest) << what;
-        std::vector<ObstacleContact> contacts;
+        std::vector<ObstacleCollision> contacts;
         map.find_contacts(box, bottom, step, contacts);
         EXPECT_GE(int(contacts.size()), deep) << what;
         EXPECT_LE(int(contacts.size()), touching) << what;
@@ -200,10 +200,10 @@ TEST(StepShortcuts, ContactPatchesWithoutTheDepthBoundAreTheSame) {
         for (const double heading : {0.0, 0.4, 1.3}) {
             const Box box = Box::make({x, 0.01}, heading, def.length, def.width);
             FootprintCache cache_with, cache_without;
-            std::vector<ContactPatch> with, without;
+            std::vector<GroundPatch> with, without;
             const double centre_depth = flow.depth(x, 0.01, 0.5);
-            contact_patches(flow, g, p, box, centre_depth, 0.5, 1000.0, 9.81, cache_with, with, true);
-            contact_patches(flow, g, p, box, centre_depth, 0.5, 1000.0, 9.81, cache_without, without, false);
+            ground_patches(flow, g, p, box, centre_depth, 0.5, 1000.0, 9.81, cache_with, with, true);
+            ground_patches(flow, g, p, box, centre_depth, 0.5, 1000.0, 9.81, cache_without, without, false);
             ASSERT_EQ(with.size(), without.size()) << x << " " << heading;
             for (std::size_t k = 0; k < with.size(); ++k) {
                 EXPECT_EQ(with[k].r.x, without[k].r.x);

@@ -1,4 +1,4 @@
-#include "debris/contact.hpp"
+#include "debris/ground_contact.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,8 +14,8 @@ constexpr double sliding_epsilon = 1e-12;
 
 }  // namespace
 
-void contact_patches(const FlowSampler& flow, const Grid& grid, const BodyParams& b, const Box& box, double centre_depth, double t,
-                     double rho, double g, FootprintCache& footprint_cache, std::vector<ContactPatch>& out, bool depth_bound) {
+void ground_patches(const FlowSampler& flow, const Grid& grid, const BodyParams& b, const Box& box, double centre_depth, double t,
+                     double rho, double g, FootprintCache& footprint_cache, std::vector<GroundPatch>& out, bool depth_bound) {
     const BodyDef& def = b.def;
     const Vec2 xg = box.centre;
     out.clear();
@@ -64,7 +64,7 @@ void contact_patches(const FlowSampler& flow, const Grid& grid, const BodyParams
     }
 }
 
-Friction apply_friction(const std::vector<ContactPatch>& patches, const Velocities& trial, const Inertia& eff, double dt) {
+Friction apply_friction(const std::vector<GroundPatch>& patches, const Velocities& trial, const Inertia& eff, double dt) {
     Friction f;
     f.after = trial;
     if (patches.empty()) return f;
@@ -94,7 +94,7 @@ Friction apply_friction(const std::vector<ContactPatch>& patches, const Velociti
 // the contact centroid while the axis is shifted (choice: about the centre, T' of a body
 // held at one corner in a uniform current is near zero and flips sign with round-off,
 // which would end every pivot after a few steps).
-AxisShift axis_shift(const BodyParams& b, const BodyState& s, const std::vector<ContactPatch>& patches, const FluidLoad& load,
+AxisShift axis_shift(const BodyParams& b, const BodyState& s, const std::vector<GroundPatch>& patches, const FluidLoad& load,
                      double omega_after, double capacity, const Inertia& eff, double dt) {
     AxisShift a;
     a.torque_ref = load.torque;

@@ -40,7 +40,7 @@
 namespace flotsam::debris {
 
 // The overlap of two bodies.
-struct BodyPairContact {
+struct BodyCollision {
     int a = 0, b = 0;                 // the two bodies (indices into the group), a < b
     Vec2 normal;                      // unit, from b into a: the direction that separates a [-]
     double depth = 0.0;               // penetration along normal [m]
@@ -52,7 +52,7 @@ struct BodyPairContact {
 
 // Whether boxes a and b overlap by more than min_depth; the contact, with out.a and out.b
 // left to the caller.
-bool box_overlap(const Box& a, const Box& b, double min_depth, BodyPairContact& out);
+bool box_overlap(const Box& a, const Box& b, double min_depth, BodyCollision& out);
 
 // The pairs (i, j), i < j, whose bounding boxes widened by `pad` [m] overlap, in increasing
 // order; `cells` is working memory.
@@ -67,29 +67,29 @@ struct GroupBody {
     double inertia = 0.0;                // effective yaw inertia [kg m²]
     Blocking blocking;                   // what blocks it (its bottom this step, the water over the cells)
     std::vector<BuildingTouch> touches;  // buildings touched: its own step's, and those its contacts in these passes add
-    // Filled by resolve_body_contacts:
+    // Filled by resolve_body_collisions:
     bool met = false;           // it touched another body this step
     double body_overlap = 0.0;  // deepest overlap with another body left [m]
     double wall_overlap = 0.0;  // deepest overlap with a blocked cell left, where met [m]
 };
 
-struct BodyContactDef {
+struct BodyCollisionDef {
     int max_passes = 10;          // as the multi-collision's bound [-]
     StepMove move;                // the step being corrected (its Δt, the weight of the new velocity, the tolerance)
     bool note_buildings = false;  // fill GroupBody::touches
 };
 
 // Working memory of one group's resolution (reused from step to step).
-struct BodyContactScratch {
+struct BodyCollisionScratch {
     std::vector<Box> boxes;
     std::vector<std::array<int, 2>> pairs;
     std::vector<std::array<long long, 2>> cells;
-    std::vector<BodyPairContact> contacts;  // the pairs that overlap
-    std::vector<BodyPairContact> near;      // and those within the margin
-    std::vector<ObstacleContact> walls;
+    std::vector<BodyCollision> contacts;  // the pairs that overlap
+    std::vector<BodyCollision> near;      // and those within the margin
+    std::vector<ObstacleCollision> walls;
     struct Wall {
         int body;
-        ObstacleContact c;
+        ObstacleCollision c;
     };
     std::vector<Wall> wall_contacts;
     std::vector<BodyState> reached;
@@ -102,8 +102,8 @@ struct BodyContactScratch {
 
 // Resolves the overlaps between the group's bodies (and the walls of the bodies that meet)
 // after each took its step. Returns whether any two bodies touched.
-bool resolve_body_contacts(const ObstacleMap& obstacles, std::vector<GroupBody>& group, const BodyContactDef& def,
-                           BodyContactScratch& scratch);
+bool resolve_body_collisions(const ObstacleMap& obstacles, std::vector<GroupBody>& group, const BodyCollisionDef& def,
+                           BodyCollisionScratch& scratch);
 
 // The deepest overlap between any two of the boxes [m] (0 where none overlap).
 double deepest_body_overlap(const std::vector<Box>& boxes);

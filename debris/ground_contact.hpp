@@ -14,7 +14,7 @@
 namespace flotsam::debris {
 
 // One patch of the bottom in contact with the ground.
-struct ContactPatch {
+struct GroundPatch {
     Vec2 r;                 // overlap centroid relative to the centre [m]
     double area = 0.0;      // S_ij [m²]
     double capacity = 0.0;  // μ (S_ij / LB)(m − ρ L B h_ij) g [N]
@@ -26,8 +26,8 @@ struct ContactPatch {
 // lower bound of the depth under the body and return at once where even that is as deep
 // as the draft (the same answer, sooner for a floating body; for a body that was grounded
 // at its last step the bound seldom skips anything and costs a scan of the window).
-void contact_patches(const FlowSampler& flow, const Grid& grid, const BodyParams& body, const Box& box, double centre_depth,
-                     double t, double rho, double g, FootprintCache& footprint, std::vector<ContactPatch>& out,
+void ground_patches(const FlowSampler& flow, const Grid& grid, const BodyParams& body, const Box& box, double centre_depth,
+                     double t, double rho, double g, FootprintCache& footprint, std::vector<GroundPatch>& out,
                      bool depth_bound = true);
 
 // Translational and yaw velocity.
@@ -42,7 +42,7 @@ struct Friction {
     Velocities after;
     double capacity = 0.0;  // Σ of the patch capacities [N]
 };
-Friction apply_friction(const std::vector<ContactPatch>& patches, const Velocities& trial, const Inertia& eff, double dt);
+Friction apply_friction(const std::vector<GroundPatch>& patches, const Velocities& trial, const Inertia& eff, double dt);
 
 // The axis shift of one step: the rotation about the contact centroid and the centre's
 // move with it (x_g* − x_g^n).
@@ -56,7 +56,7 @@ struct AxisShift {
 };
 // load: the flow's force and torque T' about the centre at the start of the step;
 // omega_after: ω^(n+1) after friction; capacity: Σ f_k.
-AxisShift axis_shift(const BodyParams& body, const BodyState& state, const std::vector<ContactPatch>& patches,
+AxisShift axis_shift(const BodyParams& body, const BodyState& state, const std::vector<GroundPatch>& patches,
                      const FluidLoad& load, double omega_after, double capacity, const Inertia& eff, double dt);
 
 }  // namespace flotsam::debris

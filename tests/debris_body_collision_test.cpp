@@ -1,4 +1,4 @@
-// Bodies that meet each other (debris/body_contact.hpp): the box-box contact by hand, a
+// Bodies that meet each other (debris/body_collision.hpp): the box-box contact by hand, a
 // head-on impact by hand, momentum kept in a pile, and a yard of containers pressed on a
 // wall by a current with no overlap left at any step.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "cases/debris_flows.hpp"
-#include "debris/body_contact.hpp"
+#include "debris/body_collision.hpp"
 #include "debris/catalogue.hpp"
 #include "debris/loads.hpp"
 #include "debris/world.hpp"
@@ -32,13 +32,13 @@ BodyDef frictionless_box(double x, double y, double heading) {
 // into A), depth 1 cm, the point in the middle of B's end that lies in A's: x = 0.115 m
 // (B's end face), y = (-3 + 5)/2 = 1 cm. Turned by 30 degrees together, the same in their
 // frame.
-TEST(BodyContact, BoxOverlapByHand) {
+TEST(BodyCollision, BoxOverlapByHand) {
     for (const double turn : {0.0, 30.0}) {
         const double c = std::cos(turn * M_PI / 180), s = std::sin(turn * M_PI / 180);
         const auto rot = [&](Vec2 p) { return Vec2{c * p.x - s * p.y, s * p.x + c * p.y}; };
         const Box a = Box::make({0.0, 0.0}, turn * M_PI / 180, 0.25, 0.10);
         const Box b = Box::make(rot({0.24, 0.02}), turn * M_PI / 180, 0.25, 0.10);
-        BodyPairContact k;
+        BodyCollision k;
         ASSERT_TRUE(box_overlap(a, b, 0.0, k));
         EXPECT_NEAR(k.depth, 0.01, 1e-12);
         const Vec2 n = rot({-1.0, 0.0}), p = rot({0.115, 0.01});
@@ -55,7 +55,7 @@ TEST(BodyContact, BoxOverlapByHand) {
 // (no drag, no friction). Equal masses, restitution e = 0.5: by hand they leave at
 // -e u and +e u (v_a' = ((1 - e) v_a + (1 + e) v_b) / 2), without turning, and no overlap
 // is left.
-TEST(BodyContact, HeadOnImpactOfEqualBoxesByHand) {
+TEST(BodyCollision, HeadOnImpactOfEqualBoxesByHand) {
     const auto dir = test::scratch_dir("body_head_on");
     const Grid g{200, 60, -0.995, -0.295, 0.01, 0.01};
     const auto path = test::uniform_flow(dir + "/still.nc", g, 3, 0.1, 0.0, 0.0);
@@ -93,7 +93,7 @@ TEST(BodyContact, HeadOnImpactOfEqualBoxesByHand) {
 // thrown at each other with seeded velocities of up to 0.3 m/s and turns of up to 2 rad/s:
 // hundreds of contacts, and the total momentum Σ M V (M the effective mass, added mass
 // included) is what it was, to 1e-12 of Σ M |V|.
-TEST(BodyContact, MomentumOfAPileIsKept) {
+TEST(BodyCollision, MomentumOfAPileIsKept) {
     const auto dir = test::scratch_dir("body_pile");
     const Grid g{300, 300, -1.495, -1.495, 0.01, 0.01};
     const auto path = test::uniform_flow(dir + "/still.nc", g, 4, 0.2, 0.0, 0.0);
@@ -144,7 +144,7 @@ TEST(BodyContact, MomentumOfAPileIsKept) {
 // 24 along x by 20 across, afloat in 3 m of water on 10 m cells, carried north by a 1 m/s
 // current onto a building's face: they pile up against it. No two overlap deeper than the
 // tolerance (1e-3 of a cell, 1 cm) after any step, nor any of them a wall, and none jams.
-TEST(BodyContact, YardPressedOnAWallKeepsEveryBodyApart) {
+TEST(BodyCollision, YardPressedOnAWallKeepsEveryBodyApart) {
     const auto dir = test::scratch_dir("body_yard");
     const Grid g{40, 16, 5.0, 5.0, 10.0, 10.0};  // 400 x 160 m, a building face at y = 150 m
     const auto path = test::uniform_flow(dir + "/current.nc", g, 130, 3.0, 0.0, 1.0, -3.0);

@@ -1,4 +1,4 @@
-#include "debris/body_contact.hpp"
+#include "debris/body_collision.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +23,7 @@ Box pose_of(const BodyState& s, const BodyParams& p) { return Box::make({s.x, s.
 
 }  // namespace
 
-bool box_overlap(const Box& A, const Box& B, double min_depth, BodyPairContact& out) {
+bool box_overlap(const Box& A, const Box& B, double min_depth, BodyCollision& out) {
     const Vec2 d = B.centre - A.centre;
     const Vec2 axes[4] = {A.axis_long, A.axis_wide, B.axis_long, B.axis_wide};
     double best = 1e300;
@@ -128,7 +128,7 @@ double deepest_body_overlap(const std::vector<Box>& boxes) {
     std::vector<std::array<long long, 2>> cells;
     candidate_pairs(boxes, 0.0, pairs, cells);
     double deepest = 0.0;
-    BodyPairContact c;
+    BodyCollision c;
     for (const auto& p : pairs)
         if (box_overlap(boxes[std::size_t(p[0])], boxes[std::size_t(p[1])], 0.0, c)) deepest = std::max(deepest, c.depth);
     return deepest;
@@ -138,12 +138,12 @@ namespace {
 
 // The pairs of the group that overlap now (sorted by pair); with a margin, those within it
 // too (depth down to −margin: the gap), into `out`.
-void detect_pairs(const std::vector<GroupBody>& group, BodyContactScratch& s, double margin, std::vector<BodyPairContact>& out) {
+void detect_pairs(const std::vector<GroupBody>& group, BodyCollisionScratch& s, double margin, std::vector<BodyCollision>& out) {
     s.boxes.resize(group.size());
     for (std::size_t k = 0; k < group.size(); ++k) s.boxes[k] = pose_of(*group[k].state, *group[k].body);
     candidate_pairs(s.boxes, margin, s.pairs, s.cells);
     out.clear();
-    BodyPairContact c;
+    BodyCollision c;
     for (const auto& p : s.pairs)
         if (box_overlap(s.boxes[std::size_t(p[0])], s.boxes[std::size_t(p[1])], margin > 0.0 ? -margin : contact_depth, c)) {
             c.a = p[0];
@@ -153,13 +153,13 @@ void detect_pairs(const std::vector<GroupBody>& group, BodyContactScratch& s, do
 }
 
 // The walls of the bodies taking part: overlaps, or with a margin the cells near them too.
-void detect_walls(const ObstacleMap& obstacles, const std::vector<GroupBody>& group, BodyContactScratch& s, double margin) {
+void detect_walls(const ObstacleMap& obstacles, const std::vector<GroupBody>& group, BodyCollisionScratch& s, double margin) {
     s.wall_contacts.clear();
     for (std::size_t k = 0; k < group.size(); ++k) {
         if (!s.involved[k]) continue;
         s.walls.clear();
         obstacles.find_contacts(s.boxes[k], group[k].blocking, s.walls, margin > 0.0 ? -margin : contact_depth, margin);
-        for (const ObstacleContact& c : s.walls) s.wall_contacts.push_back({int(k), c});
+        for (const ObstacleCollision& c : s.walls) s.wall_contacts.push_back({int(k), c});
     }
 }
 
@@ -176,7 +176,7 @@ void push(GroupBody& g, Vec2 impulse, Vec2 at) {
 // The impulses of one pass: sweeps over the contacts, deepest first, an impulse at each
 // that approaches, until none approaches (a row of bodies against a wall passes an
 // impact on from body to body: one sweep per link) or the sweeps run out.
-void apply_impulses(std::vector<GroupBody>& group, BodyContactScratch& s) {
+void apply_impulses(std::vector<GroupBody>& group, BodyCollisionScratch& s) {
     struct Item {
         double depth;
         int kind;  // 0 pair, 1 wall
@@ -192,7 +192,7 @@ void apply_impulses(std::vector<GroupBody>& group, BodyContactScratch& s) {
         bool any = false;
         for (const Item& it : order) {
             if (it.kind == 0) {
-                const BodyPairContact& c = s.contacts[std::size_t(it.index)];
+                const BodyCollision& c = s.contacts[std::size_t(it.index)];
                 GroupBody &A = group[std::size_t(c.a)], &B = group[std::size_t(c.b)];
                 const double vn = dot(point_velocity(*A.state, c.point) - point_velocity(*B.state, c.point), c.normal);
                 if (vn >= 0.0) continue;
@@ -204,12 +204,12 @@ void apply_impulses(std::vector<GroupBody>& group, BodyContactScratch& s) {
                 push(B, -j * c.normal, c.point);
                 any = true;
             } else {
-                const BodyContactScratch::Wall& w = s.wall_contacts[std::size_t(it.index)];
+                const BodyCollisionScratch::Wall& w = s.wall_contacts[std::size_t(it.index)];
                 GroupBody& A = group[std::size_t(w.body)];
                 const Vec2 r = w.c.point - Vec2{A.state->x, A.state->y};
                 const double vn = dot(point_velocity(*A.state, w.c.point), w.c.normal);
                 if (vn >= 0.0) continue;
-                const double j = contact_impulse(vn, A.body->def.restitution, A.mass, A.inertia, r, w.c.normal);
+                const double j = collision_impulse(vn, A.body->def.restitution, A.mass, A.inertia, r, w.c.normal);
                 push(A, j * w.c.normal, w.c.point);
                 any = true;
             }
@@ -221,7 +221,7 @@ void apply_impulses(std::vector<GroupBody>& group, BodyContactScratch& s) {
 // The bodies' share of the moves out of what overlaps (pairs, walls; the walls within the
 // margin as gaps not to close): Gauss-Seidel over the contacts, linearised at the present
 // poses, until none is deeper than `settled` or the sweeps run out.
-void move_out(std::vector<GroupBody>& group, BodyContactScratch& s, double settled) {
+void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double settled) {
     struct Row {
         int a, b;       // the bodies that move (taking part); −1: a wall, or a body not taking part, held
         Vec2 n;         // from b (or what holds) into a
@@ -231,7 +231,7 @@ void move_out(std::vector<GroupBody>& group, BodyContactScratch& s, double settl
     std::vector<Row> rows;
     rows.reserve(2 * s.near.size() + s.wall_contacts.size());
     const auto moving = [&](int k) { return s.involved[std::size_t(k)] ? k : -1; };
-    for (const BodyPairContact& c : s.near) {  // both ends of each face across another: the turn is held too
+    for (const BodyCollision& c : s.near) {  // both ends of each face across another: the turn is held too
         const int a = moving(c.a), b = moving(c.b);
         if (a < 0 && b < 0) continue;
         const BodyState &A = *group[std::size_t(c.a)].state, &B = *group[std::size_t(c.b)].state;
@@ -243,7 +243,7 @@ void move_out(std::vector<GroupBody>& group, BodyContactScratch& s, double settl
                 rows.push_back({b, -1, -1.0 * c.normal, rb, 0.0, c.depth_at[k]});
         }
     }
-    for (const BodyContactScratch::Wall& w : s.wall_contacts) {
+    for (const BodyCollisionScratch::Wall& w : s.wall_contacts) {
         const BodyState& A = *group[std::size_t(w.body)].state;
         rows.push_back({w.body, -1, w.c.normal, cross(w.c.point - Vec2{A.x, A.y}, w.c.normal), 0.0, w.c.depth});
     }
@@ -303,8 +303,8 @@ void move_out(std::vector<GroupBody>& group, BodyContactScratch& s, double settl
 
 }  // namespace
 
-bool resolve_body_contacts(const ObstacleMap& obstacles, std::vector<GroupBody>& group, const BodyContactDef& def,
-                           BodyContactScratch& s) {
+bool resolve_body_collisions(const ObstacleMap& obstacles, std::vector<GroupBody>& group, const BodyCollisionDef& def,
+                           BodyCollisionScratch& s) {
     for (GroupBody& g : group) {
         g.met = false;
         g.body_overlap = g.wall_overlap = 0.0;
@@ -321,7 +321,7 @@ bool resolve_body_contacts(const ObstacleMap& obstacles, std::vector<GroupBody>&
     // A body joins when it first meets another: its rotation about a contact centroid is
     // handed to its centre first, and the pose it reached is where its moves start from.
     const auto join = [&] {
-        for (const BodyPairContact& c : s.contacts)
+        for (const BodyCollision& c : s.contacts)
             for (const int k : {c.a, c.b})
                 if (!s.involved[std::size_t(k)]) {
                     s.involved[std::size_t(k)] = 1;
@@ -378,7 +378,7 @@ bool resolve_body_contacts(const ObstacleMap& obstacles, std::vector<GroupBody>&
     const double settled = 0.1 * def.move.tolerance;
     const auto deepest_left = [&] {
         double d = 0.0;
-        for (const BodyPairContact& c : s.contacts) d = std::max(d, c.depth);
+        for (const BodyCollision& c : s.contacts) d = std::max(d, c.depth);
         for (const auto& wc : s.wall_contacts) d = std::max(d, wc.c.depth);
         return d;
     };
@@ -392,7 +392,7 @@ bool resolve_body_contacts(const ObstacleMap& obstacles, std::vector<GroupBody>&
         move_out(group, s, settled);
         place();
     }
-    for (const BodyPairContact& c : s.contacts)
+    for (const BodyCollision& c : s.contacts)
         for (const int k : {c.a, c.b}) group[std::size_t(k)].body_overlap = std::max(group[std::size_t(k)].body_overlap, c.depth);
     for (const auto& wc : s.wall_contacts)
         group[std::size_t(wc.body)].wall_overlap = std::max(group[std::size_t(wc.body)].wall_overlap, wc.c.depth);
