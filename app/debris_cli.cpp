@@ -20,9 +20,9 @@
 #include "debris/scene_match.hpp"
 #include "debris/trajectory_output.hpp"
 #include "debris/world.hpp"
-#include "sweep/sweep.hpp"
 #include "formats/impact_file.hpp"
 #include "formats/scene.hpp"
+#include "sweep/sweep.hpp"
 
 namespace flotsam {
 
@@ -32,8 +32,8 @@ struct DebrisOptions {
     std::string flow, scene, ground, out = "trajectories.nc";
     std::string impacts_csv;  // "": no CSV of the impacts
     std::vector<std::string> starts, ats;
-    std::string sources;                     // GIS layer file of debris sources; "": none
-    std::vector<std::string> source_layers;  // its layers to read; empty: all
+    std::string sources;                                   // GIS layer file of debris sources; "": none
+    std::vector<std::string> source_layers;                // its layers to read; empty: all
     debris::BodyDef body = debris::default_body_def();     // every body's settings
     debris::WorldDef world = debris::default_world_def();  // step, flow replay, threads
     double output_interval = 0.5;                          // [s]
@@ -140,20 +140,12 @@ void write_debris_outputs(const DebrisOptions& o, const sweep::SweepInputs& in, 
         file.start_names.push_back(b.start);
         file.sources.push_back(b.source);
         file.body_types.push_back(b.type);
-        debris::BodyStats stats;
-        stats.collisions = m.collision_steps;
-        stats.unresolved = m.unresolved_collisions;
-        stats.max_residual_overlap = m.largest_residual_overlap;
-        stats.jams = m.jammed_steps;
-        stats.axis_shifts = m.axis_shift_steps;
-        stats.body_contacts = m.body_contact_steps;
-        stats.max_body_overlap = m.largest_body_overlap;
         for (Impact i : m.impacts) {
             i.trajectory = int(k);
             impacts.push_back(i);
         }
         names.push_back(m.def.name);
-        records.push_back({m.def, stats, m.track});
+        records.push_back({m.def, m.counts, m.track});
     }
     debris::write_trajectory_file(o.out, records, r.time, impacts, r.world, file);
     if (!o.impacts_csv.empty()) write_impacts_csv(o.impacts_csv, impacts, names);
@@ -163,7 +155,8 @@ void write_debris_outputs(const DebrisOptions& o, const sweep::SweepInputs& in, 
     if (!impacts.empty()) std::fprintf(stderr, "impacts on buildings: %zu (largest force %.4g N)\n", impacts.size(), largest);
     const sweep::CollisionReport c = sweep::collision_report(r);
     if (c.members > 0)  // docs/debris.md, "Collisions"
-        std::fprintf(stderr, "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
+        std::fprintf(stderr,
+                     "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
                      c.jammed, c.unresolved, c.members, records.size());
 }
 
@@ -185,8 +178,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     def.names = {"--dt-max", "--vertex-step-fraction", "--output-interval", "--end-time"};
     sweep::SweepInputs in = sweep::open_sweep(debris_spec(o, dt_max_default, scene.get()), scene, def);
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
-    const debris::TrajectoryFileDef file{command_line, o.flow, {}, {}, {}, in.flows.front()->crs(),
-                                         in.flows.front()->scene_buildings_sha256()};
+    const debris::TrajectoryFileDef file{
+        command_line, o.flow, {}, {}, {}, in.flows.front()->crs(), in.flows.front()->scene_buildings_sha256()};
     const std::clock_t cpu_start = std::clock();
     sweep::SweepRunStats st;
     const sweep::SweepResult r = sweep::run_sweep(in, def, &st);

@@ -303,8 +303,64 @@ void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double set
 
 }  // namespace
 
+namespace {
+
+// A body joins the bodies that move when it first meets another: its rotation about a
+// contact centroid is handed to its centre first, and the pose it reached is where its
+// moves start from.
+void join(std::vector<GroupBody>& group, BodyCollisionScratch& s) {
+    for (const BodyCollision& c : s.contacts)
+        for (const int k : {c.a, c.b})
+            if (!s.involved[std::size_t(k)]) {
+                s.involved[std::size_t(k)] = 1;
+                group[std::size_t(k)].met = true;
+                hand_pivot_to_centre(*group[std::size_t(k)].state);
+                s.reached[std::size_t(k)] = *group[std::size_t(k)].state;
+            }
+}
+
+// The bodies that move put where their step, the advance with the corrected velocities
+// and the moves out take them; then what they touch found again.
+void place(const ObstacleMap& obstacles, std::vector<GroupBody>& group, BodyCollisionScratch& s) {
+    for (std::size_t k = 0; k < group.size(); ++k) {
+        if (!s.involved[k]) continue;
+        BodyState& st = *group[k].state;
+        const BodyState& r = s.reached[k];
+        st.x = r.x + s.advanced[k].x + s.moved[k].x;
+        st.y = r.y + s.advanced[k].y + s.moved[k].y;
+        st.theta = r.theta + s.advanced_turn[k] + s.turned[k];
+    }
+    detect_pairs(group, s, 0.0, s.contacts);
+    join(group, s);
+    detect_walls(obstacles, group, s, 0.0);
+}
+
+// The buildings the bodies' wall contacts touch, each with its fastest approach.
+void note_buildings(std::vector<GroupBody>& group, const BodyCollisionScratch& s) {
+    for (const auto& wc : s.wall_contacts) {
+        if (wc.c.building <= 0) continue;
+        GroupBody& g = group[std::size_t(wc.body)];
+        const double approach = -dot(point_velocity(*g.state, wc.c.point), wc.c.normal);
+        auto it =
+            std::find_if(g.touches.begin(), g.touches.end(), [&](const BuildingTouch& t) { return t.building == wc.c.building; });
+        if (it == g.touches.end())
+            g.touches.push_back({wc.c.building, approach, wc.c.point});
+        else if (approach > it->speed)
+            *it = {wc.c.building, approach, wc.c.point};
+    }
+}
+
+double deepest_left(const BodyCollisionScratch& s) {
+    double d = 0.0;
+    for (const BodyCollision& c : s.contacts) d = std::max(d, c.depth);
+    for (const auto& wc : s.wall_contacts) d = std::max(d, wc.c.depth);
+    return d;
+}
+
+}  // namespace
+
 bool resolve_body_collisions(const ObstacleMap& obstacles, std::vector<GroupBody>& group, const BodyCollisionDef& def,
-                           BodyCollisionScratch& s) {
+                             BodyCollisionScratch& s) {
     for (GroupBody& g : group) {
         g.met = false;
         g.body_overlap = g.wall_overlap = 0.0;
@@ -318,48 +374,9 @@ bool resolve_body_collisions(const ObstacleMap& obstacles, std::vector<GroupBody
     s.advanced_turn.assign(n, 0.0);
     s.moved.assign(n, Vec2{});
     s.turned.assign(n, 0.0);
-    // A body joins when it first meets another: its rotation about a contact centroid is
-    // handed to its centre first, and the pose it reached is where its moves start from.
-    const auto join = [&] {
-        for (const BodyCollision& c : s.contacts)
-            for (const int k : {c.a, c.b})
-                if (!s.involved[std::size_t(k)]) {
-                    s.involved[std::size_t(k)] = 1;
-                    group[std::size_t(k)].met = true;
-                    hand_pivot_to_centre(*group[std::size_t(k)].state);
-                    s.reached[std::size_t(k)] = *group[std::size_t(k)].state;
-                }
-    };
-    const auto place = [&] {
-        for (std::size_t k = 0; k < n; ++k) {
-            if (!s.involved[k]) continue;
-            BodyState& st = *group[k].state;
-            const BodyState& r = s.reached[k];
-            st.x = r.x + s.advanced[k].x + s.moved[k].x;
-            st.y = r.y + s.advanced[k].y + s.moved[k].y;
-            st.theta = r.theta + s.advanced_turn[k] + s.turned[k];
-        }
-        detect_pairs(group, s, 0.0, s.contacts);
-        join();
-        detect_walls(obstacles, group, s, 0.0);
-    };
-    const auto note_buildings = [&] {
-        if (!def.note_buildings) return;
-        for (const auto& wc : s.wall_contacts) {
-            if (wc.c.building <= 0) continue;
-            GroupBody& g = group[std::size_t(wc.body)];
-            const double approach = -dot(point_velocity(*g.state, wc.c.point), wc.c.normal);
-            auto it = std::find_if(g.touches.begin(), g.touches.end(),
-                                   [&](const BuildingTouch& t) { return t.building == wc.c.building; });
-            if (it == g.touches.end())
-                g.touches.push_back({wc.c.building, approach, wc.c.point});
-            else if (approach > it->speed)
-                *it = {wc.c.building, approach, wc.c.point};
-        }
-    };
-    join();
+    join(group, s);
     detect_walls(obstacles, group, s, 0.0);
-    note_buildings();
+    if (def.note_buildings) note_buildings(group, s);
     // The impulses, then the poses advanced again from the start of the step with the
     // corrected momenta, once: a body's move from then on is only what clears overlaps.
     apply_impulses(group, s);
@@ -370,27 +387,21 @@ bool resolve_body_collisions(const ObstacleMap& obstacles, std::vector<GroupBody
             s.advanced[k] = Vec2{w * (st.vx - r.vx), w * (st.vy - r.vy)};
             s.advanced_turn[k] = w * (st.omega - r.omega);
         }
-    place();
-    const double margin = clearing_margin_cells * std::min(obstacles.grid().dx, obstacles.grid().dy);
+    place(obstacles, group, s);
     // Passes until nothing overlaps deeper than a tenth of the tolerance: bodies pressed
     // together by the flow touch again at every step, and clearing them to round-off each
     // time would cost passes for nothing the output resolves.
     const double settled = 0.1 * def.move.tolerance;
-    const auto deepest_left = [&] {
-        double d = 0.0;
-        for (const BodyCollision& c : s.contacts) d = std::max(d, c.depth);
-        for (const auto& wc : s.wall_contacts) d = std::max(d, wc.c.depth);
-        return d;
-    };
-    for (int pass = 0; pass < def.max_passes && deepest_left() > settled; ++pass) {
+    const double margin = clearing_margin_cells * std::min(obstacles.grid().dx, obstacles.grid().dy);
+    for (int pass = 0; pass < def.max_passes && deepest_left(s) > settled; ++pass) {
         if (pass > 0) {  // contacts the moves made: impulses where they approach
-            note_buildings();
+            if (def.note_buildings) note_buildings(group, s);
             apply_impulses(group, s);
         }
         detect_walls(obstacles, group, s, margin);  // and the cells and bodies within the margin, as gaps
         detect_pairs(group, s, margin, s.near);
         move_out(group, s, settled);
-        place();
+        place(obstacles, group, s);
     }
     for (const BodyCollision& c : s.contacts)
         for (const int k : {c.a, c.b}) group[std::size_t(k)].body_overlap = std::max(group[std::size_t(k)].body_overlap, c.depth);

@@ -270,7 +270,7 @@ StepOutcome take_step(const StepContext& ctx, const BodyParams& b, BodyState& s,
     }
     // A body grounded at its last step most likely is again: the depth bound is not tried.
     ground_patches(ctx.flow, ctx.obstacles.grid(), b, st.box, centre.depth, t, ctx.def.water_density, ctx.def.gravity,
-                    scratch.footprint, scratch.patches, !(s.flags & flag_grounded));
+                   scratch.footprint, scratch.patches, !(s.flags & flag_grounded));
     st.rest = resting_place(ctx, b, st.box, centre.depth, scratch.patches);
     const Loads loads = integrate_loads(ctx, b, s, st, dt);
     const Friction friction = apply_friction(scratch.patches, loads.trial, st.eff, dt);
@@ -349,102 +349,129 @@ bool advance_body(const StepContext& ctx, const BodyParams& b, BodyState& s, Bod
     return true;
 }
 
+namespace {
+
+// The group's next step (≤ t_end − t), or 0 where a body would need flow outside the
+// loaded window.
+double group_step(const StepContext& ctx, const BodyGroup& group, double reach, double t, double t_end) {
+    double dt = t_end - t;
+    for (const int m : group.members) {
+        const BodyState& s = group.states[std::size_t(m)];
+        dt = std::min(dt, vertex_step(ctx, group.params[std::size_t(m)], s, reach));
+        const double pad = window_pad(ctx, group.params[std::size_t(m)]);
+        if (!ctx.flow.covers(ctx.flow.cells_for(s.x - pad, s.x + pad, s.y - pad, s.y + pad))) return 0.0;
+    }
+    if (t_end - t - dt < 1e-9 * ctx.def.dt_max) dt = t_end - t;  // no sliver steps
+    return dt;
+}
+
+// What a step that is redone must undo: the bodies' states, counts and impacts.
+void save_group(const BodyGroup& group, GroupScratch& gs) {
+    for (std::size_t k = 0; k < group.members.size(); ++k) {
+        const std::size_t m = std::size_t(group.members[k]);
+        gs.saved[k] = group.states[m];
+        gs.saved_stats[k] = group.stats[m];
+        if (group.impacts) {
+            gs.saved_events[k] = (*group.impacts)[m].events.size();
+            gs.saved_open[k] = (*group.impacts)[m].open;
+        }
+    }
+}
+
+void restore_group(BodyGroup& group, const GroupScratch& gs) {
+    for (std::size_t k = 0; k < group.members.size(); ++k) {
+        const std::size_t m = std::size_t(group.members[k]);
+        group.states[m] = gs.saved[k];
+        group.stats[m] = gs.saved_stats[k];
+        if (group.impacts) {
+            (*group.impacts)[m].events.resize(gs.saved_events[k]);
+            (*group.impacts)[m].open = gs.saved_open[k];
+        }
+    }
+}
+
+// Each body's own step of dt (its impacts held back for after the contacts between the
+// bodies); the whole group redone shorter where a corner moved more than twice what the
+// step was set for (as advance_body). Returns the step taken.
+double step_each(const StepContext& ctx, BodyGroup& group, double dt, double reach, GroupScratch& gs) {
+    for (int attempt = 0;; ++attempt) {
+        double travel = 0.0;
+        for (std::size_t k = 0; k < group.members.size(); ++k) {
+            const std::size_t m = std::size_t(group.members[k]);
+            const StepOutcome o = take_step(ctx, group.params[m], group.states[m], group.stats[m], dt, gs.step,
+                                            group.impacts ? &(*group.impacts)[m] : nullptr, true);
+            GroupBody& gb = gs.bodies[k];
+            gb.state = &group.states[m];
+            gb.body = &group.params[m];
+            gb.mass = o.eff.mass;
+            gb.inertia = o.eff.inertia;
+            gb.blocking.bottom = o.bottom;
+            gb.touches = gs.step.touches;
+            travel = std::max(travel, o.travel);
+        }
+        if (travel <= 2.0 * reach || attempt >= 20) return dt;
+        restore_group(group, gs);
+        dt *= 0.5;
+    }
+}
+
+// After the contacts between the bodies: each one's counts, its centre's velocity over the
+// step, and its impacts on buildings (its own step's touches and those of the contacts).
+void account_group(const StepContext& ctx, BodyGroup& group, double t, double dt, bool met, double tolerance, GroupScratch& gs) {
+    for (std::size_t k = 0; k < group.members.size(); ++k) {
+        const std::size_t m = std::size_t(group.members[k]);
+        const GroupBody& gb = gs.bodies[k];
+        BodyState& s = group.states[m];
+        BodyStats& st = group.stats[m];
+        if (met && gb.met) {
+            s.flags |= flag_released | flag_colliding;
+            ++st.body_contacts;
+            st.max_body_overlap = std::max(st.max_body_overlap, gb.body_overlap);
+            st.max_residual_overlap = std::max(st.max_residual_overlap, gb.wall_overlap);
+            const bool left = std::max(gb.body_overlap, gb.wall_overlap) > tolerance;
+            if (left && st.unresolved == gs.saved_stats[k].unresolved) ++st.unresolved;
+            s.centre_vx = (s.x - gs.saved[k].x) / dt;
+            s.centre_vy = (s.y - gs.saved[k].y) / dt;
+        }
+        if (group.impacts) {
+            gs.step.touches = gb.touches;
+            track_impacts(ctx, group.params[m], s, t + dt, gs.step, (*group.impacts)[m]);
+        }
+    }
+}
+
+}  // namespace
+
 bool advance_group(const StepContext& ctx, BodyGroup& group, double t_end, GroupScratch& gs) {
-    const std::vector<int>& members = group.members;
-    const std::size_t n = members.size();
+    const std::size_t n = group.members.size();
     const Grid& g = ctx.obstacles.grid();
     double narrowest = 1e300;
-    for (const int m : members) narrowest = std::min(narrowest, group.params[std::size_t(m)].def.width);
+    for (const int m : group.members) narrowest = std::min(narrowest, group.params[std::size_t(m)].def.width);
     const double reach = ctx.def.vertex_step_fraction * std::min({g.dx, g.dy, narrowest});
     gs.bodies.resize(n);
     gs.saved.resize(n);
     gs.saved_stats.resize(n);
     gs.saved_events.resize(n);
     gs.saved_open.resize(n);
-    std::vector<StepOutcome> outcome(n);
-    const BodyCollisionDef contact_def{
-        ctx.def.max_collision_passes,
-        {0.0, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)},
-        group.impacts != nullptr};
+    BodyCollisionDef def{ctx.def.max_collision_passes,
+                         {0.0, ctx.def.integrator == Integrator::heun ? 0.5 : 1.0, unresolved_overlap_cells * std::min(g.dx, g.dy)},
+                         group.impacts != nullptr};
     for (;;) {
-        const double t = group.states[std::size_t(members.front())].time;
+        const double t = group.states[std::size_t(group.members.front())].time;
         if (!(t < t_end)) return true;
-        double dt = t_end - t;
-        for (const int m : members) {
-            const BodyState& s = group.states[std::size_t(m)];
-            dt = std::min(dt, vertex_step(ctx, group.params[std::size_t(m)], s, reach));
-            const double pad = window_pad(ctx, group.params[std::size_t(m)]);
-            if (!ctx.flow.covers(ctx.flow.cells_for(s.x - pad, s.x + pad, s.y - pad, s.y + pad))) return false;
-        }
-        if (t_end - t - dt < 1e-9 * ctx.def.dt_max) dt = t_end - t;  // no sliver steps
-        for (std::size_t k = 0; k < n; ++k) {
-            const std::size_t m = std::size_t(members[k]);
-            gs.saved[k] = group.states[m];
-            gs.saved_stats[k] = group.stats[m];
-            if (group.impacts) {
-                gs.saved_events[k] = (*group.impacts)[m].events.size();
-                gs.saved_open[k] = (*group.impacts)[m].open;
-            }
-        }
-        // Each body's own step; the whole group redone shorter where a corner moved more
-        // than twice what the step was set for (as advance_body).
-        for (int attempt = 0;; ++attempt) {
-            double travel = 0.0;
-            for (std::size_t k = 0; k < n; ++k) {
-                const std::size_t m = std::size_t(members[k]);
-                outcome[k] = take_step(ctx, group.params[m], group.states[m], group.stats[m], dt, gs.step,
-                                       group.impacts ? &(*group.impacts)[m] : nullptr, true);
-                gs.bodies[k].touches = gs.step.touches;
-                travel = std::max(travel, outcome[k].travel);
-            }
-            if (travel <= 2.0 * reach || attempt >= 20) break;
-            for (std::size_t k = 0; k < n; ++k) {
-                const std::size_t m = std::size_t(members[k]);
-                group.states[m] = gs.saved[k];
-                group.stats[m] = gs.saved_stats[k];
-                if (group.impacts) {
-                    (*group.impacts)[m].events.resize(gs.saved_events[k]);
-                    (*group.impacts)[m].open = gs.saved_open[k];
-                }
-            }
-            dt *= 0.5;
-        }
-        // The contacts between the bodies, at the time the step started (the water over the
-        // cells that decides what blocks).
+        const double step = group_step(ctx, group, reach, t, t_end);
+        if (step == 0.0) return false;
+        save_group(group, gs);
+        def.move.dt = step_each(ctx, group, step, reach, gs);
+        // The contacts between the bodies, with what blocks each at the time the step
+        // started (the water over the cells).
         const WaterOverCells water(ctx.flow, g, t);
         for (std::size_t k = 0; k < n; ++k) {
-            const std::size_t m = std::size_t(members[k]);
-            const BodyParams& b = group.params[m];
-            GroupBody& gb = gs.bodies[k];
-            gb.state = &group.states[m];
-            gb.body = &b;
-            gb.mass = outcome[k].eff.mass;
-            gb.inertia = outcome[k].eff.inertia;
-            gb.blocking = Blocking{outcome[k].bottom, b.step_height, b.def.blocking_ground, &water, b.draft};
+            const BodyParams& b = *gs.bodies[k].body;
+            gs.bodies[k].blocking = Blocking{gs.bodies[k].blocking.bottom, b.step_height, b.def.blocking_ground, &water, b.draft};
         }
-        BodyCollisionDef def = contact_def;
-        def.move.dt = dt;
         const bool met = ctx.def.body_contact && n > 1 && resolve_body_collisions(ctx.obstacles, gs.bodies, def, gs.contacts);
-        for (std::size_t k = 0; k < n; ++k) {
-            const std::size_t m = std::size_t(members[k]);
-            const GroupBody& gb = gs.bodies[k];
-            BodyState& s = group.states[m];
-            BodyStats& st = group.stats[m];
-            if (met && gb.met) {
-                s.flags |= flag_released | flag_colliding;
-                ++st.body_contacts;
-                st.max_body_overlap = std::max(st.max_body_overlap, gb.body_overlap);
-                st.max_residual_overlap = std::max(st.max_residual_overlap, gb.wall_overlap);
-                const bool left = std::max(gb.body_overlap, gb.wall_overlap) > def.move.tolerance;
-                if (left && st.unresolved == gs.saved_stats[k].unresolved) ++st.unresolved;
-                s.centre_vx = (s.x - gs.saved[k].x) / dt;
-                s.centre_vy = (s.y - gs.saved[k].y) / dt;
-            }
-            if (group.impacts) {
-                gs.step.touches = gb.touches;
-                track_impacts(ctx, group.params[m], s, t + dt, gs.step, (*group.impacts)[m]);
-            }
-        }
+        account_group(ctx, group, t, def.move.dt, met, def.move.tolerance, gs);
     }
 }
 

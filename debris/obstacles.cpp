@@ -242,17 +242,89 @@ bool gap_across(const Box& box, Vec2 cell, double hx, double hy, Vec2 n, Vec2& p
 
 }  // namespace
 
+bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by, double min_depth, double margin,
+                               ObstacleCollision& best) const {
+    const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
+    const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
+    const auto corners = box.corners();
+    const Vec2 axes[2] = {box.axis_long, box.axis_wide};
+    const Penetration pen = penetration(box, c, hx, hy);
+    const double separation = pen.depth();  // > 0: overlap; ≤ 0: minus a lower bound of the gap
+    // Without a margin, only a cell the body reaches into by more than min_depth
+    // along every axis: one it only grazes (an edge on the cell's line, to round-off)
+    // is no contact, whatever its depth along the normals that are left.
+    if (!(separation > -margin) || (margin == 0.0 && !(separation > min_depth))) return false;
+    // Candidate normals. A cell face shared with another blocked cell is inside a
+    // wall and is never a push-out direction (no snagging on internal edges); a body
+    // axis is used only in the direction pointing from the cell toward the body.
+    best.depth = 1e300;
+    auto consider = [&](Vec2 n, double depth) {
+        if (depth < best.depth) {
+            best.depth = depth;
+            best.normal = n;
+        }
+    };
+    if (!blocked(i + 1, j, by)) consider({1, 0}, pen.px);
+    if (!blocked(i - 1, j, by)) consider({-1, 0}, pen.mx);
+    if (!blocked(i, j + 1, by)) consider({0, 1}, pen.py);
+    if (!blocked(i, j - 1, by)) consider({0, -1}, pen.my);
+    // A body axis n pushes the body off the cell's corner that points along n (the
+    // cell's vertex in its face): only where that corner is one of the obstacle's
+    // own, its two cells beside it along n open. Inside a straight wall the next cell
+    // goes on where the corner is, and the push would be along the wall.
+    const auto corner_exposed = [&](Vec2 n) {
+        const int sx = n.x > 0.0 ? 1 : (n.x < 0.0 ? -1 : 0), sy = n.y > 0.0 ? 1 : (n.y < 0.0 ? -1 : 0);
+        return (sx == 0 || !blocked(i + sx, j, by)) && (sy == 0 || !blocked(i, j + sy, by));
+    };
+    const Vec2 rel = box.centre - c;
+    for (int k = 0; k < 2; ++k) {
+        const double side = dot(rel, axes[k]);
+        if (side >= 0 && corner_exposed(axes[k])) consider(axes[k], pen.p[k]);
+        if (side <= 0 && corner_exposed(-1.0 * axes[k])) consider(-1.0 * axes[k], pen.m[k]);
+    }
+    if (best.depth == 1e300) return false;  // every side of it lies inside the wall
+    if (best.depth <= min_depth) return false;
+    // Apart from the body along an axis that lies inside a wall: a nearer blocked
+    // neighbour holds that side, and this cell is no contact.
+    if (separation <= 0.0 && best.depth > 0.0) return false;
+    if (separation > 0.0) {
+        // The contact point: the mean of the body corners inside the cell and the
+        // cell corners inside the body (both in the body).
+        Vec2 sum;
+        int count = 0;
+        for (const Vec2& p : corners)
+            if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
+                sum += p;
+                ++count;
+            }
+        for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
+            if (box.contains(c + d)) {
+                sum += c + d;
+                ++count;
+            }
+        best.point = count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, best.normal);
+    } else if (best.normal.x == 0.0 || best.normal.y == 0.0) {
+        // Apart along one of the cell's faces: the gap to the body's part across
+        // from this cell (the separating axis bounds the gap of the whole body).
+        double gap = 0.0;
+        if (!gap_across(box, c, hx, hy, best.normal, best.point, gap) || !(-gap > min_depth)) return false;
+        best.depth = -gap;
+    } else {
+        best.point = nearest_point_toward(box, c, hx, hy, best.normal);
+    }
+    best.building = building_id(i, j);
+    return true;
+}
+
 void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleCollision>& out, double min_depth,
                                 double margin) const {
     const std::vector<float>& wall_top = walls(by.rule).top;
     const double reach = by.bottom + by.step_height;
-    const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
+    const double hy = 0.5 * grid_.dy;
     Box wide = box;  // chooses the cells looked at: those within the margin
     wide.half_length += margin;
     wide.half_width += margin;
     const CellRange r = cells_touching(wide, 0);
-    const auto corners = box.corners();
-    const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const bool inside_x = r.i0 >= 0 && r.i1 < grid_.nx;
     // Nothing within the grid that rises above the bottom's reach: no contact at all.
     if (inside_x && r.j0 >= 0 && r.j1 < grid_.ny &&
@@ -280,74 +352,9 @@ void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<
             continue;
         for (int i = i0; i <= i1; ++i) {
             if (!blocked(i, j, by)) continue;
-            const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
-            const Penetration pen = penetration(box, c, hx, hy);
-            const double separation = pen.depth();  // > 0: overlap; ≤ 0: minus a lower bound of the gap
-            // Without a margin, only a cell the body reaches into by more than min_depth
-            // along every axis: one it only grazes (an edge on the cell's line, to round-off)
-            // is no contact, whatever its depth along the normals that are left.
-            if (!(separation > -margin) || (margin == 0.0 && !(separation > min_depth))) continue;
-            // Candidate normals. A cell face shared with another blocked cell is inside a
-            // wall and is never a push-out direction (no snagging on internal edges); a body
-            // axis is used only in the direction pointing from the cell toward the body.
-            ObstacleCollision best;
-            best.depth = 1e300;
-            auto consider = [&](Vec2 n, double depth) {
-                if (depth < best.depth) {
-                    best.depth = depth;
-                    best.normal = n;
-                }
-            };
-            if (!blocked(i + 1, j, by)) consider({1, 0}, pen.px);
-            if (!blocked(i - 1, j, by)) consider({-1, 0}, pen.mx);
-            if (!blocked(i, j + 1, by)) consider({0, 1}, pen.py);
-            if (!blocked(i, j - 1, by)) consider({0, -1}, pen.my);
-            // A body axis n pushes the body off the cell's corner that points along n (the
-            // cell's vertex in its face): only where that corner is one of the obstacle's
-            // own, its two cells beside it along n open. Inside a straight wall the next cell
-            // goes on where the corner is, and the push would be along the wall.
-            const auto corner_exposed = [&](Vec2 n) {
-                const int sx = n.x > 0.0 ? 1 : (n.x < 0.0 ? -1 : 0), sy = n.y > 0.0 ? 1 : (n.y < 0.0 ? -1 : 0);
-                return (sx == 0 || !blocked(i + sx, j, by)) && (sy == 0 || !blocked(i, j + sy, by));
-            };
-            const Vec2 rel = box.centre - c;
-            for (int k = 0; k < 2; ++k) {
-                const double side = dot(rel, axes[k]);
-                if (side >= 0 && corner_exposed(axes[k])) consider(axes[k], pen.p[k]);
-                if (side <= 0 && corner_exposed(-1.0 * axes[k])) consider(-1.0 * axes[k], pen.m[k]);
-            }
-            if (best.depth == 1e300) continue;  // every side of it lies inside the wall
-            if (best.depth <= min_depth) continue;
-            // Apart from the body along an axis that lies inside a wall: a nearer blocked
-            // neighbour holds that side, and this cell is no contact.
-            if (separation <= 0.0 && best.depth > 0.0) continue;
-            if (separation > 0.0) {
-                // The contact point: the mean of the body corners inside the cell and the
-                // cell corners inside the body (both in the body).
-                Vec2 sum;
-                int count = 0;
-                for (const Vec2& p : corners)
-                    if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
-                        sum += p;
-                        ++count;
-                    }
-                for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
-                    if (box.contains(c + d)) {
-                        sum += c + d;
-                        ++count;
-                    }
-                best.point = count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, best.normal);
-            } else if (best.normal.x == 0.0 || best.normal.y == 0.0) {
-                // Apart along one of the cell's faces: the gap to the body's part across
-                // from this cell (the separating axis bounds the gap of the whole body).
-                double gap = 0.0;
-                if (!gap_across(box, c, hx, hy, best.normal, best.point, gap) || !(-gap > min_depth)) continue;
-                best.depth = -gap;
-            } else {
-                best.point = nearest_point_toward(box, c, hx, hy, best.normal);
-            }
-            best.building = building_id(i, j);
-            out.push_back(best);
+            ObstacleCollision hit;
+            if (!cell_contact(box, i, j, by, min_depth, margin, hit)) continue;
+            out.push_back(hit);
         }
     }
 }

@@ -109,6 +109,9 @@ private:
         int i0, i1, j0, j1;
     };
     CellRange cells_touching(const Box& box, int pad) const;
+    // The contact of `box` with blocked cell (i, j), if it has one (find_contacts' rules).
+    bool cell_contact(const Box& box, int i, int j, const Blocking& by, double min_depth, double margin,
+                      ObstacleCollision& out) const;
 
     Grid grid_;
     std::vector<float> bed_;

@@ -31,6 +31,34 @@ void record(World& world, TrajectorySeries& series) {
     world.clear_event_flags();
 }
 
+StepCountVariables define_step_count_variables(nc::File& f, int dim) {
+    const auto count = [&](const char* name, const char* long_name) {
+        return cf::def_var(f, {.name = name, .type = NC_INT, .dims = {dim}, .long_name = long_name});
+    };
+    const auto depth = [&](const char* name, const char* long_name) {
+        return cf::def_var(f, {.name = name, .type = NC_DOUBLE, .dims = {dim}, .units = "m", .long_name = long_name});
+    };
+    StepCountVariables v;
+    v.collisions = count("collision_steps", "steps with an obstacle contact");
+    v.unresolved = count("unresolved_collisions", "steps whose collision passes left an overlap");
+    v.axis_shifts = count("axis_shift_steps", "steps rotated about the contact centroid");
+    v.jams = count("jammed_steps", "steps undone because the collision passes could not clear the overlap");
+    v.residual = depth("largest_residual_overlap", "deepest obstacle overlap left after collision handling");
+    v.body_contacts = count("body_contact_steps", "steps with a contact with another body of its run");
+    v.body_overlap = depth("largest_body_overlap", "deepest overlap with another body left after collision handling");
+    return v;
+}
+
+void put_step_counts(nc::File& f, const StepCountVariables& v, const std::vector<BodyStats>& counts) {
+    f.put(v.collisions, column<int>(counts, &BodyStats::collisions));
+    f.put(v.unresolved, column<int>(counts, &BodyStats::unresolved));
+    f.put(v.axis_shifts, column<int>(counts, &BodyStats::axis_shifts));
+    f.put(v.jams, column<int>(counts, &BodyStats::jams));
+    f.put(v.residual, column<double>(counts, &BodyStats::max_residual_overlap));
+    f.put(v.body_contacts, column<int>(counts, &BodyStats::body_contacts));
+    f.put(v.body_overlap, column<double>(counts, &BodyStats::max_body_overlap));
+}
+
 void put_world_attributes(nc::File& f, const WorldDef& def) {
     f.put_att(NC_GLOBAL, "dt_max_s", def.step.dt_max);
     f.put_att(NC_GLOBAL, "vertex_step_fraction", def.step.vertex_step_fraction);
@@ -45,8 +73,10 @@ WorldDef get_world_attributes(const nc::File& f) {
     if (const auto v = f.att_double(NC_GLOBAL, "dt_max_s")) def.step.dt_max = *v;
     if (const auto v = f.att_double(NC_GLOBAL, "vertex_step_fraction")) def.step.vertex_step_fraction = *v;
     if (const auto v = f.att_double(NC_GLOBAL, "max_collision_passes")) def.step.max_collision_passes = int(*v);
-    if (const auto v = f.att_double(NC_GLOBAL, "body_contact")) def.step.body_contact = *v != 0.0;  // absent: files from before bodies met: off
-    else def.step.body_contact = false;
+    if (const auto v = f.att_double(NC_GLOBAL, "body_contact"))
+        def.step.body_contact = *v != 0.0;  // absent: files from before bodies met: off
+    else
+        def.step.body_contact = false;
     const std::string where = f.path() + ": attribute ";
     if (const auto v = f.att_text(NC_GLOBAL, "integrator"))
         def.step.integrator = parse_enum<Integrator>(*v, where + "'integrator'");
@@ -83,9 +113,6 @@ void write_trajectory_file(const std::string& path, const std::vector<Trajectory
             return cf::def_var(
                 f, {.name = name, .type = NC_CHAR, .dims = {dtraj}, .long_name = long_name, .text_length = cf::longest(values)});
         };
-        auto per_int = [&](const char* name, const char* long_name) {
-            return cf::def_var(f, {.name = name, .type = NC_INT, .dims = {dtraj}, .long_name = long_name});
-        };
         const int vstart = per_string("start_name", "scene start point of the body (empty: given by coordinates)", starts);
         const int vsource = per_string("source", "GIS feature the body came from, layer/feature id (empty: none)", sources);
         const int vtype = per_string("body_type", "debris catalogue entry of the body (empty: none)", types);
@@ -94,15 +121,7 @@ void write_trajectory_file(const std::string& path, const std::vector<Trajectory
         const std::vector<int> vcoef = def_setting_vars(f, body_coefficient_settings(), {dtraj});
         const std::vector<int> vshape = def_setting_vars(f, body_shape_settings(), {dtraj});
         const std::vector<int> vmodel = def_setting_vars(f, body_model_settings(), {dtraj});
-        const int vnc = per_int("collision_steps", "steps with an obstacle contact");
-        const int vnu = per_int("unresolved_collisions", "steps whose collision passes left an overlap");
-        const int vns = per_int("axis_shift_steps", "steps rotated about the contact centroid");
-        const int vjam = per_int("jammed_steps", "steps undone because the collision passes could not clear the overlap");
-        const int vbody = per_int("body_contact_steps", "steps with a contact with another body");
-        const int vbover = cf::def_var(f, {.name = "largest_body_overlap", .type = NC_DOUBLE, .dims = {dtraj}, .units = "m",
-                                           .long_name = "deepest overlap with another body left after collision handling"});
-        const int vres = cf::def_var(f, {.name = "largest_residual_overlap", .type = NC_DOUBLE, .dims = {dtraj}, .units = "m",
-                                         .long_name = "deepest obstacle overlap left after collision handling"});
+        const StepCountVariables vcounts = define_step_count_variables(f, dtraj);
         const std::vector<int> vimpact = define_impact_variables(f, impacts.size(), def.crs, impact_force_formula);
 
         cf::put_conventions(f, "trajectory");
@@ -117,7 +136,6 @@ void write_trajectory_file(const std::string& path, const std::vector<Trajectory
 
         f.put(track_vars.time, time);
         const auto def_of = [](const BodyDef& d) -> const BodyDef& { return d; };
-        const std::vector<BodyStats> stats = column<BodyStats>(records, &TrajectoryRecord::stats);
         f.put(vid, ids);
         f.put(vstart, starts);
         f.put(vsource, sources);
@@ -127,13 +145,7 @@ void write_trajectory_file(const std::string& path, const std::vector<Trajectory
         put_setting_vars(f, vcoef, body_coefficient_settings(), bodies, def_of);
         put_setting_vars(f, vshape, body_shape_settings(), bodies, def_of);
         put_setting_vars(f, vmodel, body_model_settings(), bodies, def_of);
-        f.put(vnc, column<int>(stats, &BodyStats::collisions));
-        f.put(vnu, column<int>(stats, &BodyStats::unresolved));
-        f.put(vres, column<double>(stats, &BodyStats::max_residual_overlap));
-        f.put(vjam, column<int>(stats, &BodyStats::jams));
-        f.put(vns, column<int>(stats, &BodyStats::axis_shifts));
-        f.put(vbody, column<int>(stats, &BodyStats::body_contacts));
-        f.put(vbover, column<double>(stats, &BodyStats::max_body_overlap));
+        put_step_counts(f, vcounts, column<BodyStats>(records, &TrajectoryRecord::stats));
         for (std::size_t b = 0; b < nb && nt > 0; ++b) put_track(f, track_vars, b, records[b].track);
         put_impacts(f, vimpact, impacts);
         f.close();

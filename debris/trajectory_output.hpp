@@ -28,6 +28,16 @@ struct TrajectoryFileDef {
     std::string scene_buildings_sha256;         // the flow's scene (formats/scene.hpp); empty: not recorded
 };
 
+// A trajectory's step counts (BodyStats; `steps` is not recorded) as variables on the
+// trajectory dimension `dim`: collision_steps, unresolved_collisions, axis_shift_steps,
+// jammed_steps, largest_residual_overlap [m], body_contact_steps, largest_body_overlap [m];
+// written alike in trajectory and sweep files.
+struct StepCountVariables {
+    int collisions, unresolved, axis_shifts, jams, residual, body_contacts, body_overlap;
+};
+StepCountVariables define_step_count_variables(nc::File& f, int dim);
+void put_step_counts(nc::File& f, const StepCountVariables& v, const std::vector<BodyStats>& counts);
+
 // The step and flow replay settings as global attributes (dt_max_s, vertex_step_fraction,
 // max_collision_passes, integrator, time_interpolation), written alike in trajectory and
 // sweep files; reading gives the defaults for attributes a file lacks.

@@ -95,8 +95,8 @@ void check_shard_work(const SweepInputs& in, const SweepRunDef& def) {
                                                           def.allow_large_run, def.names.dt_max, def.names.vertex_step_fraction,
                                                           in.spec.path);
     }
-    check_work("sweep size", number_text(double(range[1] - range[0])) + " members over " + number_text(double(in.flows.size())) +
-                                 " flows",
+    check_work("sweep size",
+               number_text(double(range[1] - range[0])) + " members over " + number_text(double(in.flows.size())) + " flows",
                body_steps, max_body_steps, "body steps", def.allow_large_run, in.spec.path);
 }
 
@@ -161,13 +161,7 @@ void run_flow(SweepInputs& in, const SweepRunDef& def, int f, const std::vector<
         rec.def = m.def;
         rec.heading0_deg = m.def.heading * 180.0 / std::numbers::pi;
         const debris::BodyStats& bs = world.stats()[b];
-        rec.collision_steps = int(bs.collisions);
-        rec.unresolved_collisions = int(bs.unresolved);
-        rec.largest_residual_overlap = bs.max_residual_overlap;
-        rec.jammed_steps = int(bs.jams);
-        rec.body_contact_steps = int(bs.body_contacts);
-        rec.largest_body_overlap = bs.max_body_overlap;
-        rec.axis_shift_steps = int(bs.axis_shifts);
+        rec.counts = bs;
         rec.track = std::move(series.tracks[b]);
         for (const Impact& i : impacts)
             if (std::size_t(i.trajectory) == b) rec.impacts.push_back(i);
@@ -210,9 +204,9 @@ SweepResult run_sweep(const SweepSpec& spec, const SweepRunDef& def, SweepRunSta
 CollisionReport collision_report(const SweepResult& r) {
     CollisionReport c;
     for (const auto& m : r.members) {
-        c.jammed += m.jammed_steps;
-        c.unresolved += m.unresolved_collisions;
-        c.members += (m.jammed_steps + m.unresolved_collisions) > 0 ? 1 : 0;
+        c.jammed += m.counts.jams;
+        c.unresolved += m.counts.unresolved;
+        c.members += (m.counts.jams + m.counts.unresolved) > 0 ? 1 : 0;
     }
     return c;
 }

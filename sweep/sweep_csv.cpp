@@ -37,8 +37,9 @@ void write_summary_csv(const std::string& path, const SweepResult& r) {
         s += p.variable();
     }
     s += ",x0_m,y0_m,heading0_deg,motion_start_s,final_x_m,final_y_m,final_yaw_deg,net_displacement_m,travel_distance_m,"
-         "max_speed_m_s,time_of_max_speed_s,collision_steps,unresolved_collisions,axis_shift_steps,largest_residual_overlap_m,jammed_steps,"
-        "run,body_contact_steps,largest_body_overlap_m\n";
+         "max_speed_m_s,time_of_max_speed_s,collision_steps,unresolved_collisions,axis_shift_steps,largest_residual_overlap_m,"
+         "jammed_steps,"
+         "run,body_contact_steps,largest_body_overlap_m\n";
     char buf[512];
     for (const auto& m : r.members) {
         const debris::Track& t = m.track;
@@ -65,11 +66,12 @@ void write_summary_csv(const std::string& path, const SweepResult& r) {
             std::snprintf(buf, sizeof buf, "%.10g", r.time[std::size_t(k0)]);
             s += buf;
         }  // empty: never moved
-        std::snprintf(buf, sizeof buf, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%d,%d,%.4g,%d,%d,%d,%.4g\n", any ? t.x.back() : m.def.x,
-                      any ? t.y.back() : m.def.y, any ? t.yaw_deg.back() : m.heading0_deg,
+        std::snprintf(buf, sizeof buf, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%d,%d,%.4g,%d,%d,%d,%.4g\n",
+                      any ? t.x.back() : m.def.x, any ? t.y.back() : m.def.y, any ? t.yaw_deg.back() : m.heading0_deg,
                       any ? std::hypot(t.x.back() - t.x.front(), t.y.back() - t.y.front()) : 0.0, any ? path_length(t.x, t.y) : 0.0,
-                      vmax, tmax, m.collision_steps, m.unresolved_collisions, m.axis_shift_steps, m.largest_residual_overlap, m.jammed_steps,
-                      m.run, m.body_contact_steps, m.largest_body_overlap);
+                      vmax, tmax, int(m.counts.collisions), int(m.counts.unresolved), int(m.counts.axis_shifts),
+                      m.counts.max_residual_overlap, int(m.counts.jams), m.run, int(m.counts.body_contacts),
+                      m.counts.max_body_overlap);
         s += buf;
     }
     write_text_atomic(path, s);

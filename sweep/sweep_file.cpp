@@ -42,7 +42,8 @@ ParameterSetVariables define_parameter_set_variables(nc::File& f, int dim, const
         return cf::def_var(f, {.name = name, .type = type, .dims = {dim}, .long_name = long_name, .text_length = length});
     };
     ParameterSetVariables vars{};
-    vars.label = var("param_set_label", NC_CHAR, "parameter set label", cf::longest(column<std::string>(sets, &ParameterSet::label)));
+    vars.label =
+        var("param_set_label", NC_CHAR, "parameter set label", cf::longest(column<std::string>(sets, &ParameterSet::label)));
     vars.is_control = var("param_set_is_control", NC_BYTE, "1: the control set that R(t) compares against");
     vars.value = def_setting_vars(f, design_parameters(), {dim}, "param_set_");
     return vars;
@@ -81,8 +82,8 @@ MemberText member_text(const SweepResult& r) {
 struct MemberVariables {
     int id, member, flow_index, flow, body, start, perturbation, variant, contact, collision, param_set, label;
     std::vector<int> coefficients, shape, model;
-    int x0, y0, heading0, collision_steps, unresolved, axis_shift_steps, residual, jammed;
-    int run, body_contact_steps, body_overlap;
+    int x0, y0, heading0, run;
+    debris::StepCountVariables counts;
 };
 
 MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText& t) {
@@ -113,14 +114,8 @@ MemberVariables define_member_variables(nc::File& f, int dtraj, const MemberText
     v.x0 = var("x0", NC_DOUBLE, "m", "start x of the centre (perturbation included)");
     v.y0 = var("y0", NC_DOUBLE, "m", "start y of the centre (perturbation included)");
     v.heading0 = var("heading0", NC_DOUBLE, "degree", "start heading of the long axis from +x, counter-clockwise");
-    v.collision_steps = var("collision_steps", NC_INT, "", "steps with an obstacle contact");
-    v.unresolved = var("unresolved_collisions", NC_INT, "", "steps whose collision passes left an overlap");
-    v.axis_shift_steps = var("axis_shift_steps", NC_INT, "", "steps rotated about the contact centroid");
-    v.jammed = var("jammed_steps", NC_INT, "", "steps undone because the collision passes could not clear the overlap");
-    v.residual = var("largest_residual_overlap", NC_DOUBLE, "m", "deepest obstacle overlap left after collision handling");
     v.run = var("run", NC_INT, "", "the run the member was part of: members of one run shared a world and met each other");
-    v.body_contact_steps = var("body_contact_steps", NC_INT, "", "steps with a contact with another body of its run");
-    v.body_overlap = var("largest_body_overlap", NC_DOUBLE, "m", "deepest overlap with another body left after collision handling");
+    v.counts = debris::define_step_count_variables(f, dtraj);
     return v;
 }
 
@@ -144,14 +139,8 @@ void put_member_variables(nc::File& f, const MemberVariables& v, const MemberTex
     f.put(v.x0, column<double>(ms, [](const MemberRecord& m) { return m.def.x; }));
     f.put(v.y0, column<double>(ms, [](const MemberRecord& m) { return m.def.y; }));
     f.put(v.heading0, column<double>(ms, &MemberRecord::heading0_deg));
-    f.put(v.collision_steps, column<int>(ms, &MemberRecord::collision_steps));
-    f.put(v.unresolved, column<int>(ms, &MemberRecord::unresolved_collisions));
-    f.put(v.residual, column<double>(ms, &MemberRecord::largest_residual_overlap));
-    f.put(v.jammed, column<int>(ms, &MemberRecord::jammed_steps));
-    f.put(v.axis_shift_steps, column<int>(ms, &MemberRecord::axis_shift_steps));
     f.put(v.run, column<int>(ms, &MemberRecord::run));
-    f.put(v.body_contact_steps, column<int>(ms, &MemberRecord::body_contact_steps));
-    f.put(v.body_overlap, column<double>(ms, &MemberRecord::largest_body_overlap));
+    debris::put_step_counts(f, v.counts, column<debris::BodyStats>(ms, &MemberRecord::counts));
 }
 
 void put_sweep_attributes(nc::File& f, const SweepResult& r) {
@@ -234,7 +223,8 @@ namespace {
 int column_var(nc::File& f, const std::string& path, const std::string& name, const std::string& dim) {
     const int v = f.var(name);
     const auto dims = f.value_dims(v);  // a string column's: without its string length
-    if (dims != std::vector<std::string>{dim}) fail(path, "variable '" + name + "'", "must be one-dimensional on dimension '" + dim + "'");
+    if (dims != std::vector<std::string>{dim})
+        fail(path, "variable '" + name + "'", "must be one-dimensional on dimension '" + dim + "'");
     return v;
 }
 
@@ -316,7 +306,8 @@ struct MemberColumns {
         };
         const auto strings = [&](const char* n) { return f.get_strings(column_var(f, path, n, "trajectory")); };
         id = ints("member_id"), flow = ints("flow_index"), perturbation = ints("perturbation"), param_set = ints("param_set");
-        collision_steps = ints("collision_steps"), unresolved = ints("unresolved_collisions"), axis_shift_steps = ints("axis_shift_steps");
+        collision_steps = ints("collision_steps"), unresolved = ints("unresolved_collisions"),
+        axis_shift_steps = ints("axis_shift_steps");
         body = strings("body"), start = strings("start_name"), variant = strings("variant"), contact = strings("contact_model"),
         collision = strings("collision_model");
         x0 = doubles("x0"), y0 = doubles("y0"), heading0 = doubles("heading0");
@@ -358,14 +349,14 @@ MemberRecord member_of(const MemberColumns& c, std::size_t b, const SweepResult&
     m.def.y = c.y0[b];
     m.heading0_deg = c.heading0[b];
     m.def.heading = c.heading0[b] * std::numbers::pi / 180.0;
-    m.collision_steps = c.collision_steps[b];
-    m.unresolved_collisions = c.unresolved[b];
-    m.largest_residual_overlap = c.residual[b];
-    m.jammed_steps = c.jammed[b];
-    m.axis_shift_steps = c.axis_shift_steps[b];
+    m.counts.collisions = c.collision_steps[b];
+    m.counts.unresolved = c.unresolved[b];
+    m.counts.max_residual_overlap = c.residual[b];
+    m.counts.jams = c.jammed[b];
+    m.counts.axis_shifts = c.axis_shift_steps[b];
     m.run = c.run[b];
-    m.body_contact_steps = c.body_contacts[b];
-    m.largest_body_overlap = c.body_overlap[b];
+    m.counts.body_contacts = c.body_contacts[b];
+    m.counts.max_body_overlap = c.body_overlap[b];
     return m;
 }
 
@@ -463,8 +454,9 @@ SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vecto
         const std::string& name = paths[k];
         if (p.spec_sha256 != out.spec_sha256) fail(name, "spec_sha256", "comes from another spec than " + paths[0]);
         if (p.member_count != out.member_count || p.time != out.time || p.flows != out.flows || p.bodies != out.bodies ||
-            p.body_types != out.body_types || p.body_sources != out.body_sources || p.variants != out.variants || p.params.size() != out.params.size() || p.scene_file != out.scene_file ||
-            p.ground_file != out.ground_file || p.scene_buildings_sha256 != out.scene_buildings_sha256)
+            p.body_types != out.body_types || p.body_sources != out.body_sources || p.variants != out.variants ||
+            p.params.size() != out.params.size() || p.scene_file != out.scene_file || p.ground_file != out.ground_file ||
+            p.scene_buildings_sha256 != out.scene_buildings_sha256)
             fail(name, "sweep tables", "differ from those of " + paths[0] + " (not shards of one sweep)");
         for (const auto& m : p.members)
             if (!by_id.emplace(m.id, &m).second) fail(name, "member " + std::to_string(m.id), "also in another part");

@@ -25,11 +25,7 @@ struct MemberRecord : MemberIndex {
     std::string body_name, start_name, variant_name;
     debris::BodyDef def;      // the body as run: start x, y [m], shape, coefficients, model, variant
     double heading0_deg = 0;  // start heading [degree] (def.heading, as written in the file)
-    int collision_steps = 0, unresolved_collisions = 0, axis_shift_steps = 0;
-    double largest_residual_overlap = 0.0;  // deepest obstacle overlap left after collision handling [m]
-    int jammed_steps = 0;                   // steps undone because the passes could not clear the overlap
-    int body_contact_steps = 0;             // steps with a contact with another body of its run
-    double largest_body_overlap = 0.0;      // deepest overlap with another body left after collision handling [m]
+    debris::BodyStats counts;  // its steps' counts (debris/body.hpp; `steps` itself is not recorded)
     debris::Track track;  // on SweepResult::time
     std::vector<Impact> impacts;  // on buildings, by time (Impact::trajectory: unused here, the file's index when written)
 };
