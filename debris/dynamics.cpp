@@ -234,13 +234,13 @@ void collide(const StepContext& ctx, const BodyParams& b, BodyState& s, BodyStat
 Resting resting_place(const StepContext& ctx, const BodyParams& b, const Box& box, double centre_depth,
                       const std::vector<GroundPatch>& patches) {
     const double afloat = ctx.obstacles.ground(box.centre.x, box.centre.y) + centre_depth - b.draft;
-    const bool shallow =
-        b.def.contact == ContactModel::local
-            ? !patches.empty()
-            : ctx.flow.min_depth(ctx.flow.cells_for(box.centre.x - box.extent_x(), box.centre.x + box.extent_x(),
-                                                    box.centre.y - box.extent_y(), box.centre.y + box.extent_y())) < b.draft;
+    // The ground is looked at where some of it under the body may be above where it would
+    // float: a contact patch, or any ground within reach above that. So no cell under the
+    // footprint is ever above the bottom, and none of them can block the body.
+    const bool maybe = (b.def.contact == ContactModel::local && !patches.empty()) ||
+                       ctx.obstacles.ground_above(box, afloat, BlockingGround::any);
     const Grid& g = ctx.obstacles.grid();
-    const double highest = shallow ? ctx.obstacles.highest_ground(box, footprint_overlap_cells * std::min(g.dx, g.dy)) : afloat;
+    const double highest = maybe ? ctx.obstacles.highest_ground(box, footprint_overlap_cells * std::min(g.dx, g.dy)) : afloat;
     if (!(highest > afloat)) return Resting{false, afloat, nullptr};
     return Resting{true, highest, &ctx.obstacles};
 }

@@ -59,8 +59,9 @@ struct StepContext {
 // contact patches (MODEL.md, "Vertical position"): afloat at η_c − d, or on the highest
 // ground under its footprint where that is higher. The one bottom that the faces' wetted
 // height (debris/loads.hpp), the steps that block the body and its collisions use. The
-// ground is looked at only where some of it under the body may be shallower than the
-// draft (a contact patch; for centre contact, the depth's lower bound under the footprint).
+// ground is looked at where some of it under the body may be above where it would float
+// (a contact patch, or any ground within reach above that), so that no cell under the
+// footprint is ever above the bottom: none of them can block the body.
 Resting resting_place(const StepContext& ctx, const BodyParams& body, const Box& box, double centre_depth,
                       const std::vector<GroundPatch>& patches);
 
