@@ -221,7 +221,7 @@ void apply_impulses(std::vector<GroupBody>& group, BodyCollisionScratch& s) {
 // The bodies' share of the moves out of what overlaps (pairs, walls; the walls within the
 // margin as gaps not to close): Gauss-Seidel over the contacts, linearised at the present
 // poses, until none is deeper than `settled` or the sweeps run out.
-void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double settled) {
+void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double settled, double margin) {
     struct Row {
         int a, b;       // the bodies that move (taking part); −1: a wall, or a body not taking part, held
         Vec2 n;         // from b (or what holds) into a
@@ -295,9 +295,14 @@ void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double set
             for (std::size_t q = rows.size(); q-- > 0;) deepest = std::max(deepest, relax(q));
         if (deepest <= settled) break;
     }
+    // No corner moves beyond the margin in one pass: the walls held as gaps are those within
+    // it, and where the rows contradict each other (a body pressed into a corner by others
+    // that cannot give way) their moves must not carry it through a wall.
     for (std::size_t k = 0; k < n; ++k) {
-        s.moved[k] += dx[k];
-        s.turned[k] += dth[k];
+        const double reach = norm(dx[k]) + std::fabs(dth[k]) * group[k].body->half_diagonal;
+        const double scale = reach > margin ? margin / reach : 1.0;
+        s.moved[k] += scale * dx[k];
+        s.turned[k] += scale * dth[k];
     }
 }
 
@@ -400,7 +405,7 @@ bool resolve_body_collisions(const ObstacleMap& obstacles, std::vector<GroupBody
         }
         detect_walls(obstacles, group, s, margin);  // and the cells and bodies within the margin, as gaps
         detect_pairs(group, s, margin, s.near);
-        move_out(group, s, settled);
+        move_out(group, s, settled, margin);
         place(obstacles, group, s);
     }
     for (const BodyCollision& c : s.contacts)

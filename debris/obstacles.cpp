@@ -243,7 +243,8 @@ bool gap_across(const Box& box, Vec2 cell, double hx, double hy, Vec2 n, Vec2& p
 }  // namespace
 
 bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by, double min_depth, double margin,
-                               ObstacleCollision& best) const {
+                               std::vector<ObstacleCollision>& out) const {
+    ObstacleCollision best;
     const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
     const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
     const auto corners = box.corners();
@@ -303,6 +304,23 @@ bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by,
                 ++count;
             }
         best.point = count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, best.normal);
+        // Looking at the margin as well (the moves out): the body's corners across from the
+        // cell's face but not in the cell are gaps the move may not close, so that turning
+        // one end of a body's side out of a cell larger than it does not turn the other in.
+        if (margin > 0.0 && (best.normal.x == 0.0 || best.normal.y == 0.0)) {
+            const Vec2 t{-best.normal.y, best.normal.x};
+            const double face = dot(c, best.normal) + hx * std::fabs(best.normal.x) + hy * std::fabs(best.normal.y);
+            const double across = hx * std::fabs(t.x) + hy * std::fabs(t.y);
+            for (const Vec2& p : corners)
+                if (std::fabs(dot(p - c, t)) <= across && !(std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy))
+                    if (const double depth = face - dot(p, best.normal); depth > -margin && depth <= 0.0) {
+                        ObstacleCollision gap = best;
+                        gap.depth = depth;
+                        gap.point = p + depth * best.normal;
+                        gap.building = building_id(i, j);
+                        out.push_back(gap);
+                    }
+        }
     } else if (best.normal.x == 0.0 || best.normal.y == 0.0) {
         // Apart along one of the cell's faces: the gap to the body's part across
         // from this cell (the separating axis bounds the gap of the whole body).
@@ -313,6 +331,7 @@ bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by,
         best.point = nearest_point_toward(box, c, hx, hy, best.normal);
     }
     best.building = building_id(i, j);
+    out.push_back(best);
     return true;
 }
 
@@ -352,9 +371,7 @@ void ObstacleMap::find_contacts(const Box& box, const Blocking& by, std::vector<
             continue;
         for (int i = i0; i <= i1; ++i) {
             if (!blocked(i, j, by)) continue;
-            ObstacleCollision hit;
-            if (!cell_contact(box, i, j, by, min_depth, margin, hit)) continue;
-            out.push_back(hit);
+            cell_contact(box, i, j, by, min_depth, margin, out);
         }
     }
 }

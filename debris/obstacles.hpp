@@ -94,7 +94,8 @@ public:
     // Appends every overlap of `box` with a blocked cell deeper than `min_depth` and, with a
     // margin, every blocked cell within `margin` of it (depth down to −margin: the gap). The
     // contacts are the box's own: normal and depth from the separating-axis test of the box
-    // itself, the point on it (the margin chooses only which cells are looked at).
+    // itself, the point on it (the margin chooses only which cells are looked at). With a
+    // margin, the body's corners across from an overlapped cell's face are gaps as well.
     void find_contacts(const Box& box, const Blocking& by, std::vector<ObstacleCollision>& out, double min_depth = 1e-10,
                        double margin = 0.0) const;
     void find_contacts(const Box& box, double bottom, double step_height, std::vector<ObstacleCollision>& out,
@@ -109,9 +110,10 @@ private:
         int i0, i1, j0, j1;
     };
     CellRange cells_touching(const Box& box, int pad) const;
-    // The contact of `box` with blocked cell (i, j), if it has one (find_contacts' rules).
+    // Appends the contacts of `box` with blocked cell (i, j) (find_contacts' rules); false
+    // where it has none.
     bool cell_contact(const Box& box, int i, int j, const Blocking& by, double min_depth, double margin,
-                      ObstacleCollision& out) const;
+                      std::vector<ObstacleCollision>& out) const;
 
     Grid grid_;
     std::vector<float> bed_;
