@@ -21,8 +21,8 @@ using padded::clip;
 using padded::is_zero;
 using padded::widen;
 
-void Solver::find_active_columns(Stage which, const std::vector<double>& h, const std::vector<double>& hu,
-                                 const std::vector<double>& hv, bool pumping) {
+template <class Real>
+void BasicSolver<Real>::find_active_columns(Stage which, const Array& h, const Array& hu, const Array& hv, bool pumping) {
     find_active_columns(which == Stage::corrector ? mid_.bound : now_.bound, which == Stage::predictor && state_changed_outside_, h, hu, hv,
                         pumping);
     if (which == Stage::predictor) base_nonzero_ = state_nonzero_;
@@ -36,8 +36,9 @@ void Solver::find_active_columns(Stage which, const std::vector<double>& h, cons
         }
 }
 
-void Solver::find_active_columns(const std::vector<ColumnRange>& bound, bool whole_rows, const std::vector<double>& h,
-                                 const std::vector<double>& hu, const std::vector<double>& hv, bool pumping) {
+template <class Real>
+void BasicSolver<Real>::find_active_columns(const std::vector<ColumnRange>& bound, bool whole_rows, const Array& h, const Array& hu,
+                                            const Array& hv, bool pumping) {
     const int nx = grid_.nx, ny = grid_.ny;
     // Where the input may be nonzero: `bound`, what the last stage computed (whole rows
     // when the state was changed outside step()); ghost rows and columns always. Serial:
@@ -49,7 +50,7 @@ void Solver::find_active_columns(const std::vector<ColumnRange>& bound, bool who
         auto state_nonzero = [&](int i) {
             return !(is_zero(h[at_column(i)]) && is_zero(hu[at_column(i)]) && is_zero(hv[at_column(i)]));
         };
-        auto depth_nonzero = [&](int i) { return h[at_column(i)] != 0.0; };
+        auto depth_nonzero = [&](int i) { return h[at_column(i)] != Real(0); };
         const bool ghost_row = j < 0 || j >= ny;
         const ColumnRange scan = ghost_row || whole_rows ? ColumnRange{0, nx} : bound[std::size_t(j)];
         int b = scan.begin, e = scan.end;
@@ -82,7 +83,9 @@ void Solver::find_active_columns(const std::vector<ColumnRange>& bound, bool who
     }
     stats_.cell_stages += double(grid_.size());
 }
-void Solver::balance_strips() {
+
+template <class Real>
+void BasicSolver<Real>::balance_strips() {
     if (work_.size() < std::size_t(omp_get_max_threads())) work_.resize(std::size_t(omp_get_max_threads()));
     // Columns to compute in the rows below each row, to give each thread an equal share
     // (with dry land skipped, rows cost different amounts; up to 10 % on 2 threads).
@@ -94,12 +97,26 @@ void Solver::balance_strips() {
     }
 }
 
-std::pair<int, int> Solver::strip_rows(int thread, int threads) const {
+template <class Real>
+std::pair<int, int> BasicSolver<Real>::strip_rows(int thread, int threads) const {
     auto first_row = [&](int k) {
         const double share = cumulative_columns_.back() * k / threads;
         return int(std::lower_bound(cumulative_columns_.begin(), cumulative_columns_.end(), share) - cumulative_columns_.begin());
     };
     return {first_row(thread), thread + 1 == threads ? grid_.ny : first_row(thread + 1)};
 }
+
+template void BasicSolver<double>::find_active_columns(Stage, const std::vector<double>&, const std::vector<double>&,
+                                                       const std::vector<double>&, bool);
+template void BasicSolver<float>::find_active_columns(Stage, const std::vector<float>&, const std::vector<float>&,
+                                                      const std::vector<float>&, bool);
+template void BasicSolver<double>::find_active_columns(const std::vector<ColumnRange>&, bool, const std::vector<double>&,
+                                                       const std::vector<double>&, const std::vector<double>&, bool);
+template void BasicSolver<float>::find_active_columns(const std::vector<ColumnRange>&, bool, const std::vector<float>&,
+                                                      const std::vector<float>&, const std::vector<float>&, bool);
+template void BasicSolver<double>::balance_strips();
+template void BasicSolver<float>::balance_strips();
+template std::pair<int, int> BasicSolver<double>::strip_rows(int, int) const;
+template std::pair<int, int> BasicSolver<float>::strip_rows(int, int) const;
 
 }  // namespace flotsam::hydro

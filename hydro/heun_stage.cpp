@@ -31,10 +31,11 @@ using padded::widen;
 // its users need (interior row j): primitives for the slopes of rows j-1 .. j+1 and the
 // x-sweep of row j; y-slopes for the faces below and above row j and its bed slope;
 // y-faces for the rows on either side.
+template <class Real>
 class StageRings {
 public:
-    StageRings(const Sweep<double>& s, const std::vector<ColumnRange>& active, const GridState& in,
-               const std::vector<double>& z, const FrontTracker* front, const RowBuffers<double>& w, std::size_t stride)
+    StageRings(const Sweep<Real>& s, const std::vector<ColumnRange>& active, const GridState<Real>& in, const std::vector<Real>& z,
+               const FrontTracker* front, const RowBuffers<Real>& w, std::size_t stride)
         : s_(s), active_(active), in_(in), z_(z), front_(front), w_(w), stride_(stride) {}
 
     ColumnRange active(int j) const { return j >= 0 && j < ny() ? active_[std::size_t(j)] : ColumnRange{}; }
@@ -63,18 +64,17 @@ public:
             if (const std::vector<Tip>* tips = tips_of(k))
                 for (const Tip& tip : *tips)
                     if (!is_x(tip.dir) && tip.i >= c.begin && tip.i < c.end)
-                        for (int q = 0; q < 4; ++q) w_.slope(j + kGhost, q)[tip.i + kGhost] = 0.0;
+                        for (int q = 0; q < 4; ++q) w_.slope(j + kGhost, q)[tip.i + kGhost] = Real(0);
     }
 
     void faces(int j) const {
         y_faces_row(s_, hull(active(j - 1), active(j)), row(in_.h, j - 1), row(in_.h, j), w_, j + kGhost);
         // The y faces of tips: the face below row j is the back face of a north-moving
         // tip in row j and of a south-moving one in row j - 1, the shut face of the others.
-        const double *lo_e = w_.prim(j - 1 + kGhost, 0), *hi_e = w_.prim(j + kGhost, 0);
-        const double *lo_u = w_.prim(j - 1 + kGhost, 1), *hi_u = w_.prim(j + kGhost, 1);
-        const double *lo_h = row(in_.h, j - 1), *hi_h = row(in_.h, j);
-        double *fm = w_.face(j + kGhost, 0), *fl = w_.face(j + kGhost, 1), *fr = w_.face(j + kGhost, 2),
-               *ft = w_.face(j + kGhost, 3);
+        const Real *lo_e = w_.prim(j - 1 + kGhost, 0), *hi_e = w_.prim(j + kGhost, 0);
+        const Real *lo_u = w_.prim(j - 1 + kGhost, 1), *hi_u = w_.prim(j + kGhost, 1);
+        const Real *lo_h = row(in_.h, j - 1), *hi_h = row(in_.h, j);
+        Real *fm = w_.face(j + kGhost, 0), *fl = w_.face(j + kGhost, 1), *fr = w_.face(j + kGhost, 2), *ft = w_.face(j + kGhost, 3);
         for (int k : {j - 1, j})
             if (const std::vector<Tip>* tips = tips_of(k))
                 for (const Tip& tip : *tips) {
@@ -85,7 +85,7 @@ public:
                         store(back_face_flux(s_, tip.face, north ? 1.0 : -1.0, lo_u[c], hi_u[c]), c, fm, fl, fr, ft);
                     } else {
                         FaceFlux f;
-                        shut_face_flux(lo_e[c], lo_h[c], hi_e[c], hi_h[c], s_.g, f);
+                        shut_face_flux(double(lo_e[c]), double(lo_h[c]), double(hi_e[c]), double(hi_h[c]), double(s_.g), f);
                         store(f, c, fm, fl, fr, ft);
                     }
                 }
@@ -93,23 +93,24 @@ public:
 
 private:
     int ny() const { return int(active_.size()); }
-    const double* row(const std::vector<double>& a, int j) const { return padded::row(a, j, stride_); }
+    const Real* row(const std::vector<Real>& a, int j) const { return padded::row(a, j, stride_); }
 
-    const Sweep<double>& s_;
+    const Sweep<Real>& s_;
     const std::vector<ColumnRange>& active_;
-    const GridState& in_;
-    const std::vector<double>& z_;
+    const GridState<Real>& in_;
+    const std::vector<Real>& z_;
     const FrontTracker* front_;
-    const RowBuffers<double>& w_;
+    const RowBuffers<Real>& w_;
     std::size_t stride_;
 };
 
 }  // namespace
 
-void Solver::stage(Stage which, double dt, double t) {
+template <class Real>
+void BasicSolver<Real>::stage(Stage which, double dt, double t) {
     const StagePlan plan = prepare_stage(which, dt, t);
     long fixes = 0;
-    double worst = 0.0, amax = 0.0;
+    Real worst = 0, amax = 0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
     {
         padded::flush_subnormals();
@@ -124,18 +125,27 @@ void Solver::stage(Stage which, double dt, double t) {
             for (Side side : {Side::south, Side::north})
                 fill_side_cells(side, plan.out_forcing[std::size_t(side)], plan.out->h, plan.out->hu, plan.out->hv, plan.t_out, 0,
                                 grid_.nx);
-            if (j0 < j1) front_->fix_row(plan.out->h, z_, active_, now_.wet_fraction, plan.out->wet_fraction, true, j0);
-            if (j0 < j1 - 1) front_->fix_row(plan.out->h, z_, active_, now_.wet_fraction, plan.out->wet_fraction, true, j1 - 1);
+            fix_strip_edges(plan, j0, j1);
         }
     }
     stats_.negative_depth_fixes += fixes;
-    stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
+    stats_.min_depth_seen = std::min(stats_.min_depth_seen, double(worst));
     plan.out->bound = active_;
     if (plan.last) max_wave_rate_ = amax;
-    if (plan.fronts) front_->fix_done(plan.out->h, active_, now_.wet_fraction, plan.out->wet_fraction, true);
+    if constexpr (kFronts)
+        if (plan.fronts) front_->fix_done(plan.out->h, active_, now_.wet_fraction, plan.out->wet_fraction, true);
 }
 
-Solver::StagePlan Solver::prepare_stage(Stage which, double dt, double t) {
+template <class Real>
+void BasicSolver<Real>::fix_strip_edges(const StagePlan& plan, int j0, int j1) {
+    if constexpr (kFronts) {
+        if (j0 < j1) front_->fix_row(plan.out->h, z_, active_, now_.wet_fraction, plan.out->wet_fraction, true, j0);
+        if (j0 < j1 - 1) front_->fix_row(plan.out->h, z_, active_, now_.wet_fraction, plan.out->wet_fraction, true, j1 - 1);
+    }
+}
+
+template <class Real>
+typename BasicSolver<Real>::StagePlan BasicSolver<Real>::prepare_stage(Stage which, double dt, double t) {
     StagePlan p;
     p.corrector = which == Stage::corrector;
     // The corrector writes U^{n+1} into next_, not over U^n: step_once swaps the two, and a
@@ -145,25 +155,12 @@ Solver::StagePlan Solver::prepare_stage(Stage which, double dt, double t) {
     p.dt = dt;
     p.last = p.corrector || fv_.order == 1;  // the step's result: remember its CFL rate
     p.fronts = fv_.fronts == FrontTreatment::tracked;
-    GridState& in = *p.in;
+    State& in = *p.in;
     fill_ghosts(in.h, in.hu, in.hv, t);
     p.pump_rate = forcing_.pump_rate(t);  // [m/s] over the source strip
     find_active_columns(which, in.h, in.hu, in.hv, p.pump_rate != 0.0);
-    // Fronts: the tips of the stage's input (front.hpp).
-    if (p.fronts) {
-        front_->fill_ghosts(in.h, in.wet_fraction, mirrored_);
-        if (which == Stage::predictor && state_changed_outside_) {  // the wet fraction may not match h: make it (idempotent)
-            const std::vector<ColumnRange> all(std::size_t(grid_.ny), ColumnRange{0, grid_.nx});
-            front_->fix(in.h, z_, all, in.wet_fraction, in.wet_fraction);
-        }
-        front_->find_tips(in.h, in.hu, in.hv, in.wet_fraction, z_, g_n2_, active_);
-    }
+    if (p.fronts) prepare_fronts(which, p, dt);
     balance_strips();
-    // The wet fraction after the step grows with the predictor's tips (forward Euler: the
-    // front is first order anyway; 1D trials gave the same fronts as Heun's average); each
-    // stage's output then makes now_.wet_fraction so grown consistent with its depth, row
-    // by row in the strip (front_->fix_row), into the output's wet fraction.
-    if (p.fronts && !p.corrector) front_->grow(now_.wet_fraction, dt);
     // The output's ghost cells, for its wet fraction's fix in the strip: each row's x
     // ghosts once the row is updated, the y ghost rows after the strips, at the output's
     // time, so that they are those the next stage fills in. Fixed against whatever the
@@ -179,16 +176,33 @@ Solver::StagePlan Solver::prepare_stage(Stage which, double dt, double t) {
     return p;
 }
 
-void Solver::stage_strip(const StagePlan& p, std::vector<double>& mem, int j0, int j1, long& fixes, double& worst,
-                         double& amax) {
-    if (mem.size() != RowBuffers<double>::kRows * stride_) mem.assign(RowBuffers<double>::kRows * stride_, 0.0);
-    const RowBuffers<double> w(mem.data(), stride_);
-    const int nx = grid_.nx;
-    const Sweep<double> s{
-        def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
-    const StageRings rings(s, active_, *p.in, z_, p.fronts ? &*front_ : nullptr, w, stride_);
-    GridState& out = *p.out;
-    auto row = [&](std::vector<double>& a, int j) { return padded::row(a, j, stride_); };
+template <class Real>
+void BasicSolver<Real>::prepare_fronts(Stage which, StagePlan& p, double dt) {
+    if constexpr (kFronts) {
+        // The tips of the stage's input (front.hpp).
+        State& in = *p.in;
+        front_->fill_ghosts(in.h, in.wet_fraction, mirrored_);
+        if (which == Stage::predictor && state_changed_outside_) {  // the wet fraction may not match h: make it (idempotent)
+            const std::vector<ColumnRange> all(std::size_t(grid_.ny), ColumnRange{0, grid_.nx});
+            front_->fix(in.h, z_, all, in.wet_fraction, in.wet_fraction);
+        }
+        front_->find_tips(in.h, in.hu, in.hv, in.wet_fraction, z_, g_n2_, active_);
+        // The wet fraction after the step grows with the predictor's tips (forward Euler: the
+        // front is first order anyway; 1D trials gave the same fronts as Heun's average); each
+        // stage's output then makes now_.wet_fraction so grown consistent with its depth, row
+        // by row in the strip (front_->fix_row), into the output's wet fraction.
+        if (!p.corrector) front_->grow(now_.wet_fraction, dt);
+    }
+}
+
+template <class Real>
+void BasicSolver<Real>::stage_strip(const StagePlan& p, Array& mem, int j0, int j1, long& fixes, Real& worst, Real& amax) {
+    if (mem.size() != RowBuffers<Real>::kRows * stride_) mem.assign(RowBuffers<Real>::kRows * stride_, Real(0));
+    const RowBuffers<Real> w(mem.data(), stride_);
+    const Sweep<Real> s = sweep_constants();
+    const StageRings<Real> rings(s, active_, *p.in, z_, p.fronts ? &*front_ : nullptr, w, stride_);
+    State& out = *p.out;
+    auto row = [&](Array& a, int j) { return padded::row(a, j, stride_); };
     if (j0 < j1) {
         for (int j = j0 - 2; j < j0 + 2; ++j) rings.primitives(j);
         for (int j = j0 - 1; j < j0 + 1; ++j) rings.slopes(j);
@@ -201,7 +215,7 @@ void Solver::stage_strip(const StagePlan& p, std::vector<double>& mem, int j0, i
         const ColumnRange cols = rings.active(j);
         // The output is exactly zero outside the columns computed now (as U^n is there
         // in the corrector: its nonzero cells are active).
-        for (std::vector<double>* a : {&out.h, &out.hu, &out.hv}) padded::clear_outside(row(*a, j), out.bound[std::size_t(j)], cols);
+        for (Array* a : {&out.h, &out.hu, &out.hv}) padded::clear_outside(row(*a, j), out.bound[std::size_t(j)], cols);
         face_mass_[0][std::size_t(j)] = face_mass_[1][std::size_t(j)] = 0.0;
         if (!cols.empty()) {
             const auto [west_mass, east_mass] = rates_row(s, cols, row(p.in->h, j), w, j + kGhost, rings.tips_of(j));
@@ -214,27 +228,32 @@ void Solver::stage_strip(const StagePlan& p, std::vector<double>& mem, int j0, i
                 fill_side_cells(side, p.out_forcing[std::size_t(side)], out.h, out.hu, out.hv, p.t_out, j, j + 1);
         // The wet fraction of the row below, whose neighbours are final now (the first
         // and last rows of the strip wait for the threads beside).
-        if (p.fronts && j - 1 > j0) front_->fix_row(out.h, z_, active_, now_.wet_fraction, out.wet_fraction, true, j - 1);
+        if constexpr (kFronts)
+            if (p.fronts && j - 1 > j0) front_->fix_row(out.h, z_, active_, now_.wet_fraction, out.wet_fraction, true, j - 1);
     }
 }
 
 // Row j's update from its rates (in w), the pump's source and friction; the output's CFL
 // rate when this stage ends the step.
-void Solver::update_stage_row(const StagePlan& p, const rows::Sweep<double>& s, const rows::RowBuffers<double>& w, int j,
-                              ColumnRange cols, long& fixes, double& worst, double& amax) {
-    auto row = [&](std::vector<double>& a) { return padded::row(a, j, stride_); };
-    double* dh = w.rate(0);
+template <class Real>
+void BasicSolver<Real>::update_stage_row(const StagePlan& p, const rows::Sweep<Real>& s, const rows::RowBuffers<Real>& w, int j,
+                                         ColumnRange cols, long& fixes, Real& worst, Real& amax) {
+    auto row = [&](Array& a) { return padded::row(a, j, stride_); };
+    Real* dh = w.rate(0);
+    const Real dt = Real(p.dt), pump_rate = Real(p.pump_rate);
     for (std::size_t k = pump_row_start_[std::size_t(j)]; p.pump_rate != 0.0 && k < pump_row_start_[std::size_t(j) + 1]; ++k)
-        dh[pump_cells_[k] % stride_] += p.pump_rate;
-    GridState &in = *p.in, &out = *p.out;
+        dh[pump_cells_[k] % stride_] += pump_rate;
+    State &in = *p.in, &out = *p.out;
     if (p.corrector)
-        update_row_with<double, true>(fv_.friction, s, cols, p.dt, 0.5, row(in.h), row(in.hu), row(in.hv), w, row(g_n2_),
-                                      row(now_.h), row(now_.hu), row(now_.hv), row(out.h), row(out.hu), row(out.hv), fixes,
-                                      worst);
+        update_row_with<Real, true>(fv_.friction, s, cols, dt, Real(0.5), row(in.h), row(in.hu), row(in.hv), w, row(g_n2_),
+                                    row(now_.h), row(now_.hu), row(now_.hv), row(out.h), row(out.hu), row(out.hv), fixes, worst);
     else
-        update_row_with<double, false>(fv_.friction, s, cols, p.dt, 0.0, row(in.h), row(in.hu), row(in.hv), w, row(g_n2_),
-                                       nullptr, nullptr, nullptr, row(out.h), row(out.hu), row(out.hv), fixes, worst);
+        update_row_with<Real, false>(fv_.friction, s, cols, dt, Real(0), row(in.h), row(in.hu), row(in.hv), w, row(g_n2_),
+                                     nullptr, nullptr, nullptr, row(out.h), row(out.hu), row(out.hv), fixes, worst);
     if (p.last) amax = std::max(amax, max_wave_rate_row(s, cols, row(out.h), row(out.hu), row(out.hv)));
 }
+
+template void BasicSolver<double>::stage(Stage, double, double);
+template void BasicSolver<float>::stage(Stage, double, double);
 
 }  // namespace flotsam::hydro

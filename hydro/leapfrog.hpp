@@ -134,7 +134,7 @@ public:
     double pump_level_at_stop() const { return forcing_.pump_level_at_stop(); }
     void set_pump_level_at_stop(double v) { forcing_.set_pump_level_at_stop(v); }
     // h, u, v, M, N (padded, one ghost layer), for checkpoints.
-    std::vector<std::vector<double>*> state_arrays() { return {&h_, &u_, &v_, &m_, &n_}; }
+    std::vector<StateArray> state_arrays() { return {&h_, &u_, &v_, &m_, &n_}; }
 
 private:
     std::size_t edge_cell(Side s, int k) const;  // padded index of the k-th cell along side s

@@ -145,14 +145,15 @@ std::vector<double> ghost_bed(const Scene& s, int i0, int i1, int rx, int ry, Si
 
 }  // namespace
 
-NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest)
+template <class Real>
+BasicNestedSolver<Real>::BasicNestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest)
     : grid_(scene.grid), def_(def), z_(scene.z) {
     const Layout l = slab_layout(scene, nest);
     const std::size_t n = l.ratio.size();
     slabs_.reserve(n);
     for (std::size_t k = 0; k < n; ++k) {
         const int rx = l.ratio[k], ry = rows_ratio(scene.grid.ny, rx), i0 = l.start[k], i1 = l.start[k + 1];
-        slabs_.push_back(Slab{i0, i1, rx, ry, Solver(slab_scene(scene, i0, i1, rx, ry), slab_def(def, k > 0, k + 1 < n), fv)});
+        slabs_.push_back(Slab{i0, i1, rx, ry, SlabSolver(slab_scene(scene, i0, i1, rx, ry), slab_def(def, k > 0, k + 1 < n), fv)});
         if (k > 0) slabs_.back().solver.set_ghost_bed(Side::west, ghost_bed(scene, i0, i1, rx, ry, Side::west));
         if (k + 1 < n) slabs_.back().solver.set_ghost_bed(Side::east, ghost_bed(scene, i0, i1, rx, ry, Side::east));
     }
@@ -180,7 +181,8 @@ NestedSolver::NestedSolver(const Scene& scene, const PhysicsDef& def, const Fini
     finest_ = slabs_[std::size_t(order_.back())].rx;
 }
 
-std::string NestedSolver::description() const {
+template <class Real>
+std::string BasicNestedSolver<Real>::description() const {
     std::string slabs;
     for (const Slab& b : slabs_) {
         if (b.rx == finest_) continue;
@@ -200,12 +202,14 @@ std::string NestedSolver::description() const {
     return slabs_.front().solver.description() + "; nested: " + slabs + ", sub-cycled, refluxed" + split;
 }
 
-void NestedSolver::set_time(double t) {
+template <class Real>
+void BasicNestedSolver<Real>::set_time(double t) {
     time_ = t;
     for (Slab& b : slabs_) b.solver.set_time(t);
 }
 
-SolverStats NestedSolver::stats() const {
+template <class Real>
+SolverStats BasicNestedSolver<Real>::stats() const {
     SolverStats s = slabs_.front().solver.stats();
     for (std::size_t k = 1; k < slabs_.size(); ++k) {
         const SolverStats& f = slabs_[k].solver.stats();
@@ -220,20 +224,23 @@ SolverStats NestedSolver::stats() const {
     return s;
 }
 
-double NestedSolver::volume() const {
+template <class Real>
+double BasicNestedSolver<Real>::volume() const {
     double v = 0.0;
     for (const Slab& b : slabs_) v += b.solver.volume();
     return v;
 }
 
-std::vector<std::vector<double>*> NestedSolver::state_arrays() {
-    std::vector<std::vector<double>*> a;
+template <class Real>
+std::vector<StateArray> BasicNestedSolver<Real>::state_arrays() {
+    std::vector<StateArray> a;
     for (Slab& b : slabs_)
-        for (std::vector<double>* v : b.solver.state_arrays()) a.push_back(v);
+        for (const StateArray& v : b.solver.state_arrays()) a.push_back(v);
     return a;
 }
 
-double NestedSolver::stable_dt() const {
+template <class Real>
+double BasicNestedSolver<Real>::stable_dt() const {
     // The coarsest slabs take one step; each other slab k ceil(dt / limit_k) sub-steps.
     double coarse = slabs_[std::size_t(order_.front())].solver.stable_dt();
     std::vector<double> limit(slabs_.size());
@@ -267,7 +274,8 @@ double NestedSolver::stable_dt() const {
     return best;
 }
 
-void NestedSolver::step(double dt) {
+template <class Real>
+void BasicNestedSolver<Real>::step(double dt) {
     const double t0 = time_, t1 = time_ + dt;
     if (time_interfaces_) order_for_step(dt);
     for (Interface& f : interfaces_) {
@@ -313,7 +321,8 @@ void NestedSolver::step(double dt) {
     }
 }
 
-void NestedSolver::order_for_step(double dt) {
+template <class Real>
+void BasicNestedSolver<Real>::order_for_step(double dt) {
     // Slabs of the same spacing step in the order of their sub-steps this step, fewest
     // first (west first among equals), and the first of a time interface's two is its
     // coarse side: its ghosts hold the other's cells at the step's start, the other's
@@ -333,7 +342,8 @@ void NestedSolver::order_for_step(double dt) {
         if (f.same_grid) f.coarse_west = position[std::size_t(f.west)] < position[std::size_t(f.west + 1)];
 }
 
-ColumnRange NestedSolver::wet_columns(int j) const {
+template <class Real>
+ColumnRange BasicNestedSolver<Real>::wet_columns(int j) const {
     ColumnRange c;
     for (const Slab& b : slabs_) {
         const ColumnRange s = b.solver.wet_columns(j / b.ry);
@@ -342,13 +352,15 @@ ColumnRange NestedSolver::wet_columns(int j) const {
     return c;
 }
 
-const NestedSolver::Slab& NestedSolver::slab_of(int i) const {
+template <class Real>
+const typename BasicNestedSolver<Real>::Slab& BasicNestedSolver<Real>::slab_of(int i) const {
     for (const Slab& b : slabs_)
         if (i < b.i1) return b;
     return slabs_.back();
 }
 
-double NestedSolver::depth(int i, int j) const {
+template <class Real>
+double BasicNestedSolver<Real>::depth(int i, int j) const {
     const Slab& b = slab_of(i);
     if (b.rx * b.ry == 1) return b.solver.depth(i - b.i0, j);
     const int I = (i - b.i0) / b.rx, J = j / b.ry;
@@ -356,7 +368,8 @@ double NestedSolver::depth(int i, int j) const {
     return std::max(0.0, b.solver.level(I, J) - z_[grid_.index(i, j)]);
 }
 
-void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double* v) const {
+template <class Real>
+void BasicNestedSolver<Real>::state_row(int j, int i0, int i1, double* h, double* u, double* v) const {
     const double dry = def_.dry_depth;
     for (const Slab& b : slabs_) {
         const int lo = std::max(i0, b.i0), hi = std::min(i1, b.i1);
@@ -385,16 +398,21 @@ void NestedSolver::state_row(int j, int i0, int i1, double* h, double* u, double
     }
 }
 
-double NestedSolver::x_velocity(int i, int j) const {
+template <class Real>
+double BasicNestedSolver<Real>::x_velocity(int i, int j) const {
     const Slab& b = slab_of(i);
     if (b.rx * b.ry == 1) return b.solver.x_velocity(i - b.i0, j);
     return depth(i, j) > def_.dry_depth ? b.solver.x_velocity((i - b.i0) / b.rx, j / b.ry) : 0.0;
 }
 
-double NestedSolver::y_velocity(int i, int j) const {
+template <class Real>
+double BasicNestedSolver<Real>::y_velocity(int i, int j) const {
     const Slab& b = slab_of(i);
     if (b.rx * b.ry == 1) return b.solver.y_velocity(i - b.i0, j);
     return depth(i, j) > def_.dry_depth ? b.solver.y_velocity((i - b.i0) / b.rx, j / b.ry) : 0.0;
 }
+
+template class BasicNestedSolver<double>;
+template class BasicNestedSolver<float>;
 
 }  // namespace flotsam::hydro

@@ -56,14 +56,18 @@ struct NestDef {
 int rows_ratio(int rows, int ratio);
 NestDef default_nest_def();
 
-class NestedSolver {
+// Real: the precision of every slab's state (BasicSolver<Real>).
+template <class Real>
+class BasicNestedSolver {
 public:
+    using real_type = Real;
+    using SlabSolver = BasicSolver<Real>;
     // `def`'s west boundary applies to the west slab, its east one to the east slab, its
     // south and north ones to every slab. A slab's cells are ratio x rows_ratio(rows,
     // ratio) scene cells. Errors (naming the option) for ratios that do not nest and for
     // interfaces that leave a slab fewer than 2 of its own cells or 2 of a coarser
     // neighbour's.
-    NestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest);
+    BasicNestedSolver(const Scene& scene, const PhysicsDef& def, const FiniteVolumeDef& fv, const NestDef& nest);
 
     // The step of the coarsest slabs (the finer ones sub-cycle inside it) [s]: their own,
     // or a whole number of a finer slab's steps at its CFL limit when that costs fewer
@@ -86,8 +90,8 @@ public:
     std::string description() const;
     long fine_steps() const { return fine_steps_; }  // steps of the finest slab
     int slabs() const { return int(slabs_.size()); }
-    const Solver& slab(int k) const { return slabs_[std::size_t(k)].solver; }  // west to east
-    const Solver& coarse() const { return slab(0); }
+    const SlabSolver& slab(int k) const { return slabs_[std::size_t(k)].solver; }  // west to east
+    const SlabSolver& coarse() const { return slab(0); }
 
     // The state on the scene's grid. In a coarse slab: the coarse cell's level over the
     // scene's own ground (depth ≥ 0) and the coarse cell's velocity.
@@ -101,15 +105,15 @@ public:
 
     double pump_level_at_stop() const { return slabs_.front().solver.pump_level_at_stop(); }
     void set_pump_level_at_stop(double v) { slabs_.front().solver.set_pump_level_at_stop(v); }
-    // Each slab's exact state (Solver::state_arrays), west to east, for checkpoints.
-    std::vector<std::vector<double>*> state_arrays();
+    // Each slab's exact state (BasicSolver::state_arrays), west to east, for checkpoints.
+    std::vector<StateArray> state_arrays();
     long reflux_clamps() const { return reflux_clamps_; }  // interface cells refluxed below h = 0
 
 private:
     struct Slab {
         int i0, i1;  // scene columns [i0, i1)
         int rx, ry;  // scene cells per cell along x and y
-        Solver solver;
+        SlabSolver solver;
     };
     // An interface between slabs `west` and `east` = west + 1; the coarse one's ghosts there
     // are the fine one's block averages, the fine one's the coarse level over their own
@@ -153,5 +157,8 @@ private:
     double reflux_made_ = 0.0;   // water made by clamping refluxed cells at 0 [m^3]
     double volume_start_ = 0.0;  // [m^3]
 };
+
+using NestedSolver = BasicNestedSolver<double>;
+using NestedSolver32 = BasicNestedSolver<float>;
 
 }  // namespace flotsam::hydro

@@ -14,8 +14,9 @@ namespace {
 constexpr int kLayers = kGhost;  // ghost layers of hydro::Solver (column_range.hpp)
 }
 
-GhostState NestedSolver::copied_ghosts(const Interface& f, bool from_west) const {
-    const Solver& from = slabs_[std::size_t(from_west ? f.west : f.west + 1)].solver;
+template <class Real>
+GhostState BasicNestedSolver<Real>::copied_ghosts(const Interface& f, bool from_west) const {
+    const SlabSolver& from = slabs_[std::size_t(from_west ? f.west : f.west + 1)].solver;
     const int ny = from.grid().ny, nx = from.grid().nx;
     GhostState g;
     for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ny), 0.0);
@@ -30,9 +31,10 @@ GhostState NestedSolver::copied_ghosts(const Interface& f, bool from_west) const
     return g;
 }
 
-GhostState NestedSolver::coarse_ghosts_from_fine(const Interface& f) const {
+template <class Real>
+GhostState BasicNestedSolver<Real>::coarse_ghosts_from_fine(const Interface& f) const {
     if (f.same_grid) return copied_ghosts(f, !f.coarse_west);
-    const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+    const SlabSolver& fine = slabs_[std::size_t(f.fine())].solver;
     const int rx = f.rx, ry = f.ry, ncy = slabs_[std::size_t(f.coarse())].solver.grid().ny, nxf = fine.grid().nx;
     GhostState g;
     for (auto* v : {&g.h, &g.hu, &g.hv}) v->assign(std::size_t(kLayers * ncy), 0.0);
@@ -71,10 +73,11 @@ GhostState NestedSolver::coarse_ghosts_from_fine(const Interface& f) const {
     return g;
 }
 
-GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
+template <class Real>
+GhostState BasicNestedSolver<Real>::fine_ghosts_from_coarse(const Interface& f) const {
     if (f.same_grid) return copied_ghosts(f, f.coarse_west);
-    const Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
-    const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+    const SlabSolver& coarse = slabs_[std::size_t(f.coarse())].solver;
+    const SlabSolver& fine = slabs_[std::size_t(f.fine())].solver;
     const Grid &cg = coarse.grid(), &fg = fine.grid();
     const int ny = fg.ny, I = f.coarse_west ? cg.nx - 1 : 0;  // the coarse column along the interface
     const double dry = def_.dry_depth;
@@ -117,9 +120,10 @@ GhostState NestedSolver::fine_ghosts_from_coarse(const Interface& f) const {
     return g;
 }
 
-void NestedSolver::reflux(const Interface& f) {
-    Solver& coarse = slabs_[std::size_t(f.coarse())].solver;
-    const Solver& fine = slabs_[std::size_t(f.fine())].solver;
+template <class Real>
+void BasicNestedSolver<Real>::reflux(const Interface& f) {
+    SlabSolver& coarse = slabs_[std::size_t(f.coarse())].solver;
+    const SlabSolver& fine = slabs_[std::size_t(f.fine())].solver;
     if (f.same_grid) {  // face by face, the same faces on both sides
         const std::vector<double>& tc = coarse.side_transfer(f.coarse_side());
         const std::vector<double>& tf = fine.side_transfer(f.fine_side());
@@ -134,19 +138,27 @@ void NestedSolver::reflux(const Interface& f) {
     const std::vector<double>& tc = coarse.side_transfer(f.coarse_side());
     const std::vector<double>& tf = fine.side_transfer(f.fine_side());
     const double dxc = coarse.grid().dx;
-    std::vector<double>& h = coarse.depth_data();
+    std::vector<Real>& h = coarse.depth_data();
     for (int J = 0; J < ncy; ++J) {
         double fine_sum = 0.0;  // the fine faces along coarse row J, per unit length of it
         for (int b = 0; b < ry; ++b) fine_sum += tf[std::size_t(J * ry + b)];
         fine_sum /= double(ry);
-        double& hc = h[coarse.at(I, J)];
-        hc += (f.coarse_west ? tc[std::size_t(J)] - fine_sum : fine_sum - tc[std::size_t(J)]) / dxc;
-        if (hc < 0.0) {
-            reflux_made_ -= hc * dxc * coarse.grid().dy;
-            hc = 0.0;
+        Real& hc = h[coarse.at(I, J)];
+        hc += Real((f.coarse_west ? tc[std::size_t(J)] - fine_sum : fine_sum - tc[std::size_t(J)]) / dxc);
+        if (hc < 0) {
+            reflux_made_ -= double(hc) * dxc * coarse.grid().dy;
+            hc = Real(0);
             ++reflux_clamps_;
         }
     }
 }
+
+// Both precisions (the rest of the class is instantiated in nesting.cpp).
+template GhostState BasicNestedSolver<double>::coarse_ghosts_from_fine(const Interface&) const;
+template GhostState BasicNestedSolver<float>::coarse_ghosts_from_fine(const Interface&) const;
+template GhostState BasicNestedSolver<double>::fine_ghosts_from_coarse(const Interface&) const;
+template GhostState BasicNestedSolver<float>::fine_ghosts_from_coarse(const Interface&) const;
+template void BasicNestedSolver<double>::reflux(const Interface&);
+template void BasicNestedSolver<float>::reflux(const Interface&);
 
 }  // namespace flotsam::hydro

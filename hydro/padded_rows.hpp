@@ -16,8 +16,12 @@
 namespace flotsam::hydro::padded {
 
 // Row j (interior index; ghosts -2, -1, ny, ny + 1) of a padded field, at padded column 0.
-inline double* row(std::vector<double>& a, int j, std::size_t stride) { return a.data() + std::size_t(j + kGhost) * stride; }
-inline const double* row(const std::vector<double>& a, int j, std::size_t stride) {
+template <class Real>
+Real* row(std::vector<Real>& a, int j, std::size_t stride) {
+    return a.data() + std::size_t(j + kGhost) * stride;
+}
+template <class Real>
+const Real* row(const std::vector<Real>& a, int j, std::size_t stride) {
     return a.data() + std::size_t(j + kGhost) * stride;
 }
 
@@ -32,13 +36,15 @@ inline ColumnRange widen(ColumnRange a, int n) { return a.empty() ? a : ColumnRa
 inline ColumnRange clip(ColumnRange a, int lo, int hi) { return {std::max(a.begin, lo), std::min(a.end, hi)}; }
 
 inline bool is_zero(double x) { return std::bit_cast<std::uint64_t>(x) == 0; }  // +0 only
+inline bool is_zero(float x) { return std::bit_cast<std::uint32_t>(x) == 0; }
 
 // Sets the cells of `was` outside `now` to zero (row at padded column 0).
-inline void clear_outside(double* row, ColumnRange was, ColumnRange now) {
+template <class Real>
+void clear_outside(Real* row, ColumnRange was, ColumnRange now) {
     if (was.empty()) return;
     if (now.empty()) now = {was.end, was.end};
-    for (int i = was.begin; i < std::min(was.end, now.begin); ++i) row[i + kGhost] = 0.0;
-    for (int i = std::max(was.begin, now.end); i < was.end; ++i) row[i + kGhost] = 0.0;
+    for (int i = was.begin; i < std::min(was.end, now.begin); ++i) row[i + kGhost] = Real(0);
+    for (int i = std::max(was.begin, now.end); i < was.end; ++i) row[i + kGhost] = Real(0);
 }
 
 }  // namespace flotsam::hydro::padded

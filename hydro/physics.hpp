@@ -4,6 +4,9 @@
 // reports. The settings that only one scheme has are in its own definition
 // (FiniteVolumeDef, LeapfrogDef).
 #pragma once
+#include <variant>
+#include <vector>
+
 #include "hydro/boundary.hpp"
 
 namespace flotsam::hydro {
@@ -42,5 +45,9 @@ struct SolverStats {
     long outflow_limits = 0;        // leap-frog: cell-steps whose outflow was scaled down to keep h >= 0
     long positivity_redos = 0;      // finite volumes at cfl > 0.5: steps redone at cfl 0.45 (they clamped a depth)
 };
+
+// One array of a solver's exact state in the solver's own precision (checkpoints store
+// each in its type, so that a restart continues from the same bits).
+using StateArray = std::variant<std::vector<double>*, std::vector<float>*>;
 
 }  // namespace flotsam::hydro

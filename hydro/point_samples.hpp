@@ -36,7 +36,7 @@ inline PointStencil point_stencil(const Grid& g, double x, double y) {
     return s;
 }
 
-// `s` offers depth, level, x_velocity and y_velocity at (i, j) (hydro/run.hpp, RunnableSolver).
+// `s` offers depth, level, x_velocity and y_velocity at (i, j) (hydro/run_solver.hpp, RunnableSolver).
 template <class S>
 PointSample sample_point(const S& s, const PointStencil& p) {
     PointSample g{0.0, 0.0, 0.0, 0.0};

@@ -3,7 +3,6 @@
 // checkpoints let an interrupted run continue to the same result.
 #pragma once
 #include <array>
-#include <concepts>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include "hydro/boundary_output.hpp"
 #include "hydro/leapfrog.hpp"
 #include "hydro/nesting.hpp"
+#include "hydro/run_solver.hpp"
 #include "hydro/solver.hpp"
 
 namespace flotsam::hydro {
@@ -21,31 +21,6 @@ namespace flotsam::hydro {
 enum class Scheme { finite_volume, leapfrog };
 inline constexpr EnumNames<Scheme, 2> scheme_names{"scheme", {{{Scheme::finite_volume, "fv"}, {Scheme::leapfrog, "leapfrog"}}}};
 constexpr const auto& enum_names(Scheme) { return scheme_names; }
-
-// What the run driver (run.cpp) needs of a solver: stepping, the state for frames,
-// gauges and maxima, the exact state for checkpoints, and how to describe itself.
-// Solver, NestedSolver and LeapfrogSolver satisfy it.
-template <class S>
-concept RunnableSolver = requires(S& s, const S& c, double t, int i, int j, double* row) {
-    { c.stable_dt() } -> std::same_as<double>;         // the step to take now [s]
-    s.step(t);                                         // advance by t [s]
-    { c.time() } -> std::same_as<double>;              // [s]
-    s.set_time(t);                                     // land exactly on a frame time
-    { c.grid() } -> std::convertible_to<const Grid&>;  // the scene's grid (output, gauges)
-    { c.level(i, j) } -> std::same_as<double>;         // [m], gauges
-    { c.depth(i, j) } -> std::same_as<double>;         // [m]
-    { c.x_velocity(i, j) } -> std::same_as<double>;    // [m/s]
-    { c.y_velocity(i, j) } -> std::same_as<double>;    // [m/s]
-    c.state_row(j, i, i, row, row, row);               // depth, velocities of a row (frames, maxima)
-    { c.wet_columns(j) } -> std::same_as<ColumnRange>;  // outside them row j's state is exactly zero
-    { c.volume() } -> std::same_as<double>;            // [m^3]
-    { c.stats() } -> std::convertible_to<SolverStats>;
-    { c.cell_updates() } -> std::same_as<double>;                             // cells x steps done by this object
-    { s.state_arrays() } -> std::same_as<std::vector<std::vector<double>*>>;  // the exact state (checkpoints)
-    { c.pump_level_at_stop() } -> std::same_as<double>;                       // the pump side's restart state [m]
-    s.set_pump_level_at_stop(t);
-    { c.description() } -> std::same_as<std::string>;  // the scheme, for the file's `source`
-};
 
 struct RunDef {
     std::string scene_file;
@@ -92,6 +67,11 @@ struct RunResult {
     long outflow_limits = 0;    // leap-frog: cell-steps whose outflow was scaled down
     std::size_t file_bytes = 0;
 };
+
+// The bytes a run may write (its frames, gauges and boundary outline, uncompressed)
+// without --allow-large-run: more than any study here writes (a 1 cm flow with frames
+// every 0.1 s over 420 s: 2e10), far below a run that fills a disk.
+inline constexpr double max_output_bytes = 1e11;
 
 // A run of `run.scheme` on the physics and boundaries of `physics`.
 RunResult run_hydro(const RunDef& run, const PhysicsDef& physics);

@@ -105,6 +105,12 @@ void add_scheme_settings(Settings<HydroDef>& t) {
                  "for Heun's (a = |u| + sqrt(g h)), at most 1; above 0.5 a step that would make a depth negative is redone "
                  "at 0.45",
                  Range::positive().up_to(1.0), member_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::cfl>()});
+    t.push_back({"precision",
+                 "",
+                 "Finite volumes: the state's type, 'float32' or 'float64' (the leap-frog and the tracked fronts: float64)",
+                 Range(),
+                 choice_of<&HydroDef::run, &RunDef::finite_volume, &FiniteVolumeDef::precision>(),
+                 {.names_in_help = true}});
     t.push_back({"max-dt", "s", "Upper bound on the time step", Range::positive("s"),
                  member_of<&HydroDef::physics, &PhysicsDef::max_dt>()});
     t.push_back({"limiter-theta", "1", "Slope limiter: 1 minmod ... 2 monotonised central", Range::closed(1.0, 2.0),

@@ -22,7 +22,8 @@ using padded::clip;
 using padded::widen;
 }  // namespace
 
-void Solver::split_step(double dt) {
+template <class Real>
+void BasicSolver<Real>::split_step(double dt) {
     const bool x_first = sweep_order_[0] == 0.0;
     const double t_half = time_ + 0.5 * dt;
     sweep(x_first ? Axis::x : Axis::y, false, dt, t_half, now_, state_changed_outside_, mid_);
@@ -32,7 +33,8 @@ void Solver::split_step(double dt) {
     sweep_order_[0] = x_first ? 1.0 : 0.0;
 }
 
-void Solver::sweep(Axis axis, bool last, double dt, double t, GridState& in, bool whole_rows, GridState& out) {
+template <class Real>
+void BasicSolver<Real>::sweep(Axis axis, bool last, double dt, double t, State& in, bool whole_rows, State& out) {
     fill_ghosts(in.h, in.hu, in.hv, t);
     const bool x_sweep = axis == Axis::x;
     // The pump's source goes with the x sweep (a depth [m] added after its update).
@@ -40,70 +42,66 @@ void Solver::sweep(Axis axis, bool last, double dt, double t, GridState& in, boo
     find_active_columns(in.bound, whole_rows, in.h, in.hu, in.hv, plan.pump_depth != 0.0);
     balance_strips();
     long fixes = 0;
-    double worst = 0.0, amax = 0.0;
+    Real worst = 0, amax = 0;
 #pragma omp parallel reduction(+ : fixes) reduction(min : worst) reduction(max : amax)
     {
         padded::flush_subnormals();
         const int tid = omp_get_thread_num();
         const auto [j0, j1] = strip_rows(tid, omp_get_num_threads());
-        std::vector<double>& mem = work_[std::size_t(tid)];
-        if (mem.size() < Buffers<double>::kRows * stride_) mem.assign(Buffers<double>::kRows * stride_, 0.0);
+        Array& mem = work_[std::size_t(tid)];
+        if (mem.size() < Buffers<Real>::kRows * stride_) mem.assign(Buffers<Real>::kRows * stride_, Real(0));
         if (x_sweep)
             x_sweep_strip(plan, mem, j0, j1, fixes, worst, amax);
         else
             y_sweep_strip(plan, mem, j0, j1, fixes, worst, amax);
     }
-    if (x_sweep && track_transfer_)
-        for (std::size_t j = 0; j < transfer_[0].size(); ++j) {
-            transfer_[0][j] += dt * face_mass_[0][j];
-            transfer_[1][j] += dt * face_mass_[1][j];
-        }
+    if (x_sweep) add_transfer(dt);
     stats_.negative_depth_fixes += fixes;
-    stats_.min_depth_seen = std::min(stats_.min_depth_seen, worst);
+    stats_.min_depth_seen = std::min(stats_.min_depth_seen, double(worst));
     out.bound = active_;
     if (last) {
         // The pump cells' rate after the source (the update's rate saw them before it).
+        double rate = amax;
         for (std::size_t p : pump_cells_)
-            if (plan.pump_depth != 0.0) amax = std::max(amax, cell_rate(out.h[p], out.hu[p], out.hv[p]));
-        max_wave_rate_ = amax;
+            if (plan.pump_depth != 0.0) rate = std::max(rate, cell_rate(out.h[p], out.hu[p], out.hv[p]));
+        max_wave_rate_ = rate;
     }
 }
 
-void Solver::x_sweep_strip(const SweepPlan& p, std::vector<double>& mem, int j0, int j1, long& fixes, double& worst,
-                           double& amax) {
-    const Buffers<double> w(mem.data(), stride_);
-    const Sweep<double> s{
-        def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, grid_.nx};
-    const double friction_dt = p.last ? p.dt : 0.0;
-    GridState &in = *p.in, &out = *p.out;
+template <class Real>
+void BasicSolver<Real>::x_sweep_strip(const SweepPlan& p, Array& mem, int j0, int j1, long& fixes, Real& worst, Real& amax) {
+    const Buffers<Real> w(mem.data(), stride_);
+    const Sweep<Real> s = sweep_constants();
+    const Real dt = Real(p.dt), friction_dt = p.last ? dt : Real(0), pump_depth = Real(p.pump_depth);
+    State &in = *p.in, &out = *p.out;
     for (int j = j0; j < j1; ++j) {
-        auto row = [&](std::vector<double>& a) { return padded::row(a, j, stride_); };
+        auto row = [&](Array& a) { return padded::row(a, j, stride_); };
         const ColumnRange cols = active_[std::size_t(j)];
         // The output is exactly zero outside the columns computed now.
-        for (std::vector<double>* a : {&out.h, &out.hu, &out.hv}) padded::clear_outside(row(*a), out.bound[std::size_t(j)], cols);
+        for (Array* a : {&out.h, &out.hu, &out.hv}) padded::clear_outside(row(*a), out.bound[std::size_t(j)], cols);
         face_mass_[0][std::size_t(j)] = face_mass_[1][std::size_t(j)] = 0.0;
         if (cols.empty()) continue;
         auto run = [&]<bool kFriction, bool kRate>() {
-            return x_row<double, kFriction, kRate>(s, cols, p.dt, friction_dt, row(in.h), row(in.hu), row(in.hv), row(z_),
+            return x_row<Real, kFriction, kRate>(s, cols, dt, friction_dt, row(in.h), row(in.hu), row(in.hv), row(z_),
                                                    row(g_n2_), w, row(out.h), row(out.hu), row(out.hv), fixes, worst, amax);
         };
         const auto [west_mass, east_mass] = p.last ? run.template operator()<true, true>() : run.template operator()<false, false>();
         face_mass_[0][std::size_t(j)] = west_mass;
         face_mass_[1][std::size_t(j)] = east_mass;
         for (std::size_t k = pump_row_start_[std::size_t(j)]; p.pump_depth != 0.0 && k < pump_row_start_[std::size_t(j) + 1]; ++k)
-            out.h[pump_cells_[k]] += p.pump_depth;
+            out.h[pump_cells_[k]] += pump_depth;
     }
 }
 
-void Solver::y_sweep_strip(const SweepPlan& p, std::vector<double>& mem, int j0, int j1, long& fixes, double& worst,
-                           double& amax) {
-    const Buffers<double> w(mem.data(), stride_);
+template <class Real>
+void BasicSolver<Real>::y_sweep_strip(const SweepPlan& p, Array& mem, int j0, int j1, long& fixes, Real& worst, Real& amax) {
+    const Buffers<Real> w(mem.data(), stride_);
     const int nx = grid_.nx, ny = grid_.ny;
-    const Sweep<double> s{def_.gravity, def_.dry_depth, fv_.limiter_theta, fv_.order == 2 ? 1.0 : 0.0, 1.0 / grid_.dx, 1.0 / grid_.dy, nx};
-    const double friction_dt = p.last ? p.dt : 0.0;
-    const double hdt_y = 0.5 * p.dt / grid_.dy;
-    GridState &in = *p.in, &out = *p.out;
-    auto row = [&](std::vector<double>& a, int j) { return padded::row(a, j, stride_); };
+    const Sweep<Real> s = sweep_constants();
+    const Real dt = Real(p.dt), friction_dt = p.last ? dt : Real(0);
+    const Real hdt_y = Real(0.5 * p.dt / grid_.dy);
+    State &in = *p.in, &out = *p.out;
+    auto row = [&](Array& a, int j) { return padded::row(a, j, stride_); };
     auto active = [&](int j) { return j >= 0 && j < ny ? active_[std::size_t(j)] : ColumnRange{}; };
     // Row j's update needs the primitives of rows j-2 .. j+2, the slopes and predictor of
     // rows j-1 .. j+1 and the faces below rows j and j+1, over its columns; each ring row
@@ -132,10 +130,10 @@ void Solver::y_sweep_strip(const SweepPlan& p, std::vector<double>& mem, int j0,
         slopes(j + 1);
         faces(j + 1);
         const ColumnRange cols = active(j);
-        for (std::vector<double>* a : {&out.h, &out.hu, &out.hv}) padded::clear_outside(row(*a, j), out.bound[std::size_t(j)], cols);
+        for (Array* a : {&out.h, &out.hu, &out.hv}) padded::clear_outside(row(*a, j), out.bound[std::size_t(j)], cols);
         if (cols.empty()) continue;
         auto update = [&]<bool kLast>() {
-            y_update_row<double, kLast, kLast>(s, cols, p.dt, friction_dt, row(in.h, j), row(in.hu, j), row(in.hv, j), row(g_n2_, j), w,
+            y_update_row<Real, kLast, kLast>(s, cols, dt, friction_dt, row(in.h, j), row(in.hu, j), row(in.hv, j), row(g_n2_, j), w,
                                                j + kGhost, row(out.h, j), row(out.hu, j), row(out.hv, j), fixes, worst, amax);
         };
         if (p.last)
@@ -144,5 +142,11 @@ void Solver::y_sweep_strip(const SweepPlan& p, std::vector<double>& mem, int j0,
             update.template operator()<false>();
     }
 }
+
+// Both precisions; the sweeps are instantiated with it (the members of solver.hpp are
+// defined in solver.cpp, split_step.cpp, heun_stage.cpp, solver_sides.cpp and
+// active_columns.cpp, each instantiating its own).
+template void BasicSolver<double>::split_step(double);
+template void BasicSolver<float>::split_step(double);
 
 }  // namespace flotsam::hydro
