@@ -70,8 +70,8 @@ struct RunResult {
 
 // The bytes a run may write (its frames, gauges and boundary outline, uncompressed)
 // without --allow-large-run: more than any study here writes (a 1 cm flow with frames
-// every 0.1 s over 420 s: 2e10), far below a run that fills a disk.
-inline constexpr double max_output_bytes = 1e11;
+// every second over 420 s: 2e9), far below a run that fills a disk.
+inline constexpr double max_output_bytes = 1e10;
 
 // A run of `run.scheme` on the physics and boundaries of `physics`.
 RunResult run_hydro(const RunDef& run, const PhysicsDef& physics);
