@@ -1,5 +1,5 @@
 // Columns [begin, end) of one grid row, in interior indices (ghosts are -2, -1, nx, nx + 1):
-// where the finite-volume solver (solver.cpp) and its front treatment (front.cpp) work.
+// where the finite-volume solver (solver.hpp) and its front treatment (front.cpp) work.
 #pragma once
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-// The row kernels of the split step (solver.cpp drives them): dimensionally split
+// The row kernels of the split step (split_step.cpp drives them): dimensionally split
 // MUSCL-Hancock, one sweep along x and one along y per step, their order alternating
 // from step to step (Strang's second order over each pair of steps).
 //
@@ -54,13 +54,71 @@ inline Real directional_wave_rate(Real h, Real hu, Real hv, Real g, Real dry_dep
     return std::max((std::abs(hu) * inv + c) * idx, (std::abs(hv) * inv + c) * idy);
 }
 
+// The cells of one 512-bit vector.
+template <class Real>
+inline constexpr int kVector = 64 / int(sizeof(Real));
+
+// Calls body(c) for every c0 <= c < c1, a vector's cells at a time, the last block moved
+// back to end at c1 (overlapping the block before it) where a scalar remainder would be:
+// remainders took a tenth to a quarter of the row kernels' time. So body(c) may run twice
+// for a cell: it must write only what it does not read. With `lo` and `hi`, body(c)
+// returns two values whose least and greatest over the cells go into them.
+template <class Real, class Body>
+[[gnu::always_inline]] inline void vector_blocks(int c0, int c1, Body&& body) {
+    constexpr int w = kVector<Real>;
+    if (c1 - c0 < w) {
+#pragma omp simd
+        for (int c = c0; c < c1; ++c) body(c);
+        return;
+    }
+    for (int b = c0; b < c1; b += w) {
+        const int start = std::min(b, c1 - w);
+#pragma omp simd
+        for (int k = 0; k < w; ++k) body(start + k);
+    }
+}
+template <class Real, class Body>
+[[gnu::always_inline]] inline void vector_blocks(int c0, int c1, Real& lo, Real& hi, Body&& body) {
+    constexpr int w = kVector<Real>;
+    Real a = lo, z = hi;
+    if (c1 - c0 < w) {
+#pragma omp simd reduction(min : a) reduction(max : z)
+        for (int c = c0; c < c1; ++c) {
+            const std::pair<Real, Real> v = body(c);
+            a = std::min(a, v.first);
+            z = std::max(z, v.second);
+        }
+    } else {
+        for (int b = c0; b < c1; b += w) {
+            const int start = std::min(b, c1 - w);
+#pragma omp simd reduction(min : a) reduction(max : z)
+            for (int k = 0; k < w; ++k) {
+                const std::pair<Real, Real> v = body(start + k);
+                a = std::min(a, v.first);
+                z = std::max(z, v.second);
+            }
+        }
+    }
+    lo = a;
+    hi = z;
+}
+
+// The negative depths an update clamped in the cells [c0, c1) (flags 1 or 0, written by
+// update_cell): counted only where the update's least depth was below zero (rare).
+template <class Real>
+long count_clamped(int c0, int c1, const Real* negative, Real worst) {
+    long n = 0;
+    for (int c = c0; worst < Real(0) && c < c1; ++c) n += negative[c] != Real(0) ? 1 : 0;
+    return n;
+}
+
 // Row buffers of one thread for a sweep, each row `stride` Reals laid out like a grid row.
 template <class Real>
 class Buffers {
 public:
     static constexpr int kPrimRows = 5, kSlopeRows = 3, kFaceRows = 2;
     static constexpr int kSlopeVars = 7;  // slopes of eta, h, un, ut; predictor dh, dun, dut
-    static constexpr int kXRows = 14;     // the x sweep's scratch (x_work)
+    static constexpr int kXRows = 15;     // the x sweep's scratch (x_work), and the clamped depths of either sweep
     static constexpr std::size_t kRows = 3 * kPrimRows + kSlopeVars * kSlopeRows + 4 * kFaceRows + kXRows;
     Buffers(Real* data, std::size_t stride) : data_(data), stride_(stride) {}
     // Rings of the y sweep indexed by padded row r: primitives (0 eta, 1 u, 2 v); slopes
@@ -74,6 +132,8 @@ public:
     // 7..9 predictor dh, du, dv; 10..13 face fluxes (mass, normal left, normal right,
     // tangential).
     Real* x_work(int k) const { return row(3 * kPrimRows + kSlopeVars * kSlopeRows + 4 * kFaceRows + k); }
+    // 1 where the row's update clamped a negative depth (update_cell), either sweep.
+    Real* clamped() const { return x_work(14); }
 
 private:
     Real* row(int k) const { return data_ + std::size_t(k) * stride_; }
@@ -106,18 +166,19 @@ template <class Real>
 }
 
 // The update of one cell from its rates: depth and the normal and tangential discharges
-// over dt, a round-off negative depth counted and removed, with kFriction the implicit
-// friction of the whole step (friction_dt), and no momentum where no water (+0, so that
-// dry land stays skippable; arithmetic, not a select, so that the loop vectorises).
+// over dt, a round-off negative depth flagged (clamped = 1) and removed, with kFriction
+// the implicit friction of the whole step (friction_dt), and no momentum where no water
+// (+0, so that dry land stays skippable; arithmetic, not a select, so that the loop
+// vectorises). Returns the depth before the clamp.
 template <class Real, bool kFriction>
-[[gnu::always_inline]] inline void update_cell(Real dt, Real h, Real qn, Real qt, Real rate_h, Real rate_qn, Real rate_qt, Real g_n2, Real friction_dt,
-                        Real dry, Real& h_out, Real& qn_out, Real& qt_out, long& fixes, Real& worst) {
+[[gnu::always_inline]] inline Real update_cell(Real dt, Real h, Real qn, Real qt, Real rate_h, Real rate_qn, Real rate_qt, Real g_n2,
+                                               Real friction_dt, Real dry, Real& h_out, Real& qn_out, Real& qt_out, Real& clamped) {
     Real hn = h + dt * rate_h;
     Real a = qn + dt * rate_qn;
     Real b = qt + dt * rate_qt;
+    const Real unclamped = hn;
     const bool negative = hn < Real(0);
-    worst = std::min(worst, hn);
-    fixes += negative ? 1 : 0;
+    clamped = negative ? Real(1) : Real(0);
     hn = negative ? Real(0) : hn;
     if constexpr (kFriction) {
         const Real r = friction_factor(hn, a, b, g_n2, friction_dt, dry);
@@ -128,6 +189,7 @@ template <class Real, bool kFriction>
     h_out = hn;
     qn_out = a * holds_water + Real(0);
     qt_out = b * holds_water + Real(0);
+    return unclamped;
 }
 
 // The x sweep of one row over its columns `cols` (nonempty), from (h, hu, hv) to
@@ -155,21 +217,19 @@ template <class Real, bool kFriction, bool kRate>
     Real* __restrict fr = w.x_work(12);
     Real* __restrict ft = w.x_work(13);
     const int c0 = cols.begin + kGhost, c1 = cols.end + kGhost;  // cells; faces c0-1 .. c1-1
-#pragma omp simd
-    for (int c = c0 - 2; c < c1 + 2; ++c) {
+    vector_blocks<Real>(c0 - 2, c1 + 2, [&](int c) __attribute__((always_inline)) {
         e[c] = h[c] + z[c];
         const Real inv = inverse_depth(h[c], s.dry);
         u[c] = hu[c] * inv;
         v[c] = hv[c] * inv;
-    }
+    });
     const Real hdt = Real(0.5) * dt * s.idx;
-#pragma omp simd
-    for (int c = c0 - 1; c < c1 + 1; ++c)
+    vector_blocks<Real>(c0 - 1, c1 + 1, [&](int c) __attribute__((always_inline)) {
         slopes_and_predictor(s, hdt, h[c - 1], e[c - 1], u[c - 1], v[c - 1], h[c], e[c], u[c], v[c], h[c + 1], e[c + 1], u[c + 1],
                              v[c + 1], se[c], sh[c], su[c], sv[c], ph[c], pu[c], pv[c]);
+    });
     // Face c+1/2 between padded columns c and c+1, at the half step.
-#pragma omp simd
-    for (int c = c0 - 1; c < c1; ++c) {
+    vector_blocks<Real>(c0 - 1, c1, [&](int c) __attribute__((always_inline)) {
         FaceFluxOf<Real> f;
         const Real hl = h[c] + ph[c], hr = h[c + 1] + ph[c + 1];
         face_flux(e[c] + ph[c] + Real(0.5) * se[c], hl + Real(0.5) * sh[c], u[c] + pu[c] + Real(0.5) * su[c],
@@ -179,21 +239,20 @@ template <class Real, bool kFriction, bool kRate>
         fl[c] = f.normal_L;
         fr[c] = f.normal_R;
         ft[c] = f.tangential;
-    }
-    long fixes = 0;
+    });
+    Real* __restrict clamped = w.clamped();
     Real worst = 0, rate = 0;
-#pragma omp simd reduction(+ : fixes) reduction(min : worst) reduction(max : rate)
-    for (int c = c0; c < c1; ++c) {
+    vector_blocks<Real>(c0, c1, worst, rate, [&](int c) __attribute__((always_inline)) {
         const Real rate_h = -(fm[c] - fm[c - 1]) * s.idx;
         // Centred bed term at the half step: -g h (z_e - z_w)/dx, z_e - z_w = s_eta - s_h.
         const Real rate_qx = -(fl[c] - fr[c - 1]) * s.idx - s.g * (h[c] + ph[c]) * (se[c] - sh[c]) * s.idx;
         const Real rate_qy = -(ft[c] - ft[c - 1]) * s.idx;
-        update_cell<Real, kFriction>(dt, h[c], hu[c], hv[c], rate_h, rate_qx, rate_qy, g_n2[c], friction_dt, s.dry, h_out[c],
-                                     hu_out[c], hv_out[c], fixes, worst);
-        if constexpr (kRate)
-            rate = std::max(rate, directional_wave_rate(h_out[c], hu_out[c], hv_out[c], s.g, s.dry, s.idx, s.idy));
-    }
-    fixes_total += fixes;
+        const Real depth = update_cell<Real, kFriction>(dt, h[c], hu[c], hv[c], rate_h, rate_qx, rate_qy, g_n2[c], friction_dt, s.dry,
+                                                        h_out[c], hu_out[c], hv_out[c], clamped[c]);
+        const Real cell_rate = kRate ? directional_wave_rate(h_out[c], hu_out[c], hv_out[c], s.g, s.dry, s.idx, s.idy) : Real(0);
+        return std::pair<Real, Real>{depth, cell_rate};
+    });
+    fixes_total += count_clamped(c0, c1, clamped, worst);
     worst_total = std::min(worst_total, worst);
     rate_max = std::max(rate_max, rate);
     return {cols.begin == 0 ? fm[kGhost - 1] : Real(0), cols.end == s.nx ? fm[s.nx + kGhost - 1] : Real(0)};
@@ -206,13 +265,12 @@ template <class Real>
     Real* __restrict e = w.prim(r, 0);
     Real* __restrict u = w.prim(r, 1);
     Real* __restrict v = w.prim(r, 2);
-#pragma omp simd
-    for (int c = c0; c < c1; ++c) {
+    vector_blocks<Real>(c0, c1, [&](int c) __attribute__((always_inline)) {
         e[c] = h[c] + z[c];
         const Real inv = inverse_depth(h[c], s.dry);
         u[c] = hu[c] * inv;
         v[c] = hv[c] * inv;
-    }
+    });
 }
 
 // Slopes along y and the predictor of padded row r from the rows below (hm), at (h0)
@@ -230,10 +288,10 @@ template <class Real>
     Real* __restrict ph = w.slope(r, 4);
     Real* __restrict pv = w.slope(r, 5);
     Real* __restrict pu = w.slope(r, 6);
-#pragma omp simd
-    for (int c = c0; c < c1; ++c)
+    vector_blocks<Real>(c0, c1, [&](int c) __attribute__((always_inline)) {
         slopes_and_predictor(s, hdt, hm[c], em[c], vm[c], um[c], h0[c], e0[c], v0[c], u0[c], hp[c], ep[c], vp[c], up[c], se[c], sh[c],
                              sv[c], su[c], ph[c], pv[c], pu[c]);
+    });
 }
 
 // Fluxes through the y faces between padded rows r-1 (depth hm) and r (depth h0), at the
@@ -252,8 +310,7 @@ template <class Real>
     Real* __restrict lo = w.face(r, 1);
     Real* __restrict hi = w.face(r, 2);
     Real* __restrict tan = w.face(r, 3);
-#pragma omp simd
-    for (int c = c0; c < c1; ++c) {
+    vector_blocks<Real>(c0, c1, [&](int c) __attribute__((always_inline)) {
         FaceFluxOf<Real> f;
         face_flux(em[c] + phm[c] + Real(0.5) * sem[c], hm[c] + phm[c] + Real(0.5) * shm[c], vm[c] + pvm[c] + Real(0.5) * svm[c],
                   um[c] + pum[c] + Real(0.5) * sum[c], e0[c] + ph0[c] - Real(0.5) * se0[c], h0[c] + ph0[c] - Real(0.5) * sh0[c],
@@ -262,7 +319,7 @@ template <class Real>
         lo[c] = f.normal_L;
         hi[c] = f.normal_R;
         tan[c] = f.tangential;
-    }
+    });
 }
 
 // The y sweep's update of padded row r over its columns `cols` (interior; nonempty): from
@@ -274,19 +331,19 @@ template <class Real, bool kFriction, bool kRate>
     const Real *se = w.slope(r, 0), *sh = w.slope(r, 1), *ph = w.slope(r, 4);
     const Real *fm = w.face(r, 0), *fm_n = w.face(r + 1, 0), *flo_n = w.face(r + 1, 1), *fhi = w.face(r, 2);
     const Real *ft = w.face(r, 3), *ft_n = w.face(r + 1, 3);
-    long fixes = 0;
+    Real* __restrict clamped = w.clamped();
     Real worst = 0, rate = 0;
-#pragma omp simd reduction(+ : fixes) reduction(min : worst) reduction(max : rate)
-    for (int c = cols.begin + kGhost; c < cols.end + kGhost; ++c) {
+    const int c0 = cols.begin + kGhost, c1 = cols.end + kGhost;
+    vector_blocks<Real>(c0, c1, worst, rate, [&](int c) __attribute__((always_inline)) {
         const Real rate_h = -(fm_n[c] - fm[c]) * s.idy;
         const Real rate_qy = -(flo_n[c] - fhi[c]) * s.idy - s.g * (h[c] + ph[c]) * (se[c] - sh[c]) * s.idy;
         const Real rate_qx = -(ft_n[c] - ft[c]) * s.idy;
-        update_cell<Real, kFriction>(dt, h[c], hv[c], hu[c], rate_h, rate_qy, rate_qx, g_n2[c], friction_dt, s.dry, h_out[c],
-                                     hv_out[c], hu_out[c], fixes, worst);
-        if constexpr (kRate)
-            rate = std::max(rate, directional_wave_rate(h_out[c], hu_out[c], hv_out[c], s.g, s.dry, s.idx, s.idy));
-    }
-    fixes_total += fixes;
+        const Real depth = update_cell<Real, kFriction>(dt, h[c], hv[c], hu[c], rate_h, rate_qy, rate_qx, g_n2[c], friction_dt, s.dry,
+                                                        h_out[c], hv_out[c], hu_out[c], clamped[c]);
+        const Real cell_rate = kRate ? directional_wave_rate(h_out[c], hu_out[c], hv_out[c], s.g, s.dry, s.idx, s.idy) : Real(0);
+        return std::pair<Real, Real>{depth, cell_rate};
+    });
+    fixes_total += count_clamped(c0, c1, clamped, worst);
     worst_total = std::min(worst_total, worst);
     rate_max = std::max(rate_max, rate);
 }

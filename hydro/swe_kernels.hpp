@@ -1,5 +1,6 @@
 // Point-wise kernels of the shallow-water scheme: no loops, no storage, so each can be
-// read and tested alone. The loops that drive them live in solver.cpp.
+// read and tested alone. The loops that drive them live in split_rows.hpp (the split
+// step) and swe_rows.hpp (Heun's stages).
 //
 // Equations (docs/hydro.md, "Equations"), with h depth, q = (hu, hv) discharge, z bed,
 // eta = h + z:
@@ -166,8 +167,11 @@ template <class Real>
     // At rest it is p (well balanced). Without it, steps above dt (|u| + c)/dx = 0.7 along
     // one direction grow round-off in a cell beside a building. Water that would rise
     // above the dry side's ground (a shore it runs up) meets no wall.
+    // A wall needs one side wet and the other dry, so the full-depth speed sqrt(g h) of
+    // the wet side is the only one either wall test reads: one root, not two (where no
+    // wall can be, the other side's speed goes into a term weighted 0).
     const Real pfL = Real(0.5) * g * hL * hL, pfR = Real(0.5) * g * hR * hR;
-    const Real cfL = std::sqrt(g * hL), cfR = std::sqrt(g * hR);
+    const Real cfL = std::sqrt(g * (hR > dry_depth ? hR : hL)), cfR = cfL;
     const Real starL = std::max(Real(0), cfL + Real(0.5) * unL), starR = std::max(Real(0), cfR - Real(0.5) * unR);
     const Real wallL = (hL > dry_depth) && !(hR > dry_depth) && std::max(hL, starL * starL * (Real(1) / g)) + zL < zR ? Real(1) : Real(0);
     const Real wallR = (hR > dry_depth) && !(hL > dry_depth) && std::max(hR, starR * starR * (Real(1) / g)) + zR < zL ? Real(1) : Real(0);

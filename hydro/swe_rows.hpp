@@ -1,8 +1,7 @@
-// The row kernels of the finite-volume stage (solver.cpp drives them): each computes one
+// The row kernels of Heun's stage (heun_stage.cpp drives them): each computes one
 // quantity along one grid row, from row pointers at padded column 0, over the interior
-// columns it is given. They are templates on the arithmetic type only so that a
-// benchmark (bench/precision_bench.cpp) can time the same code in float32; the
-// solver instantiates them in double.
+// columns it is given. Templates on the arithmetic type, the solver's state type
+// (BasicSolver<float> or <double>).
 #pragma once
 #include <algorithm>
 #include <cstddef>
