@@ -49,9 +49,9 @@ using rows::Sweep;
 // The step's CFL rate of a cell for the split step: the larger of the two directions'.
 template <class Real>
 inline Real directional_wave_rate(Real h, Real hu, Real hv, Real g, Real dry_depth, Real idx, Real idy) {
-    const Real c = std::sqrt(g * h);
+    const Real c = sqrt(g * h);
     const Real inv = inverse_depth(h, dry_depth);
-    return std::max((std::abs(hu) * inv + c) * idx, (std::abs(hv) * inv + c) * idy);
+    return max((abs(hu) * inv + c) * idx, (abs(hv) * inv + c) * idy);
 }
 
 // The cells of one 512-bit vector.
@@ -72,7 +72,7 @@ template <class Real, class Body>
         return;
     }
     for (int b = c0; b < c1; b += w) {
-        const int start = std::min(b, c1 - w);
+        const int start = min(b, c1 - w);
 #pragma omp simd
         for (int k = 0; k < w; ++k) body(start + k);
     }
@@ -85,17 +85,17 @@ template <class Real, class Body>
 #pragma omp simd reduction(min : a) reduction(max : z)
         for (int c = c0; c < c1; ++c) {
             const std::pair<Real, Real> v = body(c);
-            a = std::min(a, v.first);
-            z = std::max(z, v.second);
+            a = min(a, v.first);
+            z = max(z, v.second);
         }
     } else {
         for (int b = c0; b < c1; b += w) {
-            const int start = std::min(b, c1 - w);
+            const int start = min(b, c1 - w);
 #pragma omp simd reduction(min : a) reduction(max : z)
             for (int k = 0; k < w; ++k) {
                 const std::pair<Real, Real> v = body(start + k);
-                a = std::min(a, v.first);
-                z = std::max(z, v.second);
+                a = min(a, v.first);
+                z = max(z, v.second);
             }
         }
     }
@@ -159,7 +159,7 @@ template <class Real>
     const Real pun = -hdt * (un0 * sun + s.g * se);
     const Real put = -hdt * (un0 * sut);
     // Both predicted face depths h + dh -/+ s_h/2 stay >= 0, or the cell is not predicted.
-    const Real keep = h0 + ph - Real(0.5) * std::abs(sh) >= Real(0) ? Real(1) : Real(0);
+    const Real keep = h0 + ph - Real(0.5) * abs(sh) >= Real(0) ? Real(1) : Real(0);
     dh = keep * ph;
     dun = keep * pun;
     dut = keep * put;
@@ -253,8 +253,8 @@ template <class Real, bool kFriction, bool kRate>
         return std::pair<Real, Real>{depth, cell_rate};
     });
     fixes_total += count_clamped(c0, c1, clamped, worst);
-    worst_total = std::min(worst_total, worst);
-    rate_max = std::max(rate_max, rate);
+    worst_total = min(worst_total, worst);
+    rate_max = max(rate_max, rate);
     return {cols.begin == 0 ? fm[kGhost - 1] : Real(0), cols.end == s.nx ? fm[s.nx + kGhost - 1] : Real(0)};
 }
 
@@ -344,8 +344,8 @@ template <class Real, bool kFriction, bool kRate>
         return std::pair<Real, Real>{depth, cell_rate};
     });
     fixes_total += count_clamped(c0, c1, clamped, worst);
-    worst_total = std::min(worst_total, worst);
-    rate_max = std::max(rate_max, rate);
+    worst_total = min(worst_total, worst);
+    rate_max = max(rate_max, rate);
 }
 
 }  // namespace flotsam::hydro::split

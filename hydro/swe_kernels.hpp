@@ -45,6 +45,14 @@
 
 namespace flotsam::hydro {
 
+// sqrt, abs, min and max unqualified in the kernels: std's for float and double, and a
+// counting number type's own, found in its namespace (bench/hydro_limit.cpp counts the
+// operations per cell).
+using std::abs;
+using std::max;
+using std::min;
+using std::sqrt;
+
 // Whether a cell keeps the limited slopes s_eta, s_h of its level and depth along a
 // direction (depth h, level eta = h + z; m before, 0 the cell, p after): all three wetter
 // than the dry tolerance, and either the water covers the ground between them (at each of
@@ -65,11 +73,11 @@ template <class Real>
 inline bool keeps_slope(Real hm, Real eta_m, Real h0, Real eta_0, Real hp, Real eta_p, Real s_eta, Real s_h, Real dry) {
     const Real zm = eta_m - hm, z0 = eta_0 - h0, zp = eta_p - hp;
     const bool wet = (hm > dry) & (h0 > dry) & (hp > dry);
-    const bool covered = (std::min(eta_m, eta_0) - std::max(zm, z0) > dry) & (std::min(eta_p, eta_0) - std::max(zp, z0) > dry);
+    const bool covered = (min(eta_m, eta_0) - max(zm, z0) > dry) & (min(eta_p, eta_0) - max(zp, z0) > dry);
     const Real rise = Real(0.5) * (s_eta - s_h);  // of the implied bed, from the centre to the + face
     const Real face_m = z0 - rise, face_p = z0 + rise;
-    const bool within = (face_m >= std::min(zm, z0) - dry) & (face_m <= std::max(zm, z0) + dry) &
-                        (face_p >= std::min(zp, z0) - dry) & (face_p <= std::max(zp, z0) + dry);
+    const bool within = (face_m >= min(zm, z0) - dry) & (face_m <= max(zm, z0) + dry) &
+                        (face_p >= min(zp, z0) - dry) & (face_p <= max(zp, z0) + dry);
     return wet & (covered | within);
 }
 
@@ -78,8 +86,8 @@ inline bool keeps_slope(Real hm, Real eta_m, Real h0, Real eta_0, Real hp, Real 
 template <class Real>
 inline Real limited_slope(Real dl, Real dr, Real theta) {
     const Real c = Real(0.5) * (dl + dr);
-    const Real lo = std::min(std::min(theta * dl, c), theta * dr);
-    const Real hi = std::max(std::max(theta * dl, c), theta * dr);
+    const Real lo = min(min(theta * dl, c), theta * dr);
+    const Real hi = max(max(theta * dl, c), theta * dr);
     // All three share a sign: take the one closest to zero; otherwise zero.
     return lo > Real(0) ? lo : (hi < Real(0) ? hi : Real(0));
 }
@@ -88,7 +96,7 @@ inline Real limited_slope(Real dl, Real dr, Real theta) {
 // is 1/h for h >= eps and 2 h / (h^2 + eps^2) -> 0 as h -> 0, never above 1/eps.
 template <class Real>
 inline Real inverse_depth(Real h, Real eps) {
-    return Real(2) * h / (h * h + std::max(h * h, eps * eps));
+    return Real(2) * h / (h * h + max(h * h, eps * eps));
 }
 
 // Velocity from discharge: q/h, desingularised below the dry tolerance (inverse_depth),
@@ -102,9 +110,9 @@ inline Real velocity(Real h, Real q, Real dry_depth) {
 // stable step is at most cfl over its largest value.
 template <class Real>
 inline Real wave_rate(Real h, Real hu, Real hv, Real g, Real dry_depth, Real idx, Real idy) {
-    const Real c = std::sqrt(g * h);
+    const Real c = sqrt(g * h);
     const Real inv = inverse_depth(h, dry_depth);
-    return (std::abs(hu) * inv + c) * idx + (std::abs(hv) * inv + c) * idy;
+    return (abs(hu) * inv + c) * idx + (abs(hv) * inv + c) * idy;
 }
 
 // Numerical flux across one face, normal direction n, tangential t. Inputs are face
@@ -125,12 +133,12 @@ template <class Real>
 [[gnu::always_inline]] inline Real face_flux(Real etaL, Real hL, Real unL, Real utL, Real etaR, Real hR, Real unR, Real utR, Real g, Real dry_depth,
                       FaceFluxOf<Real>& f) {
     const Real zL = etaL - hL, zR = etaR - hR;
-    const Real zs = std::max(zL, zR);
-    const Real hsL = std::max(Real(0), etaL - zs);
-    const Real hsR = std::max(Real(0), etaR - zs);
-    const Real cL = std::sqrt(g * hsL), cR = std::sqrt(g * hsR);
-    const Real sL = std::min(std::min(unL - cL, unR - cR), Real(0));
-    const Real sR = std::max(std::max(unL + cL, unR + cR), Real(0));
+    const Real zs = max(zL, zR);
+    const Real hsL = max(Real(0), etaL - zs);
+    const Real hsR = max(Real(0), etaR - zs);
+    const Real cL = sqrt(g * hsL), cR = sqrt(g * hsR);
+    const Real sL = min(min(unL - cL, unR - cR), Real(0));
+    const Real sR = max(max(unL + cL, unR + cR), Real(0));
     const Real qL = hsL * unL, qR = hsR * unR;
     const Real pL = Real(0.5) * g * hsL * hsL, pR = Real(0.5) * g * hsR * hsR;
     const Real span = sR - sL;
@@ -149,7 +157,7 @@ template <class Real>
     const bool dryL = hsL <= dry_depth, dryR = hsR <= dry_depth;
     const Real s = dryR ? Real(1) : Real(-1);
     const Real un_wet = dryR ? unL : unR, c_wet = dryR ? cL : cR, q_wet = dryR ? qL : qR, p_wet = dryR ? pL : pR;
-    const Real cs = std::max(Real(0), (s * un_wet + Real(2) * c_wet) * Real(1.0 / 3.0)), hs = cs * cs * (Real(1) / g);
+    const Real cs = max(Real(0), (s * un_wet + Real(2) * c_wet) * Real(1.0 / 3.0)), hs = cs * cs * (Real(1) / g);
     const bool away = s * un_wet >= c_wet;  // supercritical toward the dry side: the wet side's own flux
     const Real dry_mass = away ? q_wet : s * hs * cs;
     const Real dry_normal = away ? q_wet * un_wet + p_wet : Real(1.5) * hs * cs * cs;
@@ -171,19 +179,19 @@ template <class Real>
     // the wet side is the only one either wall test reads: one root, not two (where no
     // wall can be, the other side's speed goes into a term weighted 0).
     const Real pfL = Real(0.5) * g * hL * hL, pfR = Real(0.5) * g * hR * hR;
-    const Real cfL = std::sqrt(g * (hR > dry_depth ? hR : hL)), cfR = cfL;
-    const Real starL = std::max(Real(0), cfL + Real(0.5) * unL), starR = std::max(Real(0), cfR - Real(0.5) * unR);
-    const Real wallL = (hL > dry_depth) && !(hR > dry_depth) && std::max(hL, starL * starL * (Real(1) / g)) + zL < zR ? Real(1) : Real(0);
-    const Real wallR = (hR > dry_depth) && !(hL > dry_depth) && std::max(hR, starR * starR * (Real(1) / g)) + zR < zL ? Real(1) : Real(0);
+    const Real cfL = sqrt(g * (hR > dry_depth ? hR : hL)), cfR = cfL;
+    const Real starL = max(Real(0), cfL + Real(0.5) * unL), starR = max(Real(0), cfR - Real(0.5) * unR);
+    const Real wallL = (hL > dry_depth) && !(hR > dry_depth) && max(hL, starL * starL * (Real(1) / g)) + zL < zR ? Real(1) : Real(0);
+    const Real wallR = (hR > dry_depth) && !(hL > dry_depth) && max(hR, starR * starR * (Real(1) / g)) + zR < zL ? Real(1) : Real(0);
     const Real qfL = hL * unL, qfR = hR * unR;
-    const Real reactL = std::max(-pfL, qfL * unL + (std::abs(unL) + cfL) * qfL);
-    const Real reactR = std::max(-pfR, qfR * unR - (std::abs(unR) + cfR) * qfR);
+    const Real reactL = max(-pfL, qfL * unL + (abs(unL) + cfL) * qfL);
+    const Real reactR = max(-pfR, qfR * unR - (abs(unR) + cfR) * qfR);
     // Weights 0 or 1, not a select after the roots nor a bool converted: either keeps GCC
     // 12 from vectorising the face loops.
     f.normal_L = normal + (pfL - pL) + reactL * wallL;
     f.normal_R = normal + (pfR - pR) + reactR * wallR;
     f.tangential = mass * (mass > Real(0) ? utL : utR);
-    return std::max(-sL, sR);
+    return max(-sL, sR);
 }
 
 // h^(-1/3) for h > 0 without division or libm (libm's cbrt does not vectorise): a float
@@ -210,12 +218,12 @@ inline Real inverse_cube_root(Real h) {
 // their (desingularised) momentum instead of losing all of it, and a stays finite.
 template <class Real>
 inline Real friction_factor(Real h, Real q1, Real q2, Real g_n2, Real dt, Real dry_depth) {
-    const Real hs = std::max(h, dry_depth);
-    const Real qmag = std::sqrt(q1 * q1 + q2 * q2);
+    const Real hs = max(h, dry_depth);
+    const Real qmag = sqrt(q1 * q1 + q2 * q2);
     const Real y = inverse_cube_root(hs), y3 = y * y * y;
     const Real a = dt * g_n2 * (y3 * y3 * y);  // dt g n^2 / h^(7/3)
     // |q| = (-1 + sqrt(1 + 4 a |q*|)) / (2a), written without cancellation.
-    return Real(2) / (Real(1) + std::sqrt(Real(1) + Real(4) * a * qmag));
+    return Real(2) / (Real(1) + sqrt(Real(1) + Real(4) * a * qmag));
 }
 
 // Explicit Manning friction, kept only for the stability study: q_new = q* - e q_old with
@@ -224,7 +232,7 @@ inline Real friction_factor(Real h, Real q1, Real q2, Real g_n2, Real dt, Real d
 inline double explicit_friction_rate(double h, double q1, double q2, double g_n2, double dt, double dry_depth) {
     const double hs = h > dry_depth ? h : 1.0;
     const double y = inverse_cube_root(hs), y3 = y * y * y;
-    const double e = dt * g_n2 * std::sqrt(q1 * q1 + q2 * q2) * (y3 * y3 * y);
+    const double e = dt * g_n2 * sqrt(q1 * q1 + q2 * q2) * (y3 * y3 * y);
     return h > dry_depth ? e : 0.0;
 }
 

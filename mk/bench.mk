@@ -4,13 +4,15 @@
 
 ##@ Benchmarks
 # Passive OpenMP waits unless set: on a shared machine a spinning thread burns the core
-# that the thread it waits for needs. Then the row kernels in float32 against double at
-# 1 cm (what float state would gain), and the flows against a fixed earlier build, both at
-# once (pipelines/speed_ratio.py builds it under $(RUNS) once; 2 cm over 0-150 s and 1 cm
-# over 0-40 s).
-## bench-hydro   hydro steps per second, float32 against double, the speed ratio (docs/studies/hydro_speed_levers.md)
+# that the thread it waits for needs. Then the fraction of the machine's limit the flows
+# reach at 2 and 1 cm (work per cell-update counted from the kernels, a triad, the
+# vector units' rates), the row kernels in float32 against double at 1 cm, and the flows
+# against a fixed earlier build, both at once (pipelines/speed_ratio.py builds it under
+# $(RUNS) once; 2 cm over 0-150 s and 1 cm over 0-40 s).
+## bench-hydro   hydro steps per second, the fraction of the machine's limit, float32 against double, the speed ratio (docs/studies/hydro_speed_levers.md)
 bench-hydro: build
 	OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive} $(BUILD)/hydro_bench $(if $(REAL_DEM),--dem $(REAL_DEM))
+	$(BUILD)/hydro_limit $(if $(REAL_DEM),--dem $(REAL_DEM))
 	$(BUILD)/precision_bench $(if $(REAL_DEM),--dem $(REAL_DEM))
 	$(PYTHON) -m pipelines.speed_ratio --flotsam $(FLOTSAM) --dem $(REAL_DEM) --runs $(RUNS) --csv $(RUNS)/speed-ratio.csv
 

@@ -6,8 +6,8 @@
 #
 # Real layout, pump forcing, 0-150 s, nested 4:1 west of x = -1.2 m (the scene's
 # recommended grids), one thread per flow, run one after another. Each lever is one
-# flow at 2 cm; the reference is the 1 cm flow with Heun steps and plain fronts (about
-# 40 processor minutes). BASELINE_FLOW, a 2 cm flow of another build made with the same
+# flow at 2 cm (and the 1 cm ensemble's setting at 1 cm); the reference is the 1 cm flow
+# with Heun steps, plain fronts and float64 state (about 40 processor minutes). BASELINE_FLOW, a 2 cm flow of another build made with the same
 # forcing (pipelines/speed_ratio.py leaves one), joins the error tables. Writes
 # RUNS_DIR/levers/{cost.txt,flow_error.csv,debris_error.csv}.
 set -euo pipefail
@@ -24,13 +24,19 @@ flow() {  # name resolution options...
   /usr/bin/time -f "$name %U %S" -a -o "$out/cost.txt" "$flotsam" hydro --scene "$out/real-$res.nc" --west pump \
     --duration 150 --threads 1 --quiet --out "$out/$name.nc" "$@"
 }
-flow reference-1cm 0.01 --time-stepping heun
-flow split 0.02
-flow split-dry1e-9 0.02 --dry-depth 1e-9
-flow split-cfl0.9 0.02 --cfl 0.9
-flow heun-plain 0.02 --time-stepping heun
-flow heun-tracked 0.02 --time-stepping heun --fronts tracked --dry-depth 1e-9
-levers="split split-dry1e-9 split-cfl0.9 heun-plain heun-tracked"
+# Every option a lever changes is given, so the names say the same whatever the default.
+f64="--precision float64"
+flow reference-1cm 0.01 --time-stepping heun $f64
+flow split-f32 0.02 --precision float32
+flow split-f32-cfl0.9 0.02 --precision float32 --cfl 0.9
+flow split-f64 0.02 $f64
+flow split-f64-cfl0.9 0.02 $f64 --cfl 0.9
+flow split-f64-dry1e-9 0.02 $f64 --dry-depth 1e-9
+flow heun-plain 0.02 --time-stepping heun $f64
+flow heun-tracked 0.02 --time-stepping heun --fronts tracked --dry-depth 1e-9 $f64
+# The 1 cm flow as the ensemble at RES=0.01 runs it (split steps, float32).
+flow split-f32-1cm 0.01 --precision float32
+levers="split-f32 split-f32-cfl0.9 split-f64 split-f64-cfl0.9 split-f64-dry1e-9 heun-plain heun-tracked split-f32-1cm"
 flows=$(for l in $levers; do echo "$out/$l.nc"; done)
 [ -n "$baseline" ] && flows="$flows $baseline"
 PYTHONPATH=. "$python" -m pipelines.flow_error "$out/real-0.01.nc" "$out/reference-1cm.nc" $flows > "$out/flow_error.csv"
@@ -45,7 +51,10 @@ shifted=$(for x in 1.271 1.321 1.371 1.421 1.471; do for y in -2.25 -2.20 -2.15 
 trajs="$out/reference-1cm-shift1mm.traj.nc"
 for f in $flows; do
   t="$out/$(basename "$f" .nc).traj.nc"
-  "$flotsam" debris --flow "$f" --scene "$out/real-0.02.nc" --ground "$out/real-0.01.nc" $at --quiet --out "$t"
+  case $f in
+    *-1cm.nc) "$flotsam" debris --flow "$f" --scene "$out/real-0.01.nc" $at --quiet --out "$t" ;;
+    *) "$flotsam" debris --flow "$f" --scene "$out/real-0.02.nc" --ground "$out/real-0.01.nc" $at --quiet --out "$t" ;;
+  esac
   trajs="$trajs $t"
 done
 PYTHONPATH=. "$python" -m pipelines.debris_error "$out/reference-1cm.traj.nc" $trajs > "$out/debris_error.csv"
