@@ -40,17 +40,21 @@ struct Variant {
     std::function<void(PhysicsDef&)> tweak;
 };
 
-FiniteVolumeDef scheme(TimeStepping stepping, FrontTreatment fronts) {
+FiniteVolumeDef scheme(TimeStepping stepping, FrontTreatment fronts, Precision precision = Precision::float64) {
     FiniteVolumeDef fv;
     fv.stepping = stepping;
     fv.fronts = fronts;
+    fv.precision = precision;
     return fv;
 }
 
 std::vector<Variant> variants() {
     const auto dry = [](double depth) { return [depth](PhysicsDef& d) { d.dry_depth = depth; }; };
+    const FiniteVolumeDef other_precision = scheme(TimeStepping::split, FrontTreatment::plain,
+                                                   FiniteVolumeDef{}.precision == Precision::float32 ? Precision::float64 : Precision::float32);
     return {
-        {"default", FiniteVolumeDef{}, {}},  // split steps, plain fronts, dry tolerance 1e-6 m
+        {"default", FiniteVolumeDef{}, {}},  // split steps, plain fronts, dry tolerance 1e-6 m, the default precision
+        {std::string("default-") + std::string(enum_name(other_precision.precision)), other_precision, {}},
         {"heun-plain", scheme(TimeStepping::heun, FrontTreatment::plain), {}},
         {"tracked", scheme(TimeStepping::heun, FrontTreatment::tracked), dry(1e-9)},
         {"default-1e-9", FiniteVolumeDef{}, dry(1e-9)},

@@ -648,15 +648,18 @@ WetDryResult run_wetdry(S& solver, const WetDryCase& c, double cfl, const RunLim
     return r;
 }
 
-// The case run by the finite-volume solver with the settings fv, the case's physics
-// changed by `tweak` (a variant's: e.g. the dry tolerance).
+// The case run by the finite-volume solver with the settings fv (in its precision), the
+// case's physics changed by `tweak` (a variant's: e.g. the dry tolerance).
 inline WetDryResult run_wetdry(const WetDryCase& c, const hydro::FiniteVolumeDef& fv,
                                const std::function<void(hydro::PhysicsDef&)>& tweak = {}, const RunLimits& limits = {}) {
     hydro::PhysicsDef def = c.def;
     if (tweak) tweak(def);
-    hydro::Solver solver(c.scene, def, fv);
-    solver.set_time(c.t_start);
-    return run_wetdry(solver, c, fv.cfl, limits);
+    auto run = [&]<class Real>() {
+        hydro::BasicSolver<Real> solver(c.scene, def, fv);
+        solver.set_time(c.t_start);
+        return run_wetdry(solver, c, fv.cfl, limits);
+    };
+    return fv.precision == hydro::Precision::float32 ? run.template operator()<float>() : run.template operator()<double>();
 }
 
 // Observed order of an error between grids of n_coarse and n_fine cells along x.

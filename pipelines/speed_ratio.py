@@ -4,8 +4,8 @@
 Usage: python3 -m pipelines.speed_ratio --flotsam BUILD/flotsam --dem DEM.nc --runs DIR
            [--baseline COMMIT] [--setting NAME=RES:SECONDS ...] [--csv FILE]
 
-Builds `flotsam` at COMMIT (default: FIRST_WAVE, a fixed reference build) in a git
-worktree under DIR (once; ccache is used where installed), imports the DEM at each
+Builds `flotsam` at COMMIT (default: FIRST_WAVE, a fixed reference build) from its files
+(git archive) under DIR (once; ccache is used where installed), imports the DEM at each
 setting's resolution with each binary, and runs the two flows side by side, one thread
 each, so that both see the same machine: the real layout with the benchmark's pump
 forcing on the scene's recommended grids (nested 4:1 west of x = -1.2 m, frames over the
@@ -29,8 +29,11 @@ def build_baseline(commit, runs):
     binary = os.path.join(src, "build", "flotsam")
     if os.path.exists(binary):
         return binary
-    if not os.path.isdir(src):
-        subprocess.run(["git", "worktree", "add", "--detach", src, commit], check=True)
+    if not os.path.isdir(os.path.join(src, "hydro")):
+        # The commit's files only (git archive): no worktree to register in the repository.
+        os.makedirs(src, exist_ok=True)
+        archive = subprocess.run(["git", "archive", "--format=tar", commit], check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", src], input=archive, check=True)
     cmake = ["cmake", "-S", src, "-B", os.path.join(src, "build"), "-DCMAKE_BUILD_TYPE=Release"]
     if subprocess.run(["which", "ccache"], capture_output=True).returncode == 0:
         cmake.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")

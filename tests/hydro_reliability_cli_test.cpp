@@ -18,22 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A 0.16 m scene (128 x 25 cells) and a 30 s boundary record: a run of a few seconds
-// takes well under a second.
-struct SmallCase {
-    std::string dir, scene, series;
-};
-
-SmallCase small_case(const std::string& name) {
-    SmallCase c;
-    c.dir = test::scratch_dir(name);
-    c.scene = c.dir + "/scene.nc";
-    c.series = c.dir + "/bc/wg1_r00.csv";
-    std::string out;
-    EXPECT_EQ(test::run_cli("scene generate --resolution 0.16 --out " + c.scene, &out), 0) << out;
-    EXPECT_EQ(test::run_cli("boundary generate --count 1 --duration 30 --out-dir " + c.dir + "/bc", &out), 0) << out;
-    return c;
-}
+using test::SmallCase;
+using test::small_case;
 
 std::string hydro_args(const SmallCase& c, const std::string& out, const std::string& more = "") {
     return "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --duration 6 --output-interval 0.5 --quiet " +

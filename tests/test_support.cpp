@@ -89,4 +89,15 @@ void damage_chunk(const std::string& path, const std::string& var, std::size_t f
     if (!f) throw Error(path + ": could not damage the chunk");
 }
 
+SmallCase small_case(const std::string& name) {
+    SmallCase c;
+    c.dir = scratch_dir(name);
+    c.scene = c.dir + "/scene.nc";
+    c.series = c.dir + "/bc/wg1_r00.csv";
+    std::string out;
+    if (run_cli("scene generate --resolution 0.16 --out " + c.scene, &out) != 0) throw Error("small_case: " + out);
+    if (run_cli("boundary generate --count 1 --duration 30 --out-dir " + c.dir + "/bc", &out) != 0) throw Error("small_case: " + out);
+    return c;
+}
+
 }  // namespace flotsam::test

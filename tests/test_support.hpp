@@ -28,4 +28,11 @@ std::string read_text(const std::string& path);
 // structure still reads.
 void damage_chunk(const std::string& path, const std::string& var, std::size_t frame);
 
+// A generated scene at 0.16 m (128 x 25 cells) and a 30 s boundary record in a fresh
+// scratch directory: a hydro run of a few seconds on it takes well under a second.
+struct SmallCase {
+    std::string dir, scene, series;  // the directory, dir/scene.nc, dir/bc/wg1_r00.csv
+};
+SmallCase small_case(const std::string& name);
+
 }  // namespace flotsam::test
