@@ -81,8 +81,9 @@ struct FiniteVolumeDef {
     FrontTreatment fronts = FrontTreatment::plain;
     TimeStepping stepping = TimeStepping::split;  // heun for the tracked fronts
     // The state's type in a run: run_hydro builds BasicSolver<float> or <double> by it (a
-    // BasicSolver's precision is its Real; tracked fronts need float64).
-    Precision precision = Precision::float64;
+    // BasicSolver's precision is its Real; tracked fronts need float64). float32 moves
+    // nothing a user reads beyond the grid's own error (docs/studies/hydro_speed_levers.md).
+    Precision precision = Precision::float32;
 };
 
 // The conserved state of a grid (padded arrays: two ghost layers, row-major, x fastest)
