@@ -1,6 +1,7 @@
-// Precision benchmark (speed lever 3): what float32 state and arithmetic would gain in
-// the finite-volume scheme's row kernels, the same code (hydro/swe_rows.hpp) compiled for
-// float and for double. Prints figures; asserts nothing.
+// Precision benchmark: the finite-volume scheme's row kernels, the same code
+// (hydro/swe_rows.hpp, Heun's stage) compiled for float and for double, alone (the
+// flows' state is float32 by default, `--precision`; docs/studies/hydro_speed_levers.md
+// gives what it does to a whole run and its answers). Prints figures; asserts nothing.
 //
 //   precision_bench [--dem PATH] [--resolution 0.01] [--steps 20] [--rounds 3]
 //
