@@ -1,4 +1,4 @@
-// Checkpoints of a hydro run (run.cpp): the solver's exact state, the maxima so far and
+// Checkpoints of a hydro run (run_driver.hpp): the solver's exact state, the maxima so far and
 // where the output stands, so that --restart continues an interrupted run to the bytes
 // of an uninterrupted one. Written atomically; the restart key (restart_key.hpp) says
 // which settings, scene and boundary files wrote it, and a SHA-256 of everything it holds

@@ -1,4 +1,4 @@
-// What a hydro run stores besides the solver's state (run.cpp): the output window and
+// What a hydro run stores besides the solver's state (run_driver.hpp): the output window and
 // the frame times, the frames themselves, the gauges sampled between steps, and the
 // maxima and arrival times accumulated after every step.
 #pragma once

@@ -158,8 +158,8 @@ TEST(HydroCheckpoint, AFullDiskKeepsTheCheckpointAndItsPartialOutputForRestart) 
 }
 
 // What a run writes is estimated before it starts: frames every microsecond, a boundary
-// outline every nanosecond or every 1e-7 s over 30 s are refused naming the option and the
-// estimate, and --allow-large-run starts them.
+// outline every nanosecond, every 1e-7 s over 30 s or every 1e-5 s over 420 s are refused
+// naming the option and the estimate, and --allow-large-run starts them.
 TEST(HydroWorkEstimate, OutputAndBoundaryIntervalsAreEstimatedBeforeTheRunStarts) {
     const SmallCase c = small_case("hydro_output_estimate");
     const std::string run = "hydro --scene " + c.scene + " --west level --west-series " + c.series + " --quiet --out " + c.dir + "/h.nc ";
@@ -172,6 +172,8 @@ TEST(HydroWorkEstimate, OutputAndBoundaryIntervalsAreEstimatedBeforeTheRunStarts
               "--output-interval: 4e+06 frames of 1425 cells over 4 s would make 6.84e+10 bytes written"},
              {run + "--duration 4" + outline + " --boundary-interval 1e-9", "--boundary-interval: "},
              {run + "--duration 30" + outline + " --boundary-interval 1e-7", "--boundary-interval: "},
+             {run + "--duration 420 --west-series-end transmissive" + outline + " --boundary-interval 1e-5",
+              "--boundary-interval: 79 outline stations every 1e-05 s over 420 s would make 6.64e+10 bytes written"},
          }) {
         std::string out;
         EXPECT_EQ(test::run_cli(k.args, &out), 1) << k.args;
