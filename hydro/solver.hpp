@@ -1,9 +1,11 @@
-// The finite-volume shallow-water solver (equations and scheme: swe_kernels.hpp).
+// The finite-volume shallow-water solver (equations and scheme: swe_kernels.hpp; the
+// split step, the default: split_rows.hpp).
 //
-// Two-phase step as in TUM SWE: compute all face fluxes and sources into a rate of
-// change, then update. Heun's method (SSP-RK2) gives second order in time; each stage
-// is a convex combination of forward-Euler steps, so the positivity of the first-order
-// step carries over.
+// The split step: an x sweep and a y sweep of MUSCL-Hancock, their order alternating
+// (split_step.cpp). Heun's step (`--time-stepping heun`): two stages, each computing all
+// face fluxes and sources into a rate of change, then updating (SSP-RK2: each stage a
+// convex combination of forward-Euler steps, so the positivity of the first-order step
+// carries over; heun_stage.cpp).
 //
 // Storage: h, hu, hv, z with two ghost layers on every side, row-major, x fastest:
 // the interior cell (i, j) sits at (j + 2) * (nx + 4) + (i + 2). The state and the
@@ -11,7 +13,7 @@
 // float32`) or BasicSolver<double> (Solver); time, steps, boundary values and the sums a
 // run reports are double in both.
 //
-// Speed (docs/hydro.md, "Cost"): a stage or sweep goes the rows once, keeping the
+// Speed (docs/hydro.md, "Cost"): a stage or sweep passes over the rows once, keeping the
 // primitive values, slopes and y-face fluxes of the few rows in flight in per-thread
 // row buffers, and updates each row as soon as its rates are known; cells whose whole
 // stencil is exactly zero (dry land the water has not reached) are skipped, which
