@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "common/netcdf.hpp"
+#include "common/netcdf_probe.hpp"
 #include "debris/flow_reader.hpp"
 #include "formats/flow_file.hpp"
 

@@ -42,7 +42,8 @@ int find_field(const nc::File& f, const char* standard_name, const char* short_n
 // writes it, or a number); the fallback where the file has none.
 double read_dry_depth(const nc::File& f) {
     const char* name = flow_names::dry_depth_attribute;
-    std::optional<double> value = f.att_double(NC_GLOBAL, name);
+    std::optional<double> value;
+    if (!f.att_is_text(NC_GLOBAL, name)) value = f.att_double(NC_GLOBAL, name);
     if (!value) {
         const auto text = f.att_text(NC_GLOBAL, name);
         if (!text) return flow_names::fallback_dry_depth;
