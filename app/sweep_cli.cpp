@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "app/commands.hpp"
-#include "app/debris_sources.hpp"
+#include "app/sourced_bodies.hpp"
 #include "app/settings_cli.hpp"
 #include "common/cf.hpp"
 #include "common/error.hpp"
@@ -129,8 +129,8 @@ void run_sweep_command(const SweepOptions& o) {
     sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, {o.scene, o.ground, o.flows}, &scene);
     std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}, {"--ground", spec.ground}};
     for (const auto& f : spec.flows) inputs.push_back({"--flow", f});
-    for (const auto& s : spec.sources) inputs.push_back({"[[sources]] file", s.file});
-    expand_sources(spec, scene.get());
+    for (const auto& s : spec.sources) inputs.push_back({"[[sources]] file", s.file, true});
+    expand_sources(spec, scene.get(), o.allow_large_run);
     const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
     const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;

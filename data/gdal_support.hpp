@@ -21,6 +21,9 @@ void init();
 
 // The text of GDAL's last error since the call began (for messages), then cleared.
 std::string last_error();
+// Whether GDAL reported a failure since last_error() was last read (a close that could
+// not flush its data says so only this way).
+bool error_pending();
 
 struct DatasetClose {
     void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }

@@ -98,8 +98,8 @@ BodySpec body_at(const std::string& name, double x, double y, double heading_deg
 // The scene's start point of that name (null: none).
 const ScenePoint* scene_start(const Scene& scene, const std::string& name);
 
-// A [[sources]] table: a GIS file of debris sources (data/debris_sources.hpp), expanded
-// into bodies by the command line (app/debris_sources.hpp, which reads GIS) before the
+// A [[sources]] table: a GIS file of debris sources (data/source_features.hpp), expanded
+// into bodies by the command line (app/sourced_bodies.hpp, which reads GIS) before the
 // sweep runs. `model` holds the [sweep] model settings and the table's own.
 struct SourceFileSpec {
     std::string file;                 // vector file (GeoPackage, shapefile, GeoJSON, ...)
