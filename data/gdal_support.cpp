@@ -58,6 +58,12 @@ Dataset open_vector(const std::string& path) {
     return Dataset(d);
 }
 
+const OGRSpatialReference* layer_crs(OGRLayer& layer) {
+    const OGRSpatialReference* crs = layer.GetSpatialRef();
+    const std::string name = crs && crs->GetName() ? crs->GetName() : "";
+    return name == "Undefined geographic SRS" || name == "Undefined Cartesian SRS" ? nullptr : crs;
+}
+
 OGRSpatialReference crs_from_text(const std::string& text, const std::string& what) {
     init();
     OGRSpatialReference s;

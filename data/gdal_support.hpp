@@ -34,6 +34,10 @@ using Dataset = std::unique_ptr<GDALDataset, DatasetClose>;
 Dataset open_raster(const std::string& path);
 Dataset open_vector(const std::string& path);
 
+// A vector layer's CRS; null when it has none, a GeoPackage's placeholders for none
+// ("Undefined geographic SRS", "Undefined Cartesian SRS") included.
+const OGRSpatialReference* layer_crs(OGRLayer& layer);
+
 // A CRS from what a user types: "EPSG:32653", WKT, a PROJ string, or a file holding one
 // (a .prj). `what` names the option or file for the error.
 OGRSpatialReference crs_from_text(const std::string& text, const std::string& what);

@@ -404,7 +404,7 @@ SweepResult read_sweep(const std::string& path, bool with_tracks) {
 
 SweepResult read_sweep_file(const std::string& path) { return read_sweep(path, true); }
 
-void check_sweep_tables(const std::string& path) { (void)read_sweep(path, false); }
+SweepResult read_sweep_tables(const std::string& path) { return read_sweep(path, false); }
 
 void check_tracks_on(const SweepResult& r, const Grid& g, const std::string& what) {
     const double tx = 1e-6 * g.dx, ty = 1e-6 * g.dy;

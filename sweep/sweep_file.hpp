@@ -65,10 +65,10 @@ void write_sweep_file(const std::string& path, const SweepResult& r);
 // Reads a sweep file (a shard or the whole); errors name the file and variable. The
 // tracks are checked as formats/trajectory_file.hpp's TrackReader checks them.
 SweepResult read_sweep_file(const std::string& path);
-// The same checks of the member table against the sweep's tables (member ids, flow,
-// body, variant and parameter-set indices, the body settings), without reading the
-// tracks: for readers that take the tracks through TrackReader themselves.
-void check_sweep_tables(const std::string& path);
+// The same, without the tracks (the members' are empty): the member table checked
+// against the sweep's tables (member ids, flow, body, variant and parameter-set indices,
+// the body settings), for readers that take the tracks through TrackReader themselves.
+SweepResult read_sweep_tables(const std::string& path);
 
 // Throws naming the file and the member when a track leaves grid `g` (`what`: "the grid
 // of the scene s.nc"): a body never leaves the grid it moved on, so a sweep whose tracks
