@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -302,6 +303,67 @@ bool probe_enabled() {
     return on == 1;
 }
 
+namespace {
+
+// Forks the child that reads `path` (check_in_child), writing its report to `fd`; -1 when
+// no child could be started.
+pid_t start_child(const std::string& path, int fds[2]) {
+    std::fflush(nullptr);
+    const pid_t child = ::fork();
+    if (child != 0) return child;
+    ::close(fds[0]);
+    // The child dies of what libhdf5 does, and the parent reports it: no handler the
+    // parent installed runs here (libFuzzer's, in the fuzz build, wrote the child's
+    // crash as a crash of the target, and a crash-* file into the working directory).
+    for (const int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) ::signal(sig, SIG_DFL);
+#if FLOTSAM_SANITIZED
+    __sanitizer_set_death_callback(nullptr);  // a sanitizer's report: the child just exits
+#endif
+    // What libhdf5 and glibc print as they fail ("free(): invalid size", HDF5's error
+    // stack) is not for the user: the parent names the file and what was being read.
+    if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, 2);
+    Report report(fds[1]);
+    ::_exit(check_in_child(path.c_str(), report));
+}
+
+// Collects what the child sends on `fd` into `text` until it ends; its wait status, or
+// nullopt when it cannot be waited for. A child that runs past the timeout is killed and
+// the file named.
+std::optional<int> wait_for_child(pid_t child, int fd, const std::string& path, std::string& text) {
+    ::fcntl(fd, F_SETFL, O_NONBLOCK);
+    auto drain = [&] {
+        char buf[4096];
+        for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) {
+            text.append(buf, std::size_t(n));
+            if (text.size() > (1u << 20)) text.erase(0, text.size() - (1u << 16));  // only the last lines matter
+        }
+    };
+    int status = 0;
+    const auto started = std::chrono::steady_clock::now();
+    const int timeout = probe_timeout_seconds(path);
+    for (;;) {
+        pollfd p{fd, POLLIN, 0};
+        ::poll(&p, 1, 20);
+        drain();
+        const pid_t r = ::waitpid(child, &status, WNOHANG);
+        if (r == child) break;
+        if (r < 0) return std::nullopt;
+        if (std::chrono::steady_clock::now() - started > std::chrono::seconds(timeout)) {
+            ::kill(child, SIGKILL);
+            ::waitpid(child, &status, 0);
+            drain();
+            ::close(fd);
+            fail(path, "",
+                 "corrupted: libhdf5 did not finish " + last_stage(text) + " in " + std::to_string(timeout) +
+                     " s; the file cannot be read");
+        }
+    }
+    drain();
+    return status;
+}
+
+}  // namespace
+
 // libhdf5 can crash or hang on a corrupted file (docs/reliability.md). The file is
 // therefore read first in a child process (check_in_child): a crash or a hang there is
 // reported as a corrupted file, naming what the child was reading, and never takes
@@ -319,63 +381,13 @@ void probe_structure(const std::string& path) {
     }
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) return;  // cannot probe: read as usual
-    std::fflush(nullptr);
-    const pid_t child = ::fork();
-    if (child < 0) {
-        ::close(fds[0]);
-        ::close(fds[1]);
-        return;
-    }
-    if (child == 0) {
-        ::close(fds[0]);
-        // The child dies of what libhdf5 does, and the parent reports it: no handler the
-        // parent installed runs here (libFuzzer's, in the fuzz build, wrote the child's
-        // crash as a crash of the target, and a crash-* file into the working directory).
-        for (const int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) ::signal(sig, SIG_DFL);
-#if FLOTSAM_SANITIZED
-        __sanitizer_set_death_callback(nullptr);  // a sanitizer's report: the child just exits
-#endif
-        // What libhdf5 and glibc print as they fail ("free(): invalid size", HDF5's error
-        // stack) is not for the user: the parent names the file and what was being read.
-        if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) ::dup2(null, 2);
-        Report report(fds[1]);
-        ::_exit(check_in_child(path.c_str(), report));
-    }
+    const pid_t child = start_child(path, fds);
     ::close(fds[1]);
-    ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
     std::string text;  // what the child sent
-    auto drain = [&] {
-        char buf[4096];
-        for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) {
-            text.append(buf, std::size_t(n));
-            if (text.size() > (1u << 20)) text.erase(0, text.size() - (1u << 16));  // only the last lines matter
-        }
-    };
-    int status = 0;
-    const auto started = std::chrono::steady_clock::now();
-    const int timeout = probe_timeout_seconds(path);
-    for (;;) {
-        pollfd p{fds[0], POLLIN, 0};
-        ::poll(&p, 1, 20);
-        drain();
-        const pid_t r = ::waitpid(child, &status, WNOHANG);
-        if (r == child) break;
-        if (r < 0) {
-            ::close(fds[0]);
-            return;
-        }
-        if (std::chrono::steady_clock::now() - started > std::chrono::seconds(timeout)) {
-            ::kill(child, SIGKILL);
-            ::waitpid(child, &status, 0);
-            drain();
-            ::close(fds[0]);
-            fail(path, "",
-                 "corrupted: libhdf5 did not finish " + last_stage(text) + " in " + std::to_string(timeout) +
-                     " s; the file cannot be read");
-        }
-    }
-    drain();
+    const std::optional<int> waited = child < 0 ? std::nullopt : wait_for_child(child, fds[0], path, text);
     ::close(fds[0]);
+    if (!waited) return;  // no child: read as usual
+    const int status = *waited;
     if (WIFSIGNALED(status))
         fail(path, "",
              std::string("corrupted: libhdf5 crashed ") + last_stage(text) + " (" + ::strsignal(WTERMSIG(status)) +

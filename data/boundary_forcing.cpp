@@ -313,17 +313,11 @@ void check_times(const nc::File& f, const Source& s, const ForcingNeeds& needs) 
                  "; the file's time counts from the run's start (t = 0)");
 }
 
-SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
-    const std::size_t nt = s.time.size(), ns = f.shape(s.level)[1];
-    std::vector<double> xs = nc::read_finite(f, f.var_name(s.x)), ys = nc::read_finite(f, f.var_name(s.y));
-    if (!s.geographic) {
-        const double fx = units::length_factor(f, s.x), fy = units::length_factor(f, s.y);
-        for (double& v : xs) v *= fx;
-        for (double& v : ys) v *= fy;
-    }
-    std::vector<double> sx = xs, sy = ys;
-    for (std::size_t p = 0; p < ns; ++p) fr.scene(sx[p], sy[p]);
-    // Stations within reach of the side's edge line.
+// The stations within reach of the side's edge line, as (position along it, station), in
+// order along it, a corner written by two sides once; they must cover the side.
+std::vector<std::pair<double, std::size_t>> stations_along(const nc::File& f, const std::vector<double>& sx,
+                                                           const std::vector<double>& sy, const SideLine& line) {
+    const std::size_t ns = sx.size();
     std::vector<double> nearest(ns, INFINITY);
     for (std::size_t p = 0; p < ns; ++p)
         for (std::size_t q = 0; q < ns; ++q)
@@ -352,6 +346,21 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
         fail(f.path(), "stations",
              "do not cover the side: those within reach of its edge span " + number_text(first) + " to " + number_text(last) +
                  " m along it, its cells " + number_text(line.along.front()) + " to " + number_text(line.along.back()) + " m");
+
+    return unique;
+}
+
+SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
+    const std::size_t nt = s.time.size(), ns = f.shape(s.level)[1];
+    std::vector<double> xs = nc::read_finite(f, f.var_name(s.x)), ys = nc::read_finite(f, f.var_name(s.y));
+    if (!s.geographic) {
+        const double fx = units::length_factor(f, s.x), fy = units::length_factor(f, s.y);
+        for (double& v : xs) v *= fx;
+        for (double& v : ys) v *= fy;
+    }
+    std::vector<double> sx = xs, sy = ys;
+    for (std::size_t p = 0; p < ns; ++p) fr.scene(sx[p], sy[p]);
+    const std::vector<std::pair<double, std::size_t>> unique = stations_along(f, sx, sy, line);
 
     SideRecord r;
     r.source = f.path();
