@@ -219,10 +219,14 @@ def child(args):
 
 
 def in_child(args, timeout=120):
-    rc, out = run([sys.executable, "-m", "pipelines.corruption_campaign", "--child"] + args, timeout)
-    if rc != 0:
+    """The child's answer (its last line of stdout, JSON); None when it failed or crashed."""
+    try:
+        r = subprocess.run([sys.executable, "-m", "pipelines.corruption_campaign", "--child"] + args, capture_output=True,
+                           timeout=timeout, cwd=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    except subprocess.TimeoutExpired:
         return None
-    return json.loads(out.strip().splitlines()[-1])
+    lines = r.stdout.decode(errors="replace").strip().splitlines()
+    return json.loads(lines[-1]) if r.returncode == 0 and lines else None
 
 
 # ---- the campaign ----
