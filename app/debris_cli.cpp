@@ -178,8 +178,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     def.names = {"--dt-max", "--vertex-step-fraction", "--output-interval", "--end-time"};
     sweep::SweepInputs in = sweep::open_sweep(debris_spec(o, dt_max_default, scene.get()), scene, def);
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
-    const debris::TrajectoryFileDef file{
-        command_line, o.flow, {}, {}, {}, in.flows.front()->crs(), in.flows.front()->scene_buildings_sha256()};
+    const debris::FlowDescription& flow = in.flows.front()->description();
+    const debris::TrajectoryFileDef file{command_line, o.flow, {}, {}, {}, flow.crs, flow.scene_buildings_sha256};
     const std::clock_t cpu_start = std::clock();
     sweep::SweepRunStats st;
     const sweep::SweepResult r = sweep::run_sweep(in, def, &st);

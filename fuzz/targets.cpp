@@ -452,7 +452,7 @@ void flow_replay(const std::string& path) {
         b.length = 0.1;
         b.width = b.height = 0.05;
         world.add_body(b);
-        world.advance_to(std::min(world.flow().end_time(), world.time() + 1.5));
+        world.advance_to(std::min(world.flow().description().end_time(), world.time() + 1.5));
     });
 }
 

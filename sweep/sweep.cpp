@@ -25,7 +25,7 @@ std::vector<double> output_times(const SweepInputs& in, const SettingNames& name
     const SweepSpec& spec = in.spec;
     double t0 = 0.0, last = 0.0;
     for (std::size_t f = 0; f < in.flows.size(); ++f) {
-        const debris::FlowReader& flow = *in.flows[f];
+        const debris::FlowDescription& flow = in.flows[f]->description();
         if (f == 0) {
             t0 = flow.start_time();
             last = flow.end_time();
@@ -73,10 +73,10 @@ SweepResult describe_sweep(const SweepInputs& in, const SweepRunDef& def) {
     r.time = in.times;
     r.shard = def.shard;
     // Every flow of a sweep comes from one scene; the first one's CRS is the sweep's.
-    r.crs = in.flows.front()->crs();
+    r.crs = in.flows.front()->description().crs;
     // The scene every shard records, whichever flows its members are on (merging shards
     // compares it).
-    r.scene_buildings_sha256 = in.scene ? scene_buildings_sha256(*in.scene) : in.flows.front()->scene_buildings_sha256();
+    r.scene_buildings_sha256 = in.scene ? scene_buildings_sha256(*in.scene) : in.flows.front()->description().scene_buildings_sha256;
     return r;
 }
 
@@ -169,12 +169,13 @@ void run_flow(SweepInputs& in, const SweepRunDef& def, int f, const std::vector<
         st.steps += bs.steps;
     }
     st.flows_opened += 1;
-    st.frames_loaded += world.flow().frames_loaded();
-    st.cells_read += world.flow().cells_read();
-    st.frames_refit += world.flow().frames_refit();
-    st.window_cells += world.flow().window_cells();
-    st.io_seconds += world.flow().load_seconds();
-    st.read_cpu_seconds += world.flow().load_cpu_seconds();
+    const debris::FlowReadStats read = world.flow().read_stats();
+    st.frames_loaded += read.frames_loaded;
+    st.cells_read += read.cells_read;
+    st.frames_refit += read.frames_refit;
+    st.window_cells += read.window_cells;
+    st.io_seconds += read.load_seconds;
+    st.read_cpu_seconds += read.load_cpu_seconds;
 }
 
 }  // namespace
