@@ -178,6 +178,10 @@ ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const 
 // body of one GIS feature), all of them with one_world, any other body alone.
 std::vector<std::vector<int>> body_runs(const SweepSpec& spec);
 
+// The sweep's members, counted without building them: flows x bodies x starts x variants
+// x parameter sets, flow outermost.
+double member_count(const SweepSpec& spec);
+
 // All members, flow outermost, then the bodies' runs (body_runs), perturbation, variant,
 // parameter set and the run's bodies: a run's members are consecutive (for a spec of
 // bodies that each run alone: flow, body, perturbation, variant, parameter set).

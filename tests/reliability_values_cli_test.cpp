@@ -193,6 +193,16 @@ TEST(ReliabilityCli, RunsAreBoundedBeforeTheyStart) {
     EXPECT_EQ(test::finish_cli(test::start_cli(debris + "--dt-max 1e-12 --allow-large-run --threads 1", "timeout 3"), &out), 124)
         << out;
     EXPECT_EQ(out.find("would make"), std::string::npos) << out;
+    // A factorial at the limit of sets (1000 x 1000) whose work passes the bound: refused by
+    // its count, before its million members are built (that took 27 s and 3.2 GB).
+    std::string small_levels;  // 0.01 ... 10: within the coefficients' ranges
+    for (int k = 1; k <= 1000; ++k) small_levels += (k > 1 ? "," : "") + std::to_string(0.01 * k);
+    const std::string million = test::write_file(c.dir, "million.toml",
+                                                 "[sweep]\nscene = \"" + c.scene + "\"\ndt-max = 1e-4\n[flows]\npaths = [\"" + o.flow +
+                                                     "\"]\n[[body]]\nstart = \"FD\"\n[parameters]\ndesign = \"factorial\"\ncd1 = [" +
+                                                     small_levels + "]\ncd2 = [" + small_levels + "]\n");
+    EXPECT_EQ(test::run_cli("sweep --spec " + million + " --quiet --out " + c.dir + "/w.nc", &out), 1);
+    EXPECT_NE(out.find("for 1e+06 bodies would make 4e+10 body steps, more than the 1e+10"), std::string::npos) << out;
     // Thousands of threads: capped at the processors (the run finishes, no .part left).
     ASSERT_EQ(test::run_cli("hydro --scene " + c.scene + " --west wall --duration 0.5 --threads 4096 --out " + c.dir + "/t.nc", &out),
               0)
