@@ -5,6 +5,8 @@
 #include <filesystem>
 
 #include "common/error.hpp"
+#include "common/settings_nc.hpp"
+#include "debris/body.hpp"
 #include "export/gis_export.hpp"
 #include "export/styles.hpp"
 #include "export/vector_output.hpp"
@@ -55,7 +57,14 @@ OGRFieldType field_type(nc_type t) {
 }  // namespace
 
 TrackLayer read_tracks(const std::string& trajectory_path, SceneOf* scene) {
-    TrackLayer layer{debris::read_trajectory_table(trajectory_path), {}};
+    // The bodies' settings, where the file has them, in their units and ranges as every
+    // reader of them checks them (a width of 1e30 m was exported as an attribute).
+    const auto check_bodies = [](const nc::File& f, std::size_t n) {
+        std::vector<debris::BodyDef> defs(n);
+        for (const auto* table : {&debris::body_shape_settings(), &debris::body_coefficient_settings(), &debris::body_model_settings()})
+            get_setting_vars(f, *table, defs, "", false);
+    };
+    TrackLayer layer{debris::read_trajectory_table(trajectory_path, check_bodies), {}};
     // A sweep file's member table refers to its own tables (flows, bodies, variants,
     // parameter sets): checked as the sweep's reader checks it.
     if (layer.table.kind == "sweep") {

@@ -211,7 +211,7 @@ std::vector<TrajectoryColumn> read_columns(const nc::File& f, std::size_t ntraj)
 
 }  // namespace
 
-TrajectoryTable read_trajectory_table(const std::string& path) {
+TrajectoryTable read_trajectory_table(const std::string& path, const std::function<void(const nc::File&, std::size_t)>& check_columns) {
     const nc::File f = nc::File::open_read(path);
     cf::require_kind(f, {"trajectories", "sweep"}, "--trajectories");
     for (const char* v : {"x", "y", "time", "trajectory_id"})
@@ -225,6 +225,7 @@ TrajectoryTable read_trajectory_table(const std::string& path) {
     t.time = reader.time();
     for (std::size_t b = 0; b < reader.size(); ++b) t.tracks.push_back(reader.read(b));
     t.columns = read_columns(f, reader.size());
+    if (check_columns) check_columns(f, reader.size());
     t.crs = cf::read_crs(f, "yaw");
     t.scene_buildings_sha256 = f.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or("");
     return t;

@@ -21,6 +21,7 @@
 // No time stamps anywhere: the same inputs give the same bytes.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/cf.hpp"
@@ -123,6 +124,9 @@ struct TrajectoryTable {
     cf::GridMapping crs;
     std::string scene_buildings_sha256;     // formats/scene.hpp; "" when not recorded
 };
-TrajectoryTable read_trajectory_table(const std::string& path);
+// `check_columns(file, trajectories)`, when given, checks the per-trajectory columns it
+// knows (the body settings: export passes debris's tables) while the file is open.
+TrajectoryTable read_trajectory_table(const std::string& path,
+                                      const std::function<void(const nc::File&, std::size_t)>& check_columns = {});
 
 }  // namespace flotsam::debris
