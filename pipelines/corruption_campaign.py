@@ -2,13 +2,15 @@
 that reads it, counted by outcome (docs/reliability.md, "Bad input and what it gets").
 
     /usr/bin/python3 -m pipelines.corruption_campaign --flotsam build/flotsam --out runs/corrupt \
-        [--kinds scene flow sweep stats trajectory forcing checkpoint sources] [--count 120] [--seed 7]
+        [--kinds scene flow sweep stats trajectory forcing checkpoint sources] [--count 120] [--seed 7] [--mode values]
 
 It first makes one small file of each kind (a 0.16 m scene, its 4 s flow, a sweep of two
 bodies and two variants, its statistics, a trajectory file, the run's boundary outline
 along the scene's edges (which forces its west side), a checkpoint of an interrupted run, a GeoPackage of debris sources),
 runs each command on it for the reference result, then on --count copies with 1 to 4
-random bytes changed (seeded: a campaign repeats exactly):
+random bytes changed, or (--mode values) one number set to NaN, infinity, a fill value,
+an absurd or a negative number where another program could have written it (seeded: a
+campaign repeats exactly):
 
     scene       hydro --scene COPY (0.2 s)          stats       export --stats COPY --scene S
     flow        debris --flow COPY --at ...          trajectory  export --trajectories COPY
@@ -19,8 +21,8 @@ random bytes changed (seeded: a campaign repeats exactly):
 Outcomes: "named error" (exit 1 naming the file), "same result" (exit 0, the reference's
 values), "other valid result" (exit 0, other values, every changed input value finite and
 in range), "silent acceptance" (exit 0 with a changed input value that is not finite or
-out of range, or a non-finite output), "crash" (a signal or another exit status), "hang"
-(--timeout). Copies of the last three are kept under OUT/kept/.
+out of range, or an output value that is not: NaN, a negative depth, an arrival outside
+the run), "crash" (a signal or another exit status), "hang" (--timeout). Copies of the last three are kept under OUT/kept/.
 """
 import argparse
 import hashlib
@@ -195,19 +197,29 @@ def changed_bad_values(original, copy):
 
 
 def output_digest(out):
-    """A hash of the values a run wrote (its .nc, or every file of its folder), and any
-    non-finite number among them outside a fill."""
+    """A hash of the values a run wrote (its .nc, or every file of its folder), and what among
+    them is not finite outside a fill, or out of range (depths, speeds, an arrival time
+    outside the run)."""
     files = [out + ".nc"] if os.path.exists(out + ".nc") else sorted(
         os.path.join(out, f) for f in os.listdir(out)) if os.path.isdir(out) else []
-    h, nonfinite = hashlib.sha256(), []
+    h, bad = hashlib.sha256(), []
     for p in files:
         if p.endswith((".part", ".lock", ".aux.xml")):
             continue
-        for name, vals in sorted(values_of(p).items()):
+        values = values_of(p)
+        times = [t for t in values.get("time", []) if isinstance(t, float)]
+        for name, vals in sorted(values.items()):
             h.update(json.dumps([os.path.basename(p), name, vals], default=str).encode())
-            if not p.endswith(".tif"):  # a map's nodata is NaN
-                nonfinite += [f"{os.path.basename(p)}: {name}" for x in vals if isinstance(x, float) and x != x][:1]
-    return h.hexdigest(), nonfinite
+            if p.endswith(".tif"):  # a map's nodata is NaN
+                continue
+            for x in vals:
+                why = bad_value(name, x) if name in RANGES or x != x else ""
+                if name == "arrival_time" and isinstance(x, float) and times and not min(times) - 1e-6 <= x <= max(times) + 1e-6:
+                    why = f"arrival_time = {x:g} outside the run"
+                if why:
+                    bad.append(f"{os.path.basename(p)}: {why}")
+                    break
+    return h.hexdigest(), bad
 
 
 def child(args):
@@ -239,9 +251,48 @@ def clean(out):
         shutil.rmtree(out)
 
 
+SPECIAL = [float("nan"), float("inf"), float("-inf"), 1e30, -1e30, 9.969209968386869e36, -1.0, 1e6, -1e6, 1e12, 0.0]
+
+
+def edit_values(original, copy, rng):
+    """A copy of `original` with one number set to a special value (NaN, infinity, a fill
+    value, an absurd or negative number), in a random variable (GeoPackage: a random
+    attribute or coordinate of a random feature), as another program could write it."""
+    shutil.copy(original, copy)
+    value = rng.choice(SPECIAL)
+    if copy.endswith(".gpkg"):
+        from osgeo import ogr
+        ds = ogr.Open(copy, 1)
+        layer = ds.GetLayer(0)
+        fid = rng.randrange(layer.GetFeatureCount()) + 1
+        f = layer.GetFeature(fid)
+        fields = [k for k in range(f.GetFieldCount()) if f.GetFieldDefnRef(k).GetType() in (ogr.OFTReal, ogr.OFTInteger)]
+        k = rng.randrange(len(fields) + 1)
+        if k < len(fields):
+            f.SetField(fields[k], value if f.GetFieldDefnRef(fields[k]).GetType() == ogr.OFTReal or value != value
+                       else int(max(-2e9, min(2e9, value))) if abs(value) != float("inf") else 2**31 - 1)
+        else:
+            g = f.GetGeometryRef().Clone()
+            ring = g.GetGeometryRef(0) if g.GetGeometryCount() else g
+            p = rng.randrange(ring.GetPointCount())
+            ring.SetPoint_2D(p, value, ring.GetY(p)) if rng.random() < 0.5 else ring.SetPoint_2D(p, ring.GetX(p), value)
+            f.SetGeometry(g)
+        layer.SetFeature(f)
+        ds = None
+        return
+    import netCDF4
+    import numpy as np
+    with netCDF4.Dataset(copy, "a") as ds:
+        names = [n for n, v in ds.variables.items() if v.dtype.kind == "f" and v.size > 0]
+        v = ds.variables[rng.choice(names)]
+        v.set_auto_mask(False)
+        index = np.unravel_index(rng.randrange(v.size), v.shape)
+        v[index] = value
+
+
 def campaign(kind, original, command, a, work, ck_part):
     data = open(original, "rb").read()
-    rng = random.Random(f"{a.seed}/{kind}")
+    rng = random.Random(f"{a.seed}/{kind}" if a.mode == "bytes" else f"{a.seed}/{kind}/values")
     ext = os.path.splitext(original)[1]
     copy, out = os.path.join(work, "copy" + ext), os.path.join(work, "out")
 
@@ -261,9 +312,13 @@ def campaign(kind, original, command, a, work, ck_part):
     counts = dict.fromkeys(["named error", "same result", "other valid result", "silent acceptance", "crash", "hang"], 0)
     notes = []
     for k in range(a.count):
-        b = bytearray(data)
-        for _ in range(rng.randint(1, 4)):
-            b[rng.randrange(min(len(b), a.bytes))] = rng.randrange(256)
+        if a.mode == "values":
+            edit_values(original, os.path.join(work, "edited" + ext), rng)
+            b = bytearray(open(os.path.join(work, "edited" + ext), "rb").read())
+        else:
+            b = bytearray(data)
+            for _ in range(rng.randint(1, 4)):
+                b[rng.randrange(min(len(b), a.bytes))] = rng.randrange(256)
         rc, text = one(bytes(b))
         outcome = None
         if rc is None:
@@ -275,7 +330,7 @@ def campaign(kind, original, command, a, work, ck_part):
         else:
             got = in_child(["digest", out])
             if got is None or got[1]:
-                outcome, why = "silent acceptance", f"non-finite output {got[1] if got else '(unreadable output)'}"
+                outcome, why = "silent acceptance", f"output {got[1] if got else '(unreadable)'}"
             elif got[0] == reference:
                 outcome = "same result"
             else:
@@ -306,6 +361,9 @@ def main(argv=None):
     p.add_argument("--seed", type=int, default=7)
     p.add_argument("--bytes", type=int, default=65536, help="change bytes within the first this many")
     p.add_argument("--timeout", type=float, default=60, help="seconds before a run counts as a hang")
+    p.add_argument("--mode", choices=["bytes", "values"], default="bytes",
+                   help="bytes: 1 to 4 random bytes changed; values: one number set to NaN, infinity, a fill value, "
+                        "an absurd or a negative number, as another program could write it")
     a = p.parse_args(argv)
     a.flotsam, a.out = os.path.abspath(a.flotsam), os.path.abspath(a.out)
     files, ck_part = setup(a.flotsam, os.path.join(a.out, "base"))
@@ -320,7 +378,8 @@ def main(argv=None):
         for n in notes:
             print("  " + n, flush=True)
     keys = list(rows[0][1]) if rows else []
-    print(f"\n| kind ({a.count} copies, 1-4 bytes) | " + " | ".join(keys) + " |")
+    what = "1-4 bytes" if a.mode == "bytes" else "one value"
+    print(f"\n| kind ({a.count} copies, {what}) | " + " | ".join(keys) + " |")
     print("| --- " * (len(keys) + 1) + "|")
     for kind, counts in rows:
         print(f"| {kind} | " + " | ".join(str(counts[k]) for k in keys) + " |")
