@@ -137,7 +137,7 @@ TEST(ReliabilityCli, StatisticsAreCheckedWhereTheyAreRead) {
 // Sweep and trajectory files are checked where they are read, so stats, export and
 // hazard_region.py refuse alike: a position 1e6 m off at one sample (the body would move
 // at 1e7 m/s), a speed of 1e4 m/s, a unit that is no length, tracks moved 1 km off the
-// scene or flow they moved on. Positions in km and times in hours, labelled so, are
+// scene or flow they moved on, a body 1e30 m wide. Positions in km and times in hours, labelled so, are
 // converted.
 TEST(ReliabilityCli, SweepAndTrajectoryFilesAreCheckedWhereTheyAreRead) {
     const SmallCase c = small_case("cli_track_checks");
@@ -160,6 +160,8 @@ TEST(ReliabilityCli, SweepAndTrajectoryFilesAreCheckedWhereTheyAreRead) {
     fuzz::scale_values(hours, "time", 1.0 / 3600.0);
     fuzz::set_text_attribute(hours, "time", "units", "hours since 2000-01-01 00:00:00");
     fuzz::shift_values(off_flow, "x", 1000.0);
+    const std::string wide = c.dir + "/wide.nc";  // became a GIS attribute
+    fuzz::copy_with_value(traj, wide, "width", 0, 1e30);
     const std::string gis = " --out-dir " + c.dir + "/gis";
     const auto stats = [&](const std::string& sweep) { return "stats --sweep " + sweep + " --out " + c.dir + "/s.nc"; };
     expect_named_errors({
@@ -169,6 +171,7 @@ TEST(ReliabilityCli, SweepAndTrajectoryFilesAreCheckedWhereTheyAreRead) {
         {stats(furlongs), "furlongs.nc: variable 'x' attribute 'units': 'furlongs' is not a unit of length"},
         {stats(moved), "moved.nc: variables 'x', 'y': trajectory 0, time index 0: ("},
         {"export --trajectories " + off_flow + " --flow " + o.flow + gis, "off_flow.nc: variables 'x', 'y': trajectory 0, time index 0: ("},
+        {"export --trajectories " + wide + gis, "wide.nc: variable 'width': 1e+30 is outside the allowed range (0, 10000] m"},
     });
     EXPECT_NE(test::run_cli(stats(moved), &out), 0);
     EXPECT_NE(out.find("lies outside the grid of the scene " + c.scene), std::string::npos) << out;
