@@ -132,6 +132,7 @@ SweepInputs open_sweep(SweepSpec spec, std::shared_ptr<const Scene> scene, const
     in.world.read_ahead = def.read_ahead;
     for (const std::string& path : spec.flows) in.flows.push_back(debris::open_flow(path, in.world));
     in.spec = std::move(spec);
+    check_member_count(in.spec);
     in.times = output_times(in, def.names);
     check_counted_work(in, def);  // before the members are built
     in.members = enumerate_members(in.spec);

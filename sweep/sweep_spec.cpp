@@ -467,15 +467,18 @@ double member_count(const SweepSpec& spec) {
            double(spec.variants.size()) * double(spec.params.size());
 }
 
-std::vector<Member> enumerate_members(const SweepSpec& spec) {
-    std::vector<Member> out;
-    const int np = spec.perturbation.count + 1;
-    // Sized before anything is allocated: flows x bodies x starts x variants x sets.
+void check_member_count(const SweepSpec& spec) {
     const double members = member_count(spec);
     if (members > 2e9)
         fail(spec.path, "sweep size",
              number_text(members) + " members (flows x bodies x starts x variants x parameter sets), more than 2e9");
     check_allocation("sweep size", number_text(members) + " members", members, double(sizeof(Member)), "members", spec.path);
+}
+
+std::vector<Member> enumerate_members(const SweepSpec& spec) {
+    std::vector<Member> out;
+    const int np = spec.perturbation.count + 1;
+    check_member_count(spec);  // sized before anything is allocated
     const std::vector<std::vector<int>> runs = body_runs(spec);
     int run = 0;
     for (int f = 0; f < int(spec.flows.size()); ++f)

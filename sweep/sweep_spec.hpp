@@ -181,6 +181,8 @@ std::vector<std::vector<int>> body_runs(const SweepSpec& spec);
 // The sweep's members, counted without building them: flows x bodies x starts x variants
 // x parameter sets, flow outermost.
 double member_count(const SweepSpec& spec);
+// Throws naming the spec when the members would pass 2e9 or the machine's memory.
+void check_member_count(const SweepSpec& spec);
 
 // All members, flow outermost, then the bodies' runs (body_runs), perturbation, variant,
 // parameter set and the run's bodies: a run's members are consecutive (for a spec of
