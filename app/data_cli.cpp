@@ -139,7 +139,17 @@ void register_scene_import(CLI::App* scene, const std::string& command_line) {
     add_config_option(sub);
     sub->callback([o, command_line] {
         ImportDef& def = o->def;
-        const OutputGuard guard({{"--out", o->out}}, {{"--dem", def.dem_path}, {"--features", def.features_path}});
+        const GisImportDef& gis = def.gis;
+        const auto file = [](const std::string& crs) { return file_type_of(crs).empty() ? std::string() : crs; };  // a .prj, not "EPSG:n"
+        const OutputGuard guard({{"--out", o->out}},
+                                {{"--dem", def.dem_path, true},
+                                 {"--features", def.features_path},
+                                 {"--buildings", gis.buildings, true},
+                                 {"--manning-raster", gis.manning_raster, true},
+                                 {"--manning-classes", gis.manning_classes},
+                                 {"--manning-polygons", gis.manning_polygons, true},
+                                 {"--crs", file(gis.assign_crs)},
+                                 {"--target-crs", file(gis.target_crs)}});
         if (!o->extent.empty()) def.gis.extent = std::array<double, 4>{o->extent[0], o->extent[1], o->extent[2], o->extent[3]};
         const Scene s = import_scene(def);
         write_scene(o->out, s, command_line);

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "app/commands.hpp"
-#include "app/debris_sources.hpp"
+#include "app/sourced_bodies.hpp"
 #include "app/settings_cli.hpp"
 #include "common/cf.hpp"
 #include "common/error.hpp"
@@ -121,7 +121,7 @@ sweep::SweepSpec debris_spec(const DebrisOptions& o, bool dt_max_default, const 
     for (auto& b : spec.bodies) b.type = o.body_type;
     if (!o.sources.empty()) {
         if (!scene) fail("--sources", o.sources, "needs --scene (its CRS places the layers, its buildings check the starts)");
-        const std::vector<SourcedBody> sourced = bodies_from_sources(o.sources, o.source_layers, *scene, base);
+        const std::vector<SourcedBody> sourced = bodies_from_sources(o.sources, o.source_layers, *scene, base, o.allow_large_run);
         for (const SourcedBody& s : sourced) spec.bodies.push_back(body_spec_of(s));
         if (!o.quiet) std::fprintf(stderr, "debris: %zu bodies from %s\n", sourced.size(), o.sources.c_str());
     }
@@ -163,7 +163,7 @@ void write_debris_outputs(const DebrisOptions& o, const sweep::SweepInputs& in, 
 void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
     std::vector<NamedPath> outputs = {{"--out", o.out}};
     if (!o.impacts_csv.empty()) outputs.push_back({"--impacts", o.impacts_csv});
-    const OutputGuard guard(outputs, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}});
+    const OutputGuard guard(outputs, {{"--flow", o.flow}, {"--scene", o.scene}, {"--ground", o.ground}, {"--sources", o.sources, true}});
     if (o.starts.empty() && o.ats.empty() && o.sources.empty())
         fail("debris", "bodies", "give at least one --start NAME, --at x,y,heading_deg or --sources FILE");
     if (!o.source_layers.empty() && o.sources.empty()) fail("--source-layer", o.source_layers.front(), "needs --sources FILE");
@@ -178,8 +178,8 @@ void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& 
     def.names = {"--dt-max", "--vertex-step-fraction", "--output-interval", "--end-time"};
     sweep::SweepInputs in = sweep::open_sweep(debris_spec(o, dt_max_default, scene.get()), scene, def);
     // Positions are in the flow's frame: its CRS, if any, is the trajectories'.
-    const debris::TrajectoryFileDef file{
-        command_line, o.flow, {}, {}, {}, in.flows.front()->crs(), in.flows.front()->scene_buildings_sha256()};
+    const debris::FlowDescription& flow = in.flows.front()->description();
+    const debris::TrajectoryFileDef file{command_line, o.flow, {}, {}, {}, flow.crs, flow.scene_buildings_sha256};
     const std::clock_t cpu_start = std::clock();
     sweep::SweepRunStats st;
     const sweep::SweepResult r = sweep::run_sweep(in, def, &st);

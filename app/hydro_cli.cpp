@@ -2,6 +2,7 @@
 #include <omp.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <memory>
@@ -66,7 +67,11 @@ void resolve_forced_sides(hydro::HydroDef& o, const CLI::App* sub) {
         b.kind = BoundaryKind::forced;
         b.forcing_time = o.forcing_time;
         if (!scene) scene = read_scene(o.run.scene_file);
-        b.record = std::make_shared<const SideRecord>(data::read_side_forcing(b.forcing_file, side, scene->grid, scene->crs));
+        // The file is checked for what this run needs of it: levels near the scene's, its
+        // times over the whole run (data/boundary_forcing.hpp).
+        const data::ForcingNeeds needs{*std::min_element(scene->z.begin(), scene->z.end()), 0.0, o.run.duration,
+                                       "--" + side + "-forcing"};
+        b.record = std::make_shared<const SideRecord>(data::read_side_forcing(b.forcing_file, side, scene->grid, scene->crs, needs));
     }
     if (o.boundary_box.empty() != o.run.boundary_output.file.empty())
         fail("", o.boundary_box.empty() ? "--boundary-output" : "--boundary-box",

@@ -8,12 +8,13 @@
 #include <optional>
 
 #include "app/commands.hpp"
-#include "app/debris_sources.hpp"
+#include "app/sourced_bodies.hpp"
 #include "app/settings_cli.hpp"
 #include "common/cf.hpp"
 #include "common/error.hpp"
 #include "common/output_lock.hpp"
 #include "formats/scene.hpp"
+#include "formats/stats_file.hpp"
 #include "sweep/sweep.hpp"
 #include "sweep/sweep_stats.hpp"
 
@@ -129,8 +130,8 @@ void run_sweep_command(const SweepOptions& o) {
     sweep::SweepSpec spec = sweep::read_sweep_spec(o.spec, {o.scene, o.ground, o.flows}, &scene);
     std::vector<NamedPath> inputs = {{"--spec", o.spec}, {"--scene", spec.scene}, {"--ground", spec.ground}};
     for (const auto& f : spec.flows) inputs.push_back({"--flow", f});
-    for (const auto& s : spec.sources) inputs.push_back({"[[sources]] file", s.file});
-    expand_sources(spec, scene.get());
+    for (const auto& s : spec.sources) inputs.push_back({"[[sources]] file", s.file, true});
+    expand_sources(spec, scene.get(), o.allow_large_run);
     const std::string summary = o.summary.empty() ? sweep::summary_path_for(o.out) : o.summary;
     const OutputGuard guard({{"--out", o.out}, {o.summary.empty() ? "--summary (from --out)" : "--summary", summary}}, inputs);
     sweep::SweepRunDef def;
@@ -172,15 +173,16 @@ void run_merge_command(const MergeOptions& o) {
 }
 
 void run_stats_command(const StatsOptions& o, const std::string& command_line) {
-    const OutputGuard guard({{"--out", o.out}}, {{"--sweep", o.sweep}, {"--scene", o.scene}});
     // --csv names a folder the tables go into (each table written whole, then renamed):
     // an existing folder is reused, a file there is refused; one writer at a time.
+    if (!o.csv.empty() && std::filesystem::exists(o.csv) && !std::filesystem::is_directory(o.csv))
+        fail("--csv", o.csv, "is a file: --csv names the folder the CSV tables are written into");
+    std::vector<NamedPath> outputs = {{"--out", o.out}};
+    if (!o.csv.empty())  // the tables written into the folder are outputs too
+        for (const auto& p : stats_file::csv_paths(o.csv)) outputs.push_back({"--csv", p});
+    const OutputGuard guard(outputs, {{"--sweep", o.sweep}, {"--scene", o.scene}});
     std::optional<OutputLock> csv_lock;
-    if (!o.csv.empty()) {
-        if (std::filesystem::exists(o.csv) && !std::filesystem::is_directory(o.csv))
-            fail("--csv", o.csv, "is a file: --csv names the folder the CSV tables are written into");
-        csv_lock.emplace(o.csv);
-    }
+    if (!o.csv.empty()) csv_lock.emplace(o.csv);
     const sweep::SweepResult r = sweep::read_sweep_file(o.sweep);
     const std::string scene_path = o.scene.empty() ? r.scene_file : o.scene;
     if (scene_path.empty())
@@ -194,6 +196,7 @@ void run_stats_command(const StatsOptions& o, const std::string& command_line) {
                  r.scene_buildings_sha256 + " in the sweep, " + scene_buildings_sha256(scene) + " for the scene); give the sweep's scene (" +
                  r.scene_file + ")");
     cf::check_same_crs(o.sweep, r.crs, scene_path, scene.crs);
+    sweep::check_tracks_on(r, scene.grid, "the grid of the scene " + scene_path);
     const sweep::SweepStats s = sweep::compute_stats(r, scene, o.def);
     sweep::write_stats_file(o.out, s, o.def, o.sweep, scene_path, command_line);
     if (!o.csv.empty()) sweep::write_stats_csv(o.csv, s, r);

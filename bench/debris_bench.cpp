@@ -250,13 +250,13 @@ int main(int argc, char** argv) {
             const auto t0 = std::chrono::steady_clock::now();
             w.advance_to(420.0);
             const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            const double io = w.flow().load_seconds(), compute = wall - io;
+            const double io = w.flow().read_stats().load_seconds, compute = wall - io;
             const BodyState& s = w.states()[0];
             const BodyStats& st = w.stats()[0];
             std::printf(
                 "%s run %d: %ld steps, compute %.3f s (%.0f steps/s), frame I/O %.3f s for %zu frames, "
                 "end (%.2f, %.2f) yaw %.0f deg, collisions %ld, unresolved %ld, axis shifts %ld\n",
-                c.name, repeat, st.steps, compute, double(st.steps) / compute, io, w.flow().frames_loaded(), s.x, s.y,
+                c.name, repeat, st.steps, compute, double(st.steps) / compute, io, w.flow().read_stats().frames_loaded, s.x, s.y,
                 s.theta * 180 / M_PI, st.collisions, st.unresolved, st.axis_shifts);
         }
     }

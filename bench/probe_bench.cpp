@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "common/netcdf.hpp"
+#include "common/netcdf_probe.hpp"
 #include "debris/flow_reader.hpp"
 #include "formats/flow_file.hpp"
 
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
             def.decode_tiles = false;
             const debris::FlowReader reader(path, def);
             open_s = seconds_since(t0);
-            frames = reader.frame_times().size();
+            frames = reader.description().frame_times.size();
         }
         t0 = std::chrono::steady_clock::now();
         {

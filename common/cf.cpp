@@ -77,10 +77,10 @@ GridMapping read_crs(const nc::File& f, const std::string& data_var) {
         fail(f.path(), "variable '" + data_var + "' attribute 'grid_mapping'", "names '" + *name + "', which is not in the file");
     for (const auto& att : f.att_names(*g)) {
         GridMapping::Attribute a{att, {}, {}};
-        if (auto text = f.att_text(*g, att))
-            a.text = *text;
-        else if (auto numbers = f.att_doubles(*g, att))
-            a.numbers = *numbers;
+        if (f.att_is_text(*g, att))
+            a.text = f.att_text(*g, att).value_or("");
+        else
+            a.numbers = f.att_doubles(*g, att).value_or(std::vector<double>{});
         crs.attributes.push_back(std::move(a));
     }
     return crs;

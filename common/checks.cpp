@@ -2,12 +2,14 @@
 
 #include <sched.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "common/error.hpp"
@@ -137,6 +139,40 @@ void check_input_file(const std::string& option, const std::string& path) {
          "is " + type + ", not a regular file: flotsam reads its inputs from files (a device or a pipe may never end)");
 }
 
+void check_gis_input(const std::string& option, const std::string& path) {
+    namespace fs = std::filesystem;
+    const std::string type = file_type_of(path);
+    if (path.empty() || type.empty()) return;
+    const auto refuse = [&](const std::string& p, const std::string& t, const std::string& why) {
+        fail(option, p, "is " + t + ", not a regular file: " + why + " (a device or a pipe may never end)");
+    };
+    std::error_code ec;
+    if (type == "a directory") {
+        for (const auto& e : fs::directory_iterator(path, ec))
+            if (const std::string t = file_type_of(e.path().string()); !t.empty() && t != "a regular file" && t != "a directory")
+                refuse(e.path().string(), t, "GDAL reads the files of the folder " + path);
+        return;
+    }
+    if (type != "a regular file") refuse(path, type, "flotsam reads GIS layers and rasters from files");
+    const fs::path p(path);
+    const std::string stem = p.stem().string(), name = p.filename().string();
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string other = e.path().filename().string();
+        if (other == name || other.rfind(stem, 0) != 0 || other.size() == stem.size() ||
+            (other[stem.size()] != '.' && other[stem.size()] != '-'))
+            continue;
+        if (const std::string t = file_type_of(e.path().string()); !t.empty() && t != "a regular file")
+            refuse(e.path().string(), t, "GDAL may read it with " + path);
+    }
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat sa {}, sb{};
+    if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
 void check_output_file(const std::string& option, const std::string& path) {
     if (path.empty()) return;
     for (const std::string& p : {path, path + ".part"}) {
@@ -154,6 +190,20 @@ void check_input_size(const std::string& option, const std::string& path, double
     char buf[200];
     std::snprintf(buf, sizeof buf, "%.3g bytes, more than the %.3g bytes %s may have", double(st.st_size), max_bytes, what.c_str());
     fail(option, path, buf);
+}
+
+std::string disk_full_hint(const std::string& path) {
+    std::error_code ec;
+    auto dir = std::filesystem::absolute(path, ec).parent_path();
+    struct statvfs st {};
+    if (ec || ::statvfs(dir.c_str(), &st) != 0) return "";
+    const double free_bytes = double(st.f_bavail) * double(st.f_frsize);
+    const double total = double(st.f_blocks) * double(st.f_frsize);
+    if (free_bytes > 4.0 * 1024 * 1024 && free_bytes > 0.001 * total) return "";
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " (No space left on device: %.0f bytes free of %.0f on the file system of %s)", free_bytes,
+                  total, dir.c_str());
+    return buf;
 }
 
 }  // namespace flotsam

@@ -75,6 +75,7 @@ inline constexpr double max_body_steps_per_body = 1e7;  // steps of one body (th
 inline constexpr double max_body_steps = 1e10;          // steps of all bodies of a run (about 15 processor hours)
 inline constexpr double max_boundary_samples = 1e8;     // samples of all records of `boundary generate`
 inline constexpr double max_cell_updates = 1e13;        // cell updates of a hydro run (a 1 cm flow: about 1e11)
+inline constexpr double max_yard_places = 1e7;          // places a GIS yard's layout tests (the full-scale demo's: about 2e3)
 
 // Throws "<name>: <estimate_text>: <what> <estimate>, more than the <bound> flotsam runs
 // without --allow-large-run ..." when `estimate` exceeds `bound` (or is not finite) and
@@ -98,6 +99,17 @@ std::string file_type_of(const std::string& path);
 // regular file ...". Empty paths are skipped.
 void check_input_file(const std::string& option, const std::string& path);
 
+// What GDAL opens (a vector layer, a raster) must be files too: a regular file, or a
+// folder of regular files (a FileGDB, a folder of shapefiles); and so must the files GDAL
+// opens beside it, whose names begin with its stem (a shapefile's .shx and .dbf, a
+// GeoPackage's -wal and -journal, a raster's .aux.xml and .ovr). Paths that are not on
+// disk (GDAL's /vsizip/..., a missing file) are left to GDAL's own message.
+void check_gis_input(const std::string& option, const std::string& path);
+
+// Whether a and b are the same file (device and inode: symbolic links, hard links and
+// relative spellings); false when either does not exist.
+bool same_file(const std::string& a, const std::string& b);
+
 // An existing output (or its "<path>.part") must be a regular file: flotsam writes
 // "<path>.part" and renames it over <path>, which would replace a device node such as
 // /dev/null with a regular file. Throws naming the option and what the path is. A path
@@ -107,5 +119,10 @@ void check_output_file(const std::string& option, const std::string& path);
 // An input's size [bytes] against `max_bytes` (a text file read whole): throws naming the
 // option, the file and both sizes.
 void check_input_size(const std::string& option, const std::string& path, double max_bytes, const std::string& what);
+
+// " (No space left on device: 0 bytes free of 204800 on the file system of /scratch)" when
+// the file system `path` is written to is (nearly) full, else "": what a failed write adds
+// to its message (NetCDF says "HDF error", GDAL "no such table", a stream nothing).
+std::string disk_full_hint(const std::string& path);
 
 }  // namespace flotsam

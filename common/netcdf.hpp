@@ -12,21 +12,9 @@
 
 namespace flotsam::nc {
 
-// Reads a NetCDF file in a child process the way the readers will (its structure, every
-// attribute, every string, every variable up to 16 MB and one value of the larger ones,
-// the close, and the chunk index of every variable through libhdf5) and throws naming
-// the file, and what was being read, when libhdf5 crashes or hangs on it there or a
-// stored chunk lies past the end of the file (a corrupted file). File::open_read calls
-// it; a file that passed is not probed again by the process while it is unchanged.
-void probe_structure(const std::string& path);
-// Whether probe_structure() probes: FLOTSAM_NO_PROBE=1 turns it off, and so may the
-// caller (the fuzz targets, for the files they write themselves).
-bool probe_enabled();
-void set_probe_enabled(bool on);
-
 class File {
 public:
-    static File open_read(const std::string& path);   // probe_structure() first
+    static File open_read(const std::string& path);   // nc::probe_structure() first (common/netcdf_probe.hpp)
     static File open_write(const std::string& path);  // an existing file, for appending data
     static File create(const std::string& path);      // NetCDF-4 (HDF5), replacing any file there
     File(File&& other) noexcept;
@@ -94,14 +82,22 @@ public:
     std::vector<std::size_t> value_shape(int var) const;
     void get_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, float* out) const;
     void get_slab(int var, const std::vector<std::size_t>& start, const std::vector<std::size_t>& count, double* out) const;
-    std::optional<std::string> att_text(int var, const std::string& name) const;  // var = NC_GLOBAL for global
+    // Attributes (var = NC_GLOBAL for the file's): none when absent. One that is present
+    // but cannot be read, or is of the other kind (a number where text is read, text where
+    // a number is), is a named error, never taken for absent.
+    std::optional<std::string> att_text(int var, const std::string& name) const;
     std::optional<double> att_double(int var, const std::string& name) const;
     std::optional<std::vector<double>> att_doubles(int var, const std::string& name) const;
+    // The attribute's type (and its number of values), none when absent; for readers that
+    // take either kind.
+    std::optional<nc_type> att_type(int var, const std::string& name, std::size_t* length = nullptr) const;
+    bool att_is_text(int var, const std::string& name) const;
     std::vector<std::string> att_names(int var) const;  // in the file's order
 
 private:
     File(int id, std::string path) : id_(id), path_(std::move(path)) {}
     std::string var_label(int var) const;
+    std::string att_label(int var, const std::string& name) const;  // "global attribute 'a'", "variable 'v' attribute 'a'"
     int id_ = -1;
     std::string path_;
 };

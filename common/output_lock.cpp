@@ -107,19 +107,13 @@ OutputLock::~OutputLock() {
     reg.erase(it);
 }
 
-namespace {
-
-bool same_file(const std::string& a, const std::string& b) {
-    struct stat sa {
-    }, sb{};
-    if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
-    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
-
-}  // namespace
-
 OutputGuard::OutputGuard(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
-    for (const NamedPath& in : inputs) check_input_file(in.option, in.path);
+    for (const NamedPath& in : inputs) {
+        if (in.gis)
+            check_gis_input(in.option, in.path);
+        else
+            check_input_file(in.option, in.path);
+    }
     for (const NamedPath& out : outputs) check_output_file(out.option, out.path);
     for (std::size_t k = 0; k < outputs.size(); ++k) {
         const NamedPath& out = outputs[k];

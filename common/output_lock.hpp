@@ -34,6 +34,7 @@ private:
 struct NamedPath {
     std::string option;
     std::string path;
+    bool gis = false;  // an input GDAL opens: a folder of files will do (common/checks.hpp, check_gis_input)
 };
 
 // Refuses an input that is not a regular file (a device, a FIFO: a stream that may never

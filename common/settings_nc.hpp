@@ -10,6 +10,7 @@
 #include "common/cf.hpp"
 #include "common/columns.hpp"
 #include "common/settings.hpp"
+#include "common/units.hpp"
 
 namespace flotsam {
 
@@ -80,9 +81,10 @@ void get_setting_vars(const nc::File& f, const Settings<Def>& table, std::vector
             for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) s.set_number(defs[k], v[k]);
         } else {
             const std::vector<double> v = f.get_double(id);
+            const double factor = units::factor_to(f, id, s.unit);  // the file's units, converted or refused
             for (std::size_t k = 0; k < defs.size() && k < v.size(); ++k) {
-                check_range("variable '" + name + "'", v[k], s.range, f.path());
-                s.set_number(defs[k], v[k]);
+                check_range("variable '" + name + "'", factor * v[k], s.range, f.path());
+                s.set_number(defs[k], factor * v[k]);
             }
         }
     }

@@ -93,7 +93,61 @@ std::optional<double> speed_to_metres_per_second(const std::string& u) {
     return *l / *t;
 }
 
+std::optional<double> angle_to_degrees(const std::string& u) {
+    const std::string s = normalised(u);
+    if (s == "degree" || s == "degrees" || s == "deg" || s == "degrees_true") return 1.0;
+    if (s == "rad" || s == "radian" || s == "radians") return 180.0 / 3.14159265358979323846;
+    return std::nullopt;
+}
+
+std::optional<double> angular_speed_to_radians_per_second(const std::string& u) {
+    std::string s = normalised(u), angle, time;
+    if (const auto slash = s.find('/'); slash != std::string::npos) {
+        angle = s.substr(0, slash), time = s.substr(slash + 1);
+    } else if (const auto space = s.find_first_of(" ."); space != std::string::npos) {
+        angle = s.substr(0, space), time = s.substr(space + 1);
+        bool exponent = false;
+        for (const std::string sfx : {"**-1", "^-1", "-1"})
+            if (!exponent && time.size() > sfx.size() && time.compare(time.size() - sfx.size(), sfx.size(), sfx) == 0) {
+                time.erase(time.size() - sfx.size());
+                exponent = true;
+            }
+        if (!exponent) return std::nullopt;
+    } else {
+        return std::nullopt;
+    }
+    const auto a = angle_to_degrees(angle), t = lookup(times(), time);
+    if (!a || !t) return std::nullopt;
+    return *a * (3.14159265358979323846 / 180.0) / *t;
+}
+
+std::optional<double> force_to_newtons(const std::string& u) {
+    const std::string s = normalised(u);
+    if (s == "n" || s == "newton" || s == "newtons") return 1.0;
+    if (s == "kn" || s == "kilonewton" || s == "kilonewtons") return 1e3;
+    if (s == "mn" || s == "meganewton" || s == "meganewtons") return 1e6;
+    return std::nullopt;
+}
+
 namespace {
+
+std::optional<double> number_factor(const std::string& u) {
+    const std::string s = normalised(u);
+    if (s == "1" || s == "-" || s == "") return 1.0;
+    if (s == "%" || s == "percent") return 0.01;
+    return std::nullopt;
+}
+
+// s m-1: the inverse of a speed.
+std::optional<double> inverse_speed_factor(const std::string& u) {
+    std::string s = normalised(u);
+    for (const auto& [from, to] : {std::pair{"s m-1", "m s-1"}, std::pair{"s/m", "m/s"}, std::pair{"s m^-1", "m s^-1"}})
+        if (s == from) s = to;
+    if (s == normalised(u)) return std::nullopt;
+    const auto v = speed_to_metres_per_second(s);
+    if (!v) return std::nullopt;
+    return 1.0 / *v;
+}
 
 double factor_of(const nc::File& f, int var, std::optional<double> (*convert)(const std::string&), const char* kind,
                  const char* accepted) {
@@ -114,6 +168,26 @@ double time_factor(const nc::File& f, int var) {
 
 double speed_factor(const nc::File& f, int var) {
     return factor_of(f, var, speed_to_metres_per_second, "speed", "a length per time such as m s-1, cm s-1 or km h-1, or knots");
+}
+
+double angle_factor(const nc::File& f, int var) { return factor_of(f, var, angle_to_degrees, "angle", "degree or rad"); }
+
+double angular_speed_factor(const nc::File& f, int var) {
+    return factor_of(f, var, angular_speed_to_radians_per_second, "angular speed", "rad s-1 or degree s-1");
+}
+
+double factor_to(const nc::File& f, int var, const std::string& unit) {
+    const auto u = f.att_text(var, "units");
+    if (!u || normalised(*u).empty() || normalised(*u) == normalised(unit)) return 1.0;
+    if (unit == "m") return length_factor(f, var);
+    if (unit == "s") return time_factor(f, var);
+    if (unit == "m s-1") return speed_factor(f, var);
+    if (unit == "degree") return angle_factor(f, var);
+    if (unit == "rad s-1") return angular_speed_factor(f, var);
+    if (unit == "N") return factor_of(f, var, force_to_newtons, "force", "N, kN or MN");
+    if (unit == "s m-1") return factor_of(f, var, inverse_speed_factor, "inverse speed", "s m-1");
+    if (unit == "1" || unit.empty()) return factor_of(f, var, number_factor, "a number", "1 or %");
+    fail(f.path(), "variable '" + f.var_name(var) + "' attribute 'units'", quoted(*u) + " where flotsam reads " + quoted(unit));
 }
 
 double vertical_sign(const nc::File& f, int var) {

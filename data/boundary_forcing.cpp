@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -136,7 +137,7 @@ std::vector<double> read_times(const nc::File& f, const std::string& dim) {
     return t;
 }
 
-Source find_source(const nc::File& f) {
+Source find_source(const nc::File& f, const SideLine& line, const std::string& option) {
     if (const std::string kind = cf::kind_of(f); !kind.empty() && kind != boundary_names::file_kind)
         fail(f.path(), "flotsam_file_kind",
              "is '" + kind + "', not boundary values: a run writes those with --boundary-output FILE --boundary-box ...");
@@ -163,6 +164,11 @@ Source find_source(const nc::File& f) {
         s.v = *v;
     }
     if (auto d = find_standard(f, {boundary_names::depth}); d && f.dim_names(*d) == dims) s.depth = *d;
+    // The record's size before any of it is read: times x points x values.
+    const std::vector<std::size_t> shape = f.shape(s.level);
+    const double points = double(s.gridded ? line.along.size() : shape[1]), values = 1.0 + (s.u >= 0 ? 2.0 : 0.0) + (s.depth >= 0 ? 1.0 : 0.0);
+    check_allocation(option + " " + f.path(), number_text(double(shape[0])) + " times at " + number_text(points) + " points",
+                     double(shape[0]) * points * values, 2.0 * sizeof(double), "values");
     s.time = read_times(f, dims[0]);
     if (s.gridded) {
         const auto x = f.find_var(dims[2]), y = f.find_var(dims[1]);
@@ -240,10 +246,25 @@ std::array<double, 4> velocity_axes(const Frames& fr, double x, double y, bool g
     return {(x1 - x0) / a, (y1 - y0) / a, (x2 - x0) / b, (y2 - y0) / b};
 }
 
-void check_value(const nc::File& f, int var, double value, double fill, std::size_t k, const std::string& where) {
-    if (!std::isfinite(value) || value == fill || std::fabs(value) >= 1e30)
+// What a variable's values may be once converted to m or m s-1 (docs/reliability.md): a
+// depth not negative, a level within max_forcing_depth of the scene's lowest bed, a speed
+// at most 1000 m/s; and its missing-value marker.
+struct Limit {
+    double fill = 0.0;
+    double factor = 1.0, lo = -INFINITY, hi = INFINITY;
+    std::string why;  // what the range is, for the message
+};
+using Limits = std::map<int, Limit>;
+
+void check_value(const nc::File& f, int var, double value, const Limits& limits, std::size_t k, const std::string& where) {
+    const Limit& l = limits.at(var);
+    if (!std::isfinite(value) || value == l.fill || std::fabs(value) >= 1e30)
         fail(f.path(), "variable '" + f.var_name(var) + "'",
              "no value (" + number_text(value) + ") at time index " + std::to_string(k) + ", " + where);
+    if (!(value * l.factor >= l.lo && value * l.factor <= l.hi))
+        fail(f.path(), "variable '" + f.var_name(var) + "'",
+             number_text(value * l.factor) + " at time index " + std::to_string(k) + ", " + where + " is outside [" +
+                 number_text(l.lo) + ", " + number_text(l.hi) + "] (" + l.why + ")");
 }
 
 double fill_of(const nc::File& f, int var) {
@@ -252,22 +273,51 @@ double fill_of(const nc::File& f, int var) {
     return cf::fill_value;
 }
 
-// Level and scene-frame velocity at the points, from values in the file's units and axes.
-struct PointValues {
-    std::vector<double> level, u, v;  // (time, point)
-};
-
-SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line) {
-    const std::size_t nt = s.time.size(), ns = f.shape(s.level)[1];
-    std::vector<double> xs = nc::read_finite(f, f.var_name(s.x)), ys = nc::read_finite(f, f.var_name(s.y));
-    if (!s.geographic) {
-        const double fx = units::length_factor(f, s.x), fy = units::length_factor(f, s.y);
-        for (double& v : xs) v *= fx;
-        for (double& v : ys) v *= fy;
+Limits limits_of(const nc::File& f, const Source& s, const ForcingNeeds& needs) {
+    Limits limits;
+    const double deep = max_forcing_depth;
+    Limit level{fill_of(f, s.level), units::length_factor(f, s.level), -INFINITY, INFINITY, ""};
+    if (!std::isnan(needs.bed_min)) {
+        level.lo = needs.bed_min - deep;
+        level.hi = needs.bed_min + deep;
+        level.why = "a level within " + number_text(deep) + " m of the scene's lowest bed, " + number_text(needs.bed_min) +
+                    " m: deeper water than any ocean's";
     }
-    std::vector<double> sx = xs, sy = ys;
-    for (std::size_t p = 0; p < ns; ++p) fr.scene(sx[p], sy[p]);
-    // Stations within reach of the side's edge line.
+    limits[s.level] = level;
+    if (s.depth >= 0)
+        limits[s.depth] = {fill_of(f, s.depth), units::length_factor(f, s.depth), 0.0, deep, "a water depth: never negative"};
+    if (s.u >= 0) {
+        const double sf = units::speed_factor(f, s.u);
+        if (units::speed_factor(f, s.v) != sf) fail(f.path(), "velocity", "its two components have different units");
+        for (int v : {s.u, s.v}) limits[v] = {fill_of(f, v), sf, -1000.0, 1000.0, "a water speed in m/s"};
+    }
+    return limits;
+}
+
+// The times cover the run: from its start, and to its end within one of the file's own
+// steps (a record written every 10 s may end up to 10 s before a run that is not a
+// multiple of it). A file shifted in time leaves the side unforced otherwise.
+void check_times(const nc::File& f, const Source& s, const ForcingNeeds& needs) {
+    if (std::isnan(needs.t_end)) return;
+    const double first = s.time.front(), last = s.time.back();
+    std::vector<double> steps;
+    for (std::size_t k = 1; k < s.time.size(); ++k) steps.push_back(s.time[k] - s.time[k - 1]);
+    std::nth_element(steps.begin(), steps.begin() + std::ptrdiff_t(steps.size() / 2), steps.end());
+    const double step = steps[steps.size() / 2], tol = 1e-9 * std::max(1.0, std::fabs(needs.t_end));
+    if (first > needs.t_start + tol || last < needs.t_end - step - tol)
+        fail(f.path(), "time",
+             "covers " + number_text(first) + " to " + number_text(last) + " s, the run " + number_text(needs.t_start) + " to " +
+                 number_text(needs.t_end) + " s: " +
+                 (first >= needs.t_end || last <= needs.t_start ? "they do not overlap (is the file's time axis shifted?)"
+                                                                : "the side would be held at the file's first or last values") +
+                 "; the file's time counts from the run's start (t = 0)");
+}
+
+// The stations within reach of the side's edge line, as (position along it, station), in
+// order along it, a corner written by two sides once; they must cover the side.
+std::vector<std::pair<double, std::size_t>> stations_along(const nc::File& f, const std::vector<double>& sx,
+                                                           const std::vector<double>& sy, const SideLine& line) {
+    const std::size_t ns = sx.size();
     std::vector<double> nearest(ns, INFINITY);
     for (std::size_t p = 0; p < ns; ++p)
         for (std::size_t q = 0; q < ns; ++q)
@@ -297,29 +347,40 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
              "do not cover the side: those within reach of its edge span " + number_text(first) + " to " + number_text(last) +
                  " m along it, its cells " + number_text(line.along.front()) + " to " + number_text(line.along.back()) + " m");
 
+    return unique;
+}
+
+SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
+    const std::size_t nt = s.time.size(), ns = f.shape(s.level)[1];
+    std::vector<double> xs = nc::read_finite(f, f.var_name(s.x)), ys = nc::read_finite(f, f.var_name(s.y));
+    if (!s.geographic) {
+        const double fx = units::length_factor(f, s.x), fy = units::length_factor(f, s.y);
+        for (double& v : xs) v *= fx;
+        for (double& v : ys) v *= fy;
+    }
+    std::vector<double> sx = xs, sy = ys;
+    for (std::size_t p = 0; p < ns; ++p) fr.scene(sx[p], sy[p]);
+    const std::vector<std::pair<double, std::size_t>> unique = stations_along(f, sx, sy, line);
+
     SideRecord r;
     r.source = f.path();
     r.time = s.time;
     const std::size_t np = unique.size();
     for (const auto& c : unique) r.along.push_back(c.first);
     const std::vector<double> level = f.get_double(s.level);
-    const double lf = units::length_factor(f, s.level), level_fill = fill_of(f, s.level);
+    const double lf = limits.at(s.level).factor;
     r.level.resize(nt * np);
     std::vector<double> uf, vf, df;
-    double sf = 1.0, u_fill = 0.0, v_fill = 0.0, d_fill = 0.0, dfac = 1.0;
+    double sf = 1.0, dfac = 1.0;
     if (s.depth >= 0) {
         df = f.get_double(s.depth);
-        dfac = units::length_factor(f, s.depth);
-        d_fill = fill_of(f, s.depth);
+        dfac = limits.at(s.depth).factor;
         r.depth.resize(nt * np);
     }
     if (s.u >= 0) {
         uf = f.get_double(s.u);
         vf = f.get_double(s.v);
-        sf = units::speed_factor(f, s.u);
-        if (units::speed_factor(f, s.v) != sf) fail(f.path(), "velocity", "its two components have different units");
-        u_fill = fill_of(f, s.u);
-        v_fill = fill_of(f, s.v);
+        sf = limits.at(s.u).factor;
         r.u.resize(nt * np);
         r.v.resize(nt * np);
     }
@@ -329,16 +390,16 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
         const auto axes = s.u >= 0 ? velocity_axes(fr, xs[p], ys[p], s.geographic) : std::array<double, 4>{};
         for (std::size_t k = 0; k < nt; ++k) {
             const double value = level[k * ns + p];
-            check_value(f, s.level, value, level_fill, k, where);
+            check_value(f, s.level, value, limits, k, where);
             r.level[k * np + c] = lf * value;
             if (s.depth >= 0) {
-                check_value(f, s.depth, df[k * ns + p], d_fill, k, where);
-                r.depth[k * np + c] = std::max(0.0, dfac * df[k * ns + p]);
+                check_value(f, s.depth, df[k * ns + p], limits, k, where);
+                r.depth[k * np + c] = dfac * df[k * ns + p];
             }
             if (s.u >= 0) {
                 const double a = uf[k * ns + p], b = vf[k * ns + p];
-                check_value(f, s.u, a, u_fill, k, where);
-                check_value(f, s.v, b, v_fill, k, where);
+                check_value(f, s.u, a, limits, k, where);
+                check_value(f, s.v, b, limits, k, where);
                 r.u[k * np + c] = sf * (a * axes[0] + b * axes[2]);
                 r.v[k * np + c] = sf * (a * axes[1] + b * axes[3]);
             }
@@ -366,7 +427,7 @@ double axis_position(const std::vector<double>& axis, double a, const nc::File& 
     return (rising ? a < first : a > first) ? 0.0 : double(n - 1);
 }
 
-SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line) {
+SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
     const auto shape = f.shape(s.level);
     const std::size_t nt = s.time.size(), ny = shape[1], nx = shape[2];
     std::vector<double> ax = nc::read_finite(f, f.var_name(s.x)), ay = nc::read_finite(f, f.var_name(s.y));
@@ -400,18 +461,17 @@ SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, c
         r.u.resize(nt * np);
         r.v.resize(nt * np);
     }
-    const double lf = units::length_factor(f, s.level);
-    const double sf = s.u >= 0 ? units::speed_factor(f, s.u) : 1.0;
-    const double dfac = s.depth >= 0 ? units::length_factor(f, s.depth) : 1.0;
+    const double lf = limits.at(s.level).factor;
+    const double sf = s.u >= 0 ? limits.at(s.u).factor : 1.0;
+    const double dfac = s.depth >= 0 ? limits.at(s.depth).factor : 1.0;
     if (s.depth >= 0) r.depth.resize(nt * np);
     std::vector<double> lw(wx * wy), uw, vw, dw;
     for (std::size_t k = 0; k < nt; ++k) {
         auto slab = [&](int var, std::vector<double>& out) {
             out.resize(wx * wy);
             f.get_slab(var, {k, j0, i0}, {1, wy, wx}, out.data());
-            const double fill = fill_of(f, var);
             for (std::size_t q = 0; q < out.size(); ++q)
-                check_value(f, var, out[q], fill, k, "cell (x index " + std::to_string(i0 + q % wx) + ", y index " +
+                check_value(f, var, out[q], limits, k, "cell (x index " + std::to_string(i0 + q % wx) + ", y index " +
                                                          std::to_string(j0 + q / wx) + ")");
         };
         slab(s.level, lw);
@@ -442,12 +502,15 @@ SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, c
 
 }  // namespace
 
-SideRecord read_side_forcing(const std::string& path, const std::string& side, const Grid& grid, const cf::GridMapping& crs) {
+SideRecord read_side_forcing(const std::string& path, const std::string& side, const Grid& grid, const cf::GridMapping& crs,
+                             const ForcingNeeds& needs) {
     const nc::File f = nc::File::open_read(path);
     const SideLine line = side_line(side, grid, path);
-    const Source s = find_source(f);
+    const Source s = find_source(f, line, needs.option);
+    check_times(f, s, needs);
     const Frames fr = frames(f, s, crs);
-    return s.gridded ? place_on_grid(f, s, fr, line) : place_stations(f, s, fr, line);
+    const Limits limits = limits_of(f, s, needs);
+    return s.gridded ? place_on_grid(f, s, fr, line, limits) : place_stations(f, s, fr, line, limits);
 }
 
 }  // namespace flotsam::data

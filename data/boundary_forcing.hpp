@@ -21,6 +21,7 @@
 // CRS (or one the scene cannot be placed in), the side not covered, time not increasing,
 // gaps, fill values or values that are not finite.
 #pragma once
+#include <cmath>
 #include <string>
 
 #include "common/cf.hpp"
@@ -29,9 +30,25 @@
 
 namespace flotsam::data {
 
+// What a run needs of a forcing file besides its side: the scene's elevations, which its
+// levels must stay near, and the run's span, which its times must cover.
+struct ForcingNeeds {
+    double bed_min = std::nan("");          // [m] the scene's lowest bed; NaN: levels unchecked against it
+    double t_start = 0.0;                   // [s] the run's start
+    double t_end = std::nan("");            // [s] the run's end; NaN: times unchecked against it
+    std::string option = "--west-forcing";  // where the file was given, for messages
+};
+// How far a level may lie from the scene's lowest bed [m]: the depth hydro's own state
+// check stops at (no ocean is deeper).
+inline constexpr double max_forcing_depth = 11000.0;
+
 // `side`: "west", "east", "south" or "north" of `grid`, whose CRS is `crs` (empty: local
-// metres).
+// metres). Besides the placement errors above, the values are checked for what the side
+// needs (docs/reliability.md): depths not negative, levels within max_forcing_depth of
+// `needs.bed_min`, speeds at most 1000 m/s; the times must cover [t_start, t_end] (to
+// within one of the file's own steps at the end), and the record must fit in memory
+// (its times x points, named with the file) before it is read.
 SideRecord read_side_forcing(const std::string& path, const std::string& side, const Grid& grid,
-                             const cf::GridMapping& crs);
+                             const cf::GridMapping& crs, const ForcingNeeds& needs = {});
 
 }  // namespace flotsam::data

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "common/checks.hpp"
 #include "common/error.hpp"
 
 namespace flotsam::gdal {
@@ -29,6 +30,8 @@ void init() {
     });
 }
 
+bool error_pending() { return !g_last_error.empty(); }
+
 std::string last_error() {
     std::string e = g_last_error;
     g_last_error.clear();
@@ -36,6 +39,7 @@ std::string last_error() {
 }
 
 Dataset open_raster(const std::string& path) {
+    check_gis_input("", path);  // a FIFO beside or in its place would block GDAL for ever
     init();
     g_last_error.clear();
     GDALDataset* d =
@@ -45,6 +49,7 @@ Dataset open_raster(const std::string& path) {
 }
 
 Dataset open_vector(const std::string& path) {
+    check_gis_input("", path);  // a FIFO beside or in its place would block GDAL for ever
     init();
     g_last_error.clear();
     GDALDataset* d =
@@ -53,11 +58,18 @@ Dataset open_vector(const std::string& path) {
     return Dataset(d);
 }
 
+const OGRSpatialReference* layer_crs(OGRLayer& layer) {
+    const OGRSpatialReference* crs = layer.GetSpatialRef();
+    const std::string name = crs && crs->GetName() ? crs->GetName() : "";
+    return name == "Undefined geographic SRS" || name == "Undefined Cartesian SRS" ? nullptr : crs;
+}
+
 OGRSpatialReference crs_from_text(const std::string& text, const std::string& what) {
     init();
     OGRSpatialReference s;
     s.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     std::string definition = text;
+    if (text.find('[') == std::string::npos) check_input_file(what, text);  // a FIFO named as a .prj would never end
     if (std::ifstream in(text); in && text.find('[') == std::string::npos) {  // a .prj or a file holding WKT
         std::stringstream ss;
         ss << in.rdbuf();

@@ -21,6 +21,9 @@ void init();
 
 // The text of GDAL's last error since the call began (for messages), then cleared.
 std::string last_error();
+// Whether GDAL reported a failure since last_error() was last read (a close that could
+// not flush its data says so only this way).
+bool error_pending();
 
 struct DatasetClose {
     void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
@@ -30,6 +33,10 @@ using Dataset = std::unique_ptr<GDALDataset, DatasetClose>;
 // Opens read-only; errors name the file and what GDAL said.
 Dataset open_raster(const std::string& path);
 Dataset open_vector(const std::string& path);
+
+// A vector layer's CRS; null when it has none, a GeoPackage's placeholders for none
+// ("Undefined geographic SRS", "Undefined Cartesian SRS") included.
+const OGRSpatialReference* layer_crs(OGRLayer& layer);
 
 // A CRS from what a user types: "EPSG:32653", WKT, a PROJ string, or a file holding one
 // (a .prj). `what` names the option or file for the error.

@@ -28,7 +28,7 @@ VectorLayer open_vector_layer(const std::string& path, const std::string& layer_
              names.empty() ? "none in the file" : "not found (layers: " + names + ")");
     }
     v.where = path + (layer_name.empty() ? "" : ":" + layer_name);
-    const OGRSpatialReference* layer_crs = v.layer->GetSpatialRef();
+    const OGRSpatialReference* layer_crs = gdal::layer_crs(*v.layer);
     const auto scene_crs = scene_spatial_ref(scene);
     if (scene_crs && !layer_crs)
         fail(v.where, "coordinate reference system",

@@ -19,10 +19,10 @@ FlowReader::FlowReader(const std::string& path, const FlowReaderDef& def)
 
 FlowReader::TimeStencil FlowReader::at_time(double t) const {
     // Every sample goes through here: without frames it would read unallocated memory.
-    if (!frames_.loaded()) fail(path(), "", "sampled at t = " + std::to_string(t) + " s before prepare() loaded any frame");
+    if (!frames_.loaded()) fail(description().path, "", "sampled at t = " + std::to_string(t) + " s before prepare() loaded any frame");
     TimeStencil ts;
     ts.t = t;
-    const std::vector<double>& times = frame_times();
+    const std::vector<double>& times = description().frame_times;
     const double t0 = times[frames_.frame_of_role(1)], t1 = times[frames_.frame_of_role(2)];
     if (t1 > t0) {
         ts.a = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
@@ -79,7 +79,7 @@ void FlowReader::stencil_on(const Grid& g, const CellWindow& w, double x, double
         if (!ts.cubic) continue;
         const std::size_t n = s.n[c];
         const double h[4] = {depth.role[0][n], depth.role[1][n], depth.role[2][n], depth.role[3][n]};
-        s.cubic[c] = cubic_depth_admissible(apply_time_weights(ts.cubic_weights.w, h[0], h[1], h[2], h[3]), h, dry_depth());
+        s.cubic[c] = cubic_depth_admissible(apply_time_weights(ts.cubic_weights.w, h[0], h[1], h[2], h[3]), h, description().dry_depth);
     }
 }
 
@@ -207,7 +207,7 @@ void FlowReader::sample(const Vec2* p, int n, const TimeStencil& ts, FlowPoint* 
         }
         for (int k = 0; k < m; ++k) {
             FlowPoint& q = out[k0 + k];
-            if (h[k] < dry_depth()) continue;
+            if (h[k] < description().dry_depth) continue;
             const Double2 uv = Double2{qx[k], qy[k]} / Double2{h[k], h[k]};
             q.u = uv[0];
             q.v = uv[1];
@@ -237,7 +237,7 @@ FlowPointAccel FlowReader::flow_accel(const Stencil& s) const {
     const Interp h = interp(frames_.h());
     FlowPointAccel p;
     p.depth = h.val;
-    if (h.val < dry_depth()) return p;
+    if (h.val < description().dry_depth) return p;
     const Interp qx = interp(frames_.qx()), qy = interp(frames_.qy());
     const Double2 uv = Double2{qx.val, qy.val} / Double2{h.val, h.val};
     p.u = uv[0];

@@ -87,21 +87,12 @@ public:
     bool has_ground() const { return frames_.has_ground(); }
 
     const FrameSource& source() const { return frames_.source(); }
-    const std::vector<double>& frame_times() const { return source().frame_times(); }  // [s]
-    double start_time() const { return frame_times().front(); }                        // [s]
-    double end_time() const { return frame_times().back(); }                           // [s]
-    const std::vector<float>& bed() const { return source().bed(); }                   // z on the whole grid [m]
-    const std::string& path() const { return source().path(); }
-    std::string scene_sha256() const { return source().scene_sha256(); }
-    std::string scene_buildings_sha256() const { return source().scene_buildings_sha256(); }
-    cf::GridMapping crs() const { return source().crs(); }
-    // The largest speed of the flow's max_speed map [m/s] (0 when the file has none): what
-    // a run's step count is estimated from before it starts.
-    double largest_speed() const { return source().largest_speed(); }
-    double dry_depth() const { return source().dry_depth(); }  // [m]
+    // What the flow is: path, frame times, bed, dry depth, largest speed, its scene's
+    // fingerprints, its CRS (read once when opened).
+    const FlowDescription& description() const { return frames_.source().description(); }
     const FlowReaderDef& def() const { return def_; }
 
-    // The first frame time after t (end_time() when none) [s].
+    // The first frame time after t (the last frame's when none) [s].
     double next_frame_time(double t) const { return source().next_frame_time(t); }
     // Loading, as FrameWindow's: the frames around t, over the window or regions.
     void prepare(double t) { frames_.prepare(t); }
@@ -116,14 +107,7 @@ public:
     const CellWindow& window() const { return frames_.window(); }
     // What was read (FrameWindow's counts).
     const FrameWindow& frames() const { return frames_; }
-    std::size_t tiles_loaded() const { return frames_.tiles_loaded(); }
-    std::size_t frames_loaded() const { return frames_.frames_loaded(); }
-    std::size_t frames_read_ahead() const { return frames_.frames_read_ahead(); }
-    std::size_t cells_read() const { return frames_.cells_read(); }
-    std::size_t frames_refit() const { return frames_.frames_refit(); }
-    std::size_t window_cells() const { return frames_.window_cells(); }
-    double load_seconds() const { return frames_.load_seconds(); }          // [s]
-    double load_cpu_seconds() const { return frames_.load_cpu_seconds(); }  // [s]
+    FlowReadStats read_stats() const { return frames_.read_stats(); }
 
     // Samples at time t in the prepared interval (clamped into it). The point must lie
     // in the window (cells_for of it contained in window()); outside, values are clamped.

@@ -42,7 +42,8 @@ int find_field(const nc::File& f, const char* standard_name, const char* short_n
 // writes it, or a number); the fallback where the file has none.
 double read_dry_depth(const nc::File& f) {
     const char* name = flow_names::dry_depth_attribute;
-    std::optional<double> value = f.att_double(NC_GLOBAL, name);
+    std::optional<double> value;
+    if (!f.att_is_text(NC_GLOBAL, name)) value = f.att_double(NC_GLOBAL, name);
     if (!value) {
         const auto text = f.att_text(NC_GLOBAL, name);
         if (!text) return flow_names::fallback_dry_depth;
@@ -55,6 +56,17 @@ double read_dry_depth(const nc::File& f) {
         fail(f.path(), std::string("attribute '") + name + "'",
              "the dry tolerance must be a positive depth [m], got " + std::to_string(*value));
     return *value;
+}
+
+// The largest speed of the flow's max_speed map [m/s] (0 when the file has none).
+double largest_speed(const nc::File& f, const Grid& g) {
+    const auto v = f.find_var("max_speed");
+    if (!v || f.shape(*v) != std::vector<std::size_t>{std::size_t(g.ny), std::size_t(g.nx)}) return 0.0;
+    const double factor = units::speed_factor(f, *v);
+    double largest = 0.0;
+    for (float s : f.get_float(*v))
+        if (std::isfinite(s) && std::fabs(s) < 1e3f) largest = std::max(largest, double(std::fabs(s)) * factor);
+    return largest;
 }
 
 // The chunk cache of a field to one frame's chunks over the whole grid. A frame is read
@@ -85,9 +97,10 @@ FrameSource::FrameSource(const std::string& path, bool decode_tiles, int decode_
         if (!file_.has_var(name)) fail(path, "", std::string("not a flow file: no variable '") + name + "'");
     // Other units than flotsam's (time in hours, x in km, h in cm, u in km h-1) are
     // converted to seconds, metres and metres per second; units it cannot convert are refused.
-    times_ = nc::read_finite(file_, "time");
+    std::vector<double>& times = desc_.frame_times;
+    times = nc::read_finite(file_, "time");
     if (const double ft = units::time_factor(file_, file_.var("time")); ft != 1.0)
-        for (double& t : times_) t *= ft;
+        for (double& t : times) t *= ft;
     std::vector<double> xs = nc::read_finite(file_, "x"), ys = nc::read_finite(file_, "y");
     if (const double fx = units::length_factor(file_, file_.var("x")); fx != 1.0)
         for (double& a : xs) a *= fx;
@@ -98,13 +111,13 @@ FrameSource::FrameSource(const std::string& path, bool decode_tiles, int decode_
     scale_u_ = float(units::speed_factor(file_, var_u_));
     scale_v_ = float(units::speed_factor(file_, var_v_));
     if (grid_.nx < 2 || grid_.ny < 2) fail(path, "x, y", "a flow needs at least 2 x 2 cells");
-    if (times_.size() < 2)
+    if (times.size() < 2)
         fail(path, "variable 'time'",
-             std::to_string(times_.size()) +
+             std::to_string(times.size()) +
                  " frame(s): a flow to replay needs at least two (store frames with --output-interval "
                  "shorter than --duration)");
-    for (std::size_t k = 1; k < times_.size(); ++k)
-        if (!(times_[k] > times_[k - 1]))
+    for (std::size_t k = 1; k < times.size(); ++k)
+        if (!(times[k] > times[k - 1]))
             fail(path, "variable 'time'", "frame times must increase (frame " + std::to_string(k) + ")");
     const int vz = file_.var("z");
     if (file_.shape(vz) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)} ||
@@ -118,12 +131,17 @@ FrameSource::FrameSource(const std::string& path, bool decode_tiles, int decode_
             fail(path, "variable 'z'",
                  "bed " + std::to_string(z[k]) + " m at flat index " + std::to_string(k) +
                      " is outside [-11000, 9000] m (no bed on Earth is deeper or higher: a fill value?)");
-    z_.assign(z.begin(), z.end());
+    desc_.bed.assign(z.begin(), z.end());
     // The fields themselves must be (time, y, x) on this grid and time axis.
     for (int v : {var_h_, var_u_, var_v_})
-        if (file_.shape(v) != std::vector<std::size_t>{times_.size(), std::size_t(grid_.ny), std::size_t(grid_.nx)})
+        if (file_.shape(v) != std::vector<std::size_t>{times.size(), std::size_t(grid_.ny), std::size_t(grid_.nx)})
             fail(path, "variable '" + file_.var_name(v) + "'", "shape does not match (time, y, x) of the coordinates");
-    dry_depth_ = read_dry_depth(file_);
+    desc_.path = path;
+    desc_.dry_depth = read_dry_depth(file_);
+    desc_.largest_speed = largest_speed(file_, grid_);
+    desc_.scene_sha256 = file_.att_text(NC_GLOBAL, "scene_sha256").value_or("");
+    desc_.scene_buildings_sha256 = file_.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or("");
+    desc_.crs = cf::read_crs(file_, file_.var_name(var_h_));
     for (int v : {var_h_, var_u_, var_v_}) size_chunk_cache(file_, v);
     int storage = 0;
     std::size_t chunk[3] = {0, 0, 0};
@@ -136,19 +154,10 @@ FrameSource::FrameSource(const std::string& path, bool decode_tiles, int decode_
     if (decoder_ && (decoder_->tile_x() != tile_x_ || decoder_->tile_y() != tile_y_)) decoder_.reset();
 }
 
-double FrameSource::largest_speed() const {
-    const auto v = file_.find_var("max_speed");
-    if (!v || file_.shape(*v) != std::vector<std::size_t>{std::size_t(grid_.ny), std::size_t(grid_.nx)}) return 0.0;
-    const double factor = units::speed_factor(file_, *v);
-    double largest = 0.0;
-    for (float s : file_.get_float(*v))
-        if (std::isfinite(s) && std::fabs(s) < 1e3f) largest = std::max(largest, double(std::fabs(s)) * factor);
-    return largest;
-}
-
 double FrameSource::next_frame_time(double t) const {
-    const auto it = std::upper_bound(times_.begin(), times_.end(), t);
-    return it == times_.end() ? times_.back() : *it;
+    const std::vector<double>& times = desc_.frame_times;
+    const auto it = std::upper_bound(times.begin(), times.end(), t);
+    return it == times.end() ? times.back() : *it;
 }
 
 TileRange FrameSource::tiles_of(const CellWindow& w) const {

@@ -53,6 +53,21 @@ struct TileRange {
 // CPU time of the calling thread [s].
 double thread_cpu_seconds();
 
+// What a stored flow is, read once when it is opened: what the checks against a scene,
+// the estimate of a run and the files written from it need.
+struct FlowDescription {
+    std::string path;
+    std::vector<double> frame_times;     // [s], increasing
+    std::vector<float> bed;              // z on the whole grid [m]
+    double dry_depth = 0.0;              // [m] the file's dry_depth_m, else flow_names::fallback_dry_depth
+    double largest_speed = 0.0;          // of its max_speed map [m/s] (0 when it has none): what a run's steps are estimated from
+    std::string scene_sha256;            // SHA-256 of the scene it was computed on ("" in flows written before it)
+    std::string scene_buildings_sha256;  // that scene's building mask (formats/scene.hpp; "" in flows written before it)
+    cf::GridMapping crs;                 // the CF grid mapping of its fields; empty: local metres
+    double start_time() const { return frame_times.front(); }  // [s]
+    double end_time() const { return frame_times.back(); }     // [s]
+};
+
 class FrameSource {
 public:
     // Opens `path` and checks it is a flow file: h, u, v found by standard_name with
@@ -61,29 +76,16 @@ public:
     // file's layout allows, by `decode_threads` threads (the reading one among them).
     FrameSource(const std::string& path, bool decode_tiles, int decode_threads);
 
-    const std::string& path() const { return file_.path(); }
+    const FlowDescription& description() const { return desc_; }
+    const std::string& path() const { return desc_.path; }
     const Grid& grid() const { return grid_; }
     // Moves the frame of positions: grid() is then relative to (x_origin, y_origin) [m].
     void set_origin(double x_origin, double y_origin) {
         grid_.x0 -= x_origin;
         grid_.y0 -= y_origin;
     }
-    const std::vector<double>& frame_times() const { return times_; }  // [s]
     // The first frame time after t (the last frame's when none) [s].
     double next_frame_time(double t) const;
-    const std::vector<float>& bed() const { return z_; }  // z on the whole grid [m]
-    // The flow's dry tolerance [m]: the file's dry_depth_m, else flow_names::fallback_dry_depth.
-    double dry_depth() const { return dry_depth_; }
-    // SHA-256 of the scene file the flow was computed on (attribute scene_sha256; empty
-    // for flows written before it existed).
-    std::string scene_sha256() const { return file_.att_text(NC_GLOBAL, "scene_sha256").value_or(""); }
-    // The building mask of the flow's scene, as the hydro run recorded it (attribute
-    // scene_buildings_sha256, formats/scene.hpp; empty for flows written before it existed).
-    std::string scene_buildings_sha256() const { return file_.att_text(NC_GLOBAL, "scene_buildings_sha256").value_or(""); }
-    // The CF grid mapping of the flow's fields (empty: local metres).
-    cf::GridMapping crs() const { return cf::read_crs(file_, file_.var_name(var_h_)); }
-    // The largest speed of the flow's max_speed map [m/s] (0 when the file has none).
-    double largest_speed() const;
 
     TileRange tiles_of(const CellWindow& w) const;
     // The cells of tile (ti, tj) within w.
@@ -113,10 +115,8 @@ private:
 
     nc::File file_;
     int decode_threads_ = 1;
-    double dry_depth_ = 0.0;
+    FlowDescription desc_;
     Grid grid_;
-    std::vector<double> times_;
-    std::vector<float> z_;
     int var_h_ = -1, var_u_ = -1, var_v_ = -1;
     float scale_h_ = 1.0f, scale_u_ = 1.0f, scale_v_ = 1.0f;  // the file's units to m and m/s (1: as flotsam writes)
     int tile_x_ = 64, tile_y_ = 64;

@@ -64,9 +64,9 @@ double FrameWindow::refit_frame(Frame& f, const FrameArea& to) {
             f.index = no_frame;  // half refit: held by no role, read anew if needed again
             throw;
         }
-        for (const CellWindow& r : rects) cells_read_ += std::size_t(r.i1 - r.i0) * std::size_t(r.j1 - r.j0);
+        for (const CellWindow& r : rects) stats_.cells_read += std::size_t(r.i1 - r.i0) * std::size_t(r.j1 - r.j0);
         f.area = to;
-        ++frames_refit_;
+        ++stats_.frames_refit;
     }
     if (has_ground()) depth_over_ground(f, to);  // on the new window, or over a new ground
     return thread_cpu_seconds() - start_cpu + helpers_cpu;
@@ -76,10 +76,10 @@ void FrameWindow::load(Frame& f, std::size_t frame) {
     const auto start_clock = std::chrono::steady_clock::now();
     if (!take_read_ahead(f, frame)) {
         wait_read_ahead();  // one netCDF caller at a time; a frame read ahead stays for a later role
-        load_cpu_seconds_ += read_frame(f, frame, area());
+        stats_.load_cpu_seconds += read_frame(f, frame, area());
         count_read(area());
     }
-    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+    stats_.load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
 }
 
 FrameWindow::~FrameWindow() {
@@ -113,14 +113,14 @@ void FrameWindow::wait_read_ahead() {
 void FrameWindow::finish_read_ahead() {
     const auto start_clock = std::chrono::steady_clock::now();
     wait_read_ahead();  // the frame (or its error) stays for prepare()
-    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+    stats_.load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
 }
 
 bool FrameWindow::take_read_ahead(Frame& f, std::size_t frame) {
     if (!ahead_ || ahead_->wanted() != frame) return false;
     const FrameReadAhead::Finished done = ahead_->finish();
     count_read(ahead_->area());
-    load_cpu_seconds_ += done.cpu_seconds;
+    stats_.load_cpu_seconds += done.cpu_seconds;
     if (done.error) {
         // A frame that fails its checks is reported where it is needed, as without
         // read-ahead; one never needed is never reported. Read on a window since moved,
@@ -129,8 +129,8 @@ bool FrameWindow::take_read_ahead(Frame& f, std::size_t frame) {
         return false;
     }
     std::swap(f, ahead_->frame());  // f's arrays are the next read's
-    ++frames_read_ahead_;
-    if (!(f.area == area())) load_cpu_seconds_ += refit_frame(f, area());  // the window moved since the read began
+    ++stats_.frames_read_ahead;
+    if (!(f.area == area())) stats_.load_cpu_seconds += refit_frame(f, area());  // the window moved since the read began
     return true;
 }
 
@@ -138,14 +138,14 @@ void FrameWindow::drop_read_ahead() {
     if (!ahead_ || ahead_->wanted() == no_frame) return;
     const FrameReadAhead::Finished done = ahead_->finish();  // an error here is of a frame not needed
     count_read(ahead_->area());
-    load_cpu_seconds_ += done.cpu_seconds;
+    stats_.load_cpu_seconds += done.cpu_seconds;
 }
 
 void FrameWindow::count_read(const FrameArea& a) {
-    ++frames_loaded_;
+    ++stats_.frames_loaded;
     const auto cells = [](const CellWindow& c) { return std::size_t(c.i1 - c.i0) * std::size_t(c.j1 - c.j0); };
-    window_cells_ += cells(a.window);
-    for (const CellWindow& r : source_.read_rects(a)) cells_read_ += cells(r);
+    stats_.window_cells += cells(a.window);
+    for (const CellWindow& r : source_.read_rects(a)) stats_.cells_read += cells(r);
 }
 
 void FrameWindow::hold(const std::size_t (&need)[4]) {
@@ -191,9 +191,9 @@ void FrameWindow::hold(const std::size_t (&need)[4]) {
 }
 
 void FrameWindow::frames_needed(double t, std::size_t (&need)[4]) const {
-    const std::size_t n = source_.frame_times().size();
-    std::size_t k = std::size_t(std::upper_bound(source_.frame_times().begin(), source_.frame_times().end(), t) -
-                                source_.frame_times().begin());
+    const std::size_t n = source_.description().frame_times.size();
+    std::size_t k = std::size_t(std::upper_bound(source_.description().frame_times.begin(), source_.description().frame_times.end(), t) -
+                                source_.description().frame_times.begin());
     k = k == 0 ? 0 : k - 1;
     const std::size_t k1 = std::min(k + 1, n - 1);
     const bool cubic = cubic_;
@@ -267,10 +267,12 @@ bool FrameWindow::covers(const CellWindow& w) const {
     return true;
 }
 
-std::size_t FrameWindow::tiles_loaded() const {
+FlowReadStats FrameWindow::read_stats() const {
+    FlowReadStats s = stats_;
     const TileRange t = source_.tiles_of(window_);
-    return window_tiles_.empty() ? std::size_t(t.nti * t.ntj)
-                                 : std::size_t(std::count(window_tiles_.begin(), window_tiles_.end(), char(1)));
+    s.tiles_loaded = window_tiles_.empty() ? std::size_t(t.nti * t.ntj)
+                                           : std::size_t(std::count(window_tiles_.begin(), window_tiles_.end(), char(1)));
+    return s;
 }
 
 void FrameWindow::set_area(FrameArea a) {
@@ -286,8 +288,8 @@ void FrameWindow::reload() {
     const auto start_clock = std::chrono::steady_clock::now();
     wait_read_ahead();  // one netCDF caller at a time; the frame read ahead is refit when taken
     for (Frame& f : frames_)
-        if (f.index != no_frame) load_cpu_seconds_ += refit_frame(f, area());
-    load_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
+        if (f.index != no_frame) stats_.load_cpu_seconds += refit_frame(f, area());
+    stats_.load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_clock).count();
     const std::size_t need[4] = {role(0).index, role(1).index, role(2).index, role(3).index};
     hold(need);  // the roles' arrays moved
 }
@@ -349,8 +351,8 @@ void FrameWindow::depth_over_ground(Frame& f, const CellWindow& w, const CellWin
                 for (int i = 0; i < wnx; ++i) {
                     const std::size_t n = std::size_t(j + row) * std::size_t(wnx) + std::size_t(i);
                     const double h = f.h[n];
-                    wet_of[std::size_t(row * wnx + i)] = h > source_.dry_depth();
-                    level_of[std::size_t(row * wnx + i)] = h + double(source_.bed()[grid().index(w.i0 + i, w.j0 + j + row)]);
+                    wet_of[std::size_t(row * wnx + i)] = h > source_.description().dry_depth;
+                    level_of[std::size_t(row * wnx + i)] = h + double(source_.description().bed[grid().index(w.i0 + i, w.j0 + j + row)]);
                 }
             rows_held = j;
         }

@@ -36,6 +36,18 @@ struct FrameField {
     const float* role[4] = {nullptr, nullptr, nullptr, nullptr};
 };
 
+// What a FrameWindow (a FlowReader) has read.
+struct FlowReadStats {
+    std::size_t tiles_loaded = 0;       // tiles of the window that are read [-]
+    std::size_t frames_loaded = 0;      // frames read, read ahead ones included
+    std::size_t frames_read_ahead = 0;  // of them, read ahead and used
+    std::size_t cells_read = 0;         // cells of those frames read (tiles under the regions), refits' included
+    std::size_t frames_refit = 0;       // frames brought to a moved window, only its new tiles read
+    std::size_t window_cells = 0;       // cells of their windows (what a dense read takes)
+    double load_seconds = 0.0;          // wall time the caller spent reading or waiting for frames [s]
+    double load_cpu_seconds = 0.0;      // CPU time of the reading, on whichever thread [s]
+};
+
 class FrameWindow {
 public:
     // Frames of `source`; `cubic`: the four frames the cubic interpolant needs, else two.
@@ -89,7 +101,6 @@ public:
     // (ground_window) lie up to three flow cells past its stencil's nodes.
     static constexpr int region_margin = 3;
     const CellWindow& window() const { return window_; }
-    std::size_t tiles_loaded() const;  // tiles of the window that are read [-]
 
     // The frame in role r (0..3) and the fields of the roles.
     std::size_t frame_of_role(int r) const { return role(r).index; }
@@ -98,14 +109,8 @@ public:
     const FrameField& qy() const { return qy_; }                      // y-discharge hv [m²/s]
     const FrameField& ground_depth() const { return ground_depth_; }  // depth over the ground [m]
 
-    std::size_t frames_loaded() const { return frames_loaded_; }          // frames read, read ahead ones included
-    std::size_t frames_read_ahead() const { return frames_read_ahead_; }  // of them, read ahead and used
-    // Cells of those frames read (tiles under the regions), refits' included.
-    std::size_t cells_read() const { return cells_read_; }
-    std::size_t frames_refit() const { return frames_refit_; }     // frames brought to a moved window, only its new tiles read
-    std::size_t window_cells() const { return window_cells_; }     // cells of their windows (what a dense read takes)
-    double load_seconds() const { return load_seconds_; }          // wall time the caller spent reading or waiting for frames [s]
-    double load_cpu_seconds() const { return load_cpu_seconds_; }  // CPU time of the reading, on whichever thread [s]
+    // What was read so far.
+    FlowReadStats read_stats() const;
 
 private:
     // Carries frame f (read on area a) down to the ground: f.ground_depth.
@@ -142,12 +147,7 @@ private:
     CellWindow window_;               // the cells loaded are within it
     std::vector<char> window_tiles_;  // FrameArea::tiles of the loaded area
     bool loaded_ = false;
-    std::size_t frames_loaded_ = 0;
-    std::size_t frames_read_ahead_ = 0;
-    std::size_t frames_refit_ = 0;
-    std::size_t cells_read_ = 0, window_cells_ = 0;
-    double load_seconds_ = 0.0;
-    double load_cpu_seconds_ = 0.0;
+    FlowReadStats stats_;  // all but tiles_loaded (read_stats counts them)
     Frame frames_[4];    // the frames held; role r is frames_[role_slot_[r]]
     Frame refit_spare_;  // refit_frame's arrays for the old layout, kept for the next refit
     int role_slot_[4] = {0, 1, 2, 3};

@@ -11,14 +11,15 @@ namespace flotsam::debris {
 
 
 void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
+    const FlowDescription& d = flow.description();
     const Grid& f = flow.grid();
     const Grid& s = scene.grid;
     auto other_scene = [&](const std::string& what) {
         std::string sums;
-        if (const auto sha = flow.scene_sha256(); !sha.empty() && !scene.path.empty())
+        if (const auto sha = d.scene_sha256; !sha.empty() && !scene.path.empty())
             sums = " (the flow was computed on a scene with sha256 " + sha + ", " + scene.path + " has " + sha256_file(scene.path) +
                    ")";
-        fail(flow.path(), "",
+        fail(d.path, "",
              "was not computed on scene " + scene.path + ": " + what + sums + "; replay a flow with the scene it was computed on");
     };
     if (std::fabs(f.dx - s.dx) > 1e-6 * s.dx || std::fabs(f.dy - s.dy) > 1e-6 * s.dy)
@@ -30,7 +31,7 @@ void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
         other_scene("its grid (x " + number_text(f.x_min_edge()) + " to " + number_text(f.x_max_edge()) + ", y " + number_text(f.y_min_edge()) + " to " +
                     number_text(f.y_max_edge()) + " m) is not a window of the scene's (x " + number_text(s.x_min_edge()) + " to " +
                     number_text(s.x_max_edge()) + ", y " + number_text(s.y_min_edge()) + " to " + number_text(s.y_max_edge()) + " m)");
-    const auto& bed = flow.bed();
+    const auto& bed = d.bed;
     for (int j = 0; j < f.ny; ++j)
         for (int i = 0; i < f.nx; ++i) {
             const double zf = bed[f.index(i, j)], zs = float(scene.z[s.index(int(i0) + i, int(j0) + j)]);
@@ -38,11 +39,11 @@ void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
                 other_scene("the bed differs at x = " + number_text(f.x(i)) + " m, y = " + number_text(f.y(j)) + " m (" + number_text(zf) +
                             " m in the flow, " + number_text(zs) + " m in the scene)");
         }
-    cf::check_same_crs(flow.path(), flow.crs(), scene.path, scene.crs);
+    cf::check_same_crs(d.path, d.crs, scene.path, scene.crs);
     // The bed agrees on the flow's window; the building mask only the checksum that flows
     // record tells (flows written before it: not checked).
-    if (const std::string sum = flow.scene_buildings_sha256(); !sum.empty() && sum != scene_buildings_sha256(scene))
-        fail(flow.path(), "",
+    if (const std::string sum = d.scene_buildings_sha256; !sum.empty() && sum != scene_buildings_sha256(scene))
+        fail(d.path, "",
              "was not computed on scene " + scene.path +
                  ": the bed is the same, but the building mask differs (scene_buildings_sha256 " + sum + " in the flow, " +
                  scene_buildings_sha256(scene) +
@@ -51,7 +52,7 @@ void check_flow_matches_scene(const FlowReader& flow, const Scene& scene) {
 }
 
 void check_body_start(const BodyDef& b, const FlowReader& flow, const Scene* scene) {
-    check_body_start(b, flow.grid(), "flow " + flow.path(), scene);
+    check_body_start(b, flow.grid(), "flow " + flow.description().path, scene);
 }
 
 void check_body_start(const BodyDef& b, const Grid& g, const std::string& domain, const Scene* scene) {

@@ -34,17 +34,26 @@ std::array<P, 4> corners(const Pose& c, double length, double width) {
             P{c.x - cs * hl + sn * hw, c.y - sn * hl - cs * hw}, P{c.x + cs * hl + sn * hw, c.y + sn * hl - cs * hw}};
 }
 
+// The outline's extent along the heading (u) and across it (v), from its first vertex:
+// about the CRS origin, UTM's 4e6 m would turn a 1e-9 rad heading error into millimetres.
+struct Extent {
+    double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+};
+Extent extent_along(const Ring& outline, double cs, double sn) {
+    Extent e;
+    const P o = outline.front();
+    for (const P& p : outline) {
+        const double u = (p[0] - o[0]) * cs + (p[1] - o[1]) * sn, v = -(p[0] - o[0]) * sn + (p[1] - o[1]) * cs;
+        e.u0 = std::min(e.u0, u), e.u1 = std::max(e.u1, u), e.v0 = std::min(e.v0, v), e.v1 = std::max(e.v1, v);
+    }
+    return e;
+}
+
 // Every lattice place at `gap` whose footprint lies inside the yard.
 std::vector<Pose> places(const std::vector<Ring>& rings, double length, double width, double heading, double gap) {
     const double cs = std::cos(heading), sn = std::sin(heading);
-    // Lattice coordinates (u along the heading, v across) from the outline's first vertex:
-    // about the CRS origin, UTM's 4e6 m would turn a 1e-9 rad heading error into millimetres.
     const P o = rings.front().front();
-    double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
-    for (const P& p : rings.front()) {
-        const double u = (p[0] - o[0]) * cs + (p[1] - o[1]) * sn, v = -(p[0] - o[0]) * sn + (p[1] - o[1]) * cs;
-        u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
-    }
+    const auto [u0, u1, v0, v1] = extent_along(rings.front(), cs, sn);
     const double pu = length + gap, pv = width + gap;
     const long nu = long(std::floor((u1 - u0 + gap) / pu)), nv = long(std::floor((v1 - v0 + gap) / pv));
     std::vector<Pose> out;
@@ -86,6 +95,24 @@ bool rectangle_inside(const std::vector<Ring>& rings, const Pose& centre, double
                 if (segments_cross(r[j], r[i], c[std::size_t(k)], c[std::size_t((k + 1) % 4)])) return false;
         }
     return true;
+}
+
+std::optional<std::array<P, 2>> polygon_crossing(const std::vector<Ring>& rings) {
+    std::vector<std::array<P, 2>> edges;
+    for (const Ring& r : rings)
+        for (std::size_t i = 0, n = r.size(), j = n - 1; i < n; j = i++) edges.push_back({r[j], r[i]});
+    for (std::size_t a = 0; a < edges.size(); ++a)
+        for (std::size_t b = a + 1; b < edges.size(); ++b)
+            if (segments_cross(edges[a][0], edges[a][1], edges[b][0], edges[b][1])) return std::array<P, 2>{edges[a][0], edges[b][0]};
+    return std::nullopt;
+}
+
+double yard_lattice_places(const Yard& yard, double length, double width) {
+    if (yard.rings.empty() || yard.rings.front().size() < 3 || !(length > 0) || !(width > 0)) return 0.0;
+    const double heading_deg = std::isnan(yard.heading_deg) ? longest_edge_heading_deg(yard.rings.front()) : yard.heading_deg;
+    const double heading = heading_deg * std::numbers::pi / 180.0;
+    const Extent e = extent_along(yard.rings.front(), std::cos(heading), std::sin(heading));
+    return std::floor((e.u1 - e.u0) / length) * std::floor((e.v1 - e.v0) / width);
 }
 
 double longest_edge_heading_deg(const Ring& ring) {

@@ -2,10 +2,11 @@
 // with rows of identical bodies. The rows run along the stacks' heading; neighbours stand
 // a clear gap apart along and across it; a body is placed only where its whole footprint
 // lies inside the polygon (holes excluded), so no two bodies overlap and none crosses the
-// yard's outline. Pure geometry, no GDAL (app/ reads the polygons, data/debris_sources).
+// yard's outline. Pure geometry, no GDAL (app/ reads the polygons, data/source_features).
 #pragma once
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace flotsam::debris {
@@ -38,6 +39,16 @@ struct YardLayout {
 // along and across the heading. Fewer places than `count` is not an error here: the caller
 // compares poses.size() with the count and names the feature.
 YardLayout lay_out_yard(const Yard& yard, double length, double width);
+
+// The places the layout tests for bodies of `length` × `width` [m] at gap 0 (the most it
+// tests at any gap), from the outline's extent along and across the heading it uses:
+// what laying out the yard costs, known before any place is made. 0 for no outline.
+double yard_lattice_places(const Yard& yard, double length, double width);
+
+// Two edges of the polygon (outline and holes) that cross each other, as (start of one,
+// start of the other); none when the polygon is simple. A self-intersecting outline (a
+// bow tie) has no inside to fill.
+std::optional<std::array<std::array<double, 2>, 2>> polygon_crossing(const std::vector<Ring>& rings);
 
 // True when the rectangle (centre, heading, length × width) lies inside the polygon
 // (outline minus holes), touching excepted.

@@ -58,7 +58,7 @@ WorldDef scaled_to_bodies(WorldDef def, const std::vector<BodyDef>& bodies, bool
 
 double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDef& step, double t0, double t_end, double bodies,
                          bool allowed, const std::string& dt_name, const std::string& fraction_name, const std::string& file) {
-    const double speed = flow.largest_speed();
+    const double speed = flow.description().largest_speed;
     const double reach = step.vertex_step_fraction * std::min(cells.dx, cells.dy);
     const double dt_vertex = speed > 0.0 ? reach / speed : std::numeric_limits<double>::infinity();
     const bool vertex_binds = dt_vertex < step.dt_max;
@@ -67,11 +67,11 @@ double check_replay_work(const FlowReader& flow, const Grid& cells, const StepDe
     char text[400];
     if (vertex_binds)
         std::snprintf(text, sizeof text, "%s (steps of %.3g s at the largest speed of %s, %.3g m/s) over %s to %s s",
-                      number_text(step.vertex_step_fraction).c_str(), dt, flow.path().c_str(), speed, number_text(t0).c_str(),
+                      number_text(step.vertex_step_fraction).c_str(), dt, flow.description().path.c_str(), speed, number_text(t0).c_str(),
                       number_text(t_end).c_str());
     else
         std::snprintf(text, sizeof text, "%s s over %s to %s s of %s", number_text(step.dt_max).c_str(), number_text(t0).c_str(),
-                      number_text(t_end).c_str(), flow.path().c_str());
+                      number_text(t_end).c_str(), flow.description().path.c_str());
     const std::string name = vertex_binds ? fraction_name : dt_name;
     check_work(name, text, per_body, max_body_steps_per_body, "steps of each body", allowed, file);
     check_work(name, std::string(text) + " for " + number_text(bodies) + " bodies", per_body * bodies, max_body_steps, "body steps",
@@ -122,7 +122,7 @@ Ground ground_from_scene(const Scene& scene, const FlowReader& flow) {
     if (s.dx > f.dx * (1.0 + 1e-6) || s.dy > f.dy * (1.0 + 1e-6))
         fail(scene.path, "ground",
              "its cells (" + std::to_string(s.dx) + " x " + std::to_string(s.dy) + " m) are coarser than those of flow " +
-                 flow.path() + " (" + std::to_string(f.dx) + " x " + std::to_string(f.dy) +
+                 flow.description().path + " (" + std::to_string(f.dx) + " x " + std::to_string(f.dy) +
                  " m): a ground finer than the flow's is wanted");
     // Covering the flow's grid but for less than one of its cells at each side (a scene
     // rasterised at 4 cm may reach past the flume wall that the 1 cm one ends at); beyond
@@ -130,7 +130,7 @@ Ground ground_from_scene(const Scene& scene, const FlowReader& flow) {
     const double mx = f.dx - tol, my = f.dy - tol;
     if (s.x_min_edge() > f.x_min_edge() + mx || s.x_max_edge() < f.x_max_edge() - mx || s.y_min_edge() > f.y_min_edge() + my ||
         s.y_max_edge() < f.y_max_edge() - my)
-        fail(scene.path, "ground", "does not cover the grid of flow " + flow.path());
+        fail(scene.path, "ground", "does not cover the grid of flow " + flow.description().path);
     // The scene's cells whose centres lie on the flow's grid.
     const int i0 = int(std::ceil((f.x_min_edge() - s.x0) / s.dx - 1e-9)),
               i1 = int(std::floor((f.x_max_edge() - s.x0) / s.dx + 1e-9));
@@ -174,7 +174,7 @@ std::unique_ptr<FlowReader> open_flow(const std::string& path, const WorldDef& d
 World::World(std::unique_ptr<FlowReader> flow, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
     : def_(def), flow_(std::move(flow)) {
     if (!ground && !building.empty() && building.size() != flow_->grid().size())
-        fail(flow_->path(), "building mask", "does not match the flow grid");
+        fail(flow_->description().path, "building mask", "does not match the flow grid");
     // Map coordinates (beyond 10 km from the origin): work relative to a round kilometre.
     const auto origin = [](double edge) { return std::abs(edge) > 1e4 ? 1000.0 * std::floor(edge / 1000.0) : 0.0; };
     origin_x_ = origin(flow_->grid().x_min_edge());
@@ -187,9 +187,9 @@ World::World(std::unique_ptr<FlowReader> flow, std::vector<std::uint8_t> buildin
         flow_->set_ground(g, ground->z);
         obstacles_ = ObstacleMap(g, ground->z, ground->building);
     } else {
-        obstacles_ = ObstacleMap(flow_->grid(), flow_->bed(), std::move(building));
+        obstacles_ = ObstacleMap(flow_->grid(), flow_->description().bed, std::move(building));
     }
-    time_ = flow_->start_time();
+    time_ = flow_->description().start_time();
 }
 
 World::World(const std::string& flow_path, std::vector<std::uint8_t> building, const WorldDef& def, const Ground* ground)
@@ -206,7 +206,7 @@ World make_world(std::unique_ptr<FlowReader> flow, const Scene* scene, const std
         building = buildings_on_grid(*scene, f.grid());
     }
     if (ground) {
-        cf::check_same_crs(ground->path, ground->crs, f.path(), f.crs());
+        cf::check_same_crs(ground->path, ground->crs, f.description().path, f.description().crs);
         fine = ground_from_scene(*ground, f);
     }
     for (const BodyDef& b : bodies) {

@@ -2,12 +2,18 @@
 // as lines in a vector file, in the scene's CRS, so a planner opens them in QGIS as they
 // are. Reads the files flotsam writes (statistics, flow, trajectory or sweep files) by
 // their variable names (formats/stats_file.hpp, flow_file.hpp, trajectory_file.hpp).
+//
+// Everything is read and checked first (stats_maps, flow_maps, read_tracks,
+// read_buildings, the check_only modes), the files against each other too, and only then
+// written (write_cog, write_tracks, write_buildings, ...): a refused export writes nothing.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "common/cf.hpp"
 #include "common/grid.hpp"
+#include "formats/trajectory_file.hpp"
 #include "export/qgis_project.hpp"
 #include "export/qgis_style.hpp"
 
@@ -38,19 +44,21 @@ void write_cog(const std::string& path, const Grid& g, const cf::GridMapping& cr
 void crop_maps(std::vector<MapLayer>& maps, Grid& g, const Grid& window);
 
 // The scene an exported file was computed on, as far as the file says: its cell size
-// (0: not known) and its scene_buildings_sha256 (formats/scene.hpp; "" for files written
-// before it).
-// `flotsam export` refuses to combine files of different scenes.
+// (0: not known), its scene_buildings_sha256 (formats/scene.hpp; "" for files written
+// before it), its CRS, and where its positions lie (`extent`: x_min, x_max, y_min, y_max
+// [m] of its grid; empty for tracks). `flotsam export` refuses to combine files of
+// different scenes.
 struct SceneOf {
     std::string path;
     double cell = 0.0;
     std::string fingerprint;
     cf::GridMapping crs;
+    std::vector<double> extent;
 };
 
-// The maps of a statistics file (flotsam stats): pass probability and largest debris
-// speed per group (body and model variant) and over all trajectories. Probabilities
-// outside [0, 1], negative speeds and maps without a value are named errors.
+// The maps of a statistics file (flotsam stats; read through stats_file::open_checked):
+// pass probability and largest debris speed per group (body and model variant) and over
+// all trajectories. A probability map without a value is a named error.
 std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::GridMapping& crs, SceneOf* scene = nullptr);
 
 // The maps of one or more flow files of one scene: maximum depth, the onshore part of it
@@ -64,27 +72,48 @@ std::vector<MapLayer> stats_maps(const std::string& stats_path, Grid& grid, cf::
 std::vector<MapLayer> flow_maps(const std::vector<std::string>& flow_paths, Grid& grid, cf::GridMapping& crs,
                                 SceneOf* scene = nullptr);
 
-// Writes the tracks of a trajectory or sweep file as one line per trajectory (its
-// samples in time order, fill values left out) with the per-trajectory variables as
-// attributes, plus start and end time, path length and largest speed. The format
-// follows the extension: .gpkg (GeoPackage), .geojson/.json (GeoJSON), .shp
-// (shapefile). Returns the number of lines. Atomic as above.
-// The file is checked first: its kind, its track variables on (trajectory, time), its
-// per-trajectory variables on trajectory, finite positions, increasing times; a sweep file
-// goes through sweep::read_sweep_file.
-// With `check_only`, it stops after the checks (nothing written) and returns the number of
-// trajectories.
-std::size_t write_tracks(const std::string& trajectory_path, const std::string& out_path, SceneOf* scene = nullptr,
-                         bool check_only = false);
+// What the tracks layer says of each trajectory besides its file's columns.
+struct TrackSummary {
+    double t_start = 0.0, t_end = 0.0;  // first and last sample [s]
+    double path_length = 0.0;           // along its samples [m]
+    double max_speed = 0.0;             // largest |(u, v)| [m s-1]; 0 when the file has no speeds
+};
+TrackSummary track_summary(const std::vector<double>& time, const debris::Track& track);
 
-// The scene's buildings as a GeoPackage layer `buildings`: one (multi)polygon per
-// building_id, the union of its cells, in the scene's CRS, with its id, cells, area and
-// the impact statistics over all trajectories of `stats_path` (flotsam stats; formats/
-// stats_file.hpp: building_*_all): hit_probability, first_hit_time_s, impacts,
-// speed_median/p90/max_m_s, force_median/p90/max_N (null where never hit). The statistics
-// must come from this scene (scene_buildings_sha256). Returns the number of buildings.
-// Atomic as above.
-std::size_t write_building_footprints(const std::string& scene_path, const std::string& stats_path, const std::string& out_path);
+// The tracks of a trajectory or sweep file, read and checked (formats/trajectory_file.hpp,
+// read_trajectory_table; a sweep file's
+// member table against its tables, sweep::read_sweep_tables), with their summaries and
+// each track's `source` (the GIS feature its body came from, else the body).
+struct TrackLayer {
+    debris::TrajectoryTable table;
+    std::vector<TrackSummary> summaries;  // one per track
+};
+TrackLayer read_tracks(const std::string& trajectory_path, SceneOf* scene = nullptr);
+// Writes one line per trajectory (its samples in time order) with the per-trajectory
+// variables as attributes, plus t_start, t_end, path_length and max_speed, styled by
+// source. The format follows the extension: .gpkg (GeoPackage), .geojson/.json (GeoJSON),
+// .shp (shapefile). Returns the number of lines. Atomic as above.
+std::size_t write_tracks(const TrackLayer& tracks, const std::string& out_path);
+// The vector format of an output path's extension ("GPKG", ...); a named error for others.
+const char* vector_driver_of(const std::string& out_path);
+
+// The scene's buildings with the impact statistics of a statistics file over all
+// trajectories (formats/stats_file.hpp: building_*_all), read and checked: the statistics
+// must come from this scene (scene_buildings_sha256, their map grid the scene's, its CRS).
+struct BuildingLayer {
+    std::string scene_path;
+    Grid grid;                                // the scene's
+    cf::GridMapping crs;                      // the scene's
+    std::vector<std::int32_t> ids;            // building_id per scene cell (0: none)
+    std::vector<int> stat_ids;                // building_id of each statistics row
+    std::vector<std::vector<double>> values;  // the nine statistics (hit probability ... largest force) per row
+};
+BuildingLayer read_buildings(const std::string& scene_path, const std::string& stats_path);
+// As a GeoPackage layer `buildings`: one (multi)polygon per building_id, the union of its
+// cells, in the scene's CRS, with its id, cells, area and hit_probability,
+// first_hit_time_s, impacts, speed_median/p90/max_m_s, force_median/p90/max_N (null where
+// never hit). Returns the number of buildings. Atomic as above.
+std::size_t write_buildings(const BuildingLayer& buildings, const std::string& out_path);
 
 // The debris sources of a study (the vector file given to `flotsam debris --sources` or a
 // sweep's [[sources]]): every feature of every layer, carried into `crs` (the scene's),

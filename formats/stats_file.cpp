@@ -1,5 +1,12 @@
 #include "formats/stats_file.hpp"
 
+#include <cmath>
+#include <cstring>
+
+#include "common/cf.hpp"
+#include "common/error.hpp"
+#include "common/units.hpp"
+
 namespace flotsam::stats_file {
 
 namespace {
@@ -310,6 +317,90 @@ const std::vector<std::string>& attribute_names() {
                                                    attribute::control_param_set,
                                                    attribute::map_coarsen};
     return names;
+}
+
+std::vector<std::string> csv_paths(const std::string& dir) {
+    std::vector<std::string> paths;
+    for (const char* name : {csv::sections, csv::speed_kde, csv::yaw_histogram, csv::rotation_from_start, csv::regions,
+                             csv::distance, csv::members, csv::buildings})
+        paths.push_back(dir + "/" + name);
+    return paths;
+}
+
+Range range_of(const Variable& v) {
+    const std::string name = v.name, unit = v.units;
+    const auto has = [&](const char* part) { return name.find(part) != std::string::npos; };
+    const double far = 1e8;  // [m] no projected coordinate reaches it
+    if (unit == "1") {
+        if (has("probability")) return Range::closed(0.0, 1.0, "1");
+        if (has("correlation")) return Range::closed(-1.0, 1.0, "1");
+        return Range::any("1");
+    }
+    if (unit == "m") return has("_std") || has("distance") ? Range::closed(0.0, far, "m") : Range::closed(-far, far, "m");
+    if (unit == "m s-1") return Range::closed(0.0, 1000.0, "m s-1");
+    if (unit == "s m-1" || unit == "N") return Range::non_negative(unit);
+    if (unit == "degree") return Range::closed(-1e9, 1e9, "degree");
+    if (unit == "s") return Range::any("s");
+    if (name == member_region.name) return Range::at_least(-1.0);
+    return Range::at_least(0.0);  // counts and indices
+}
+
+namespace {
+
+std::vector<std::string> names_of(const std::vector<const char*>& dims) { return {dims.begin(), dims.end()}; }
+
+// The values of `v` as stored, checked for their place, unit and range; NaN where missing.
+std::vector<double> checked_values(const nc::File& f, const Variable& v) {
+    const int id = f.var(v.name);
+    const std::string label = std::string("variable '") + v.name + "'";
+    if (f.value_dims(id) != names_of(v.dims)) {
+        std::string want;
+        for (const char* d : v.dims) want += (want.empty() ? "" : ", ") + std::string(d);
+        fail(f.path(), label, "must be on dimensions (" + want + ")");
+    }
+    if (v.type == NC_CHAR) return {};
+    const double factor = units::factor_to(f, id, v.units);
+    std::vector<double> values = f.get_double(id);
+    const std::optional<double> fill = f.att_double(id, "_FillValue");
+    const Range range = range_of(v);
+    for (std::size_t k = 0; k < values.size(); ++k) {
+        const double raw = values[k];
+        const bool missing = std::isfinite(raw) && (std::fabs(raw) >= 0.5 * cf::fill_value || (fill && raw == *fill));
+        if (missing && v.fill) {
+            values[k] = std::nan("");
+            continue;
+        }
+        if (missing) fail(f.path(), label, "value at flat index " + std::to_string(k) + " is the fill value: this statistic is never missing");
+        values[k] = raw * factor;
+        if (const std::string problem = range_problem(values[k], range); !problem.empty())
+            fail(f.path(), label, "value at flat index " + std::to_string(k) + ": " + problem);
+    }
+    return values;
+}
+
+}  // namespace
+
+nc::File open_checked(const std::string& path, const std::string& option) {
+    nc::File f = nc::File::open_read(path);
+    cf::require_kind(f, {kind}, option);
+    for (const Variable* v : {&pass_probability, &max_debris_speed, &group_body, &group_variant})
+        if (!f.has_var(v->name)) fail(path, std::string("variable '") + v->name + "'", "missing: not a file written by `flotsam stats`");
+    for (const Variable* v : variables())
+        if (f.has_var(v->name)) (void)checked_values(f, *v);
+    (void)map_grid(f);
+    if (const auto c = f.att_double(NC_GLOBAL, attribute::map_coarsen))
+        check_range(std::string("attribute '") + attribute::map_coarsen + "'", *c, Range::count(1, 1e6), path);
+    return f;
+}
+
+std::vector<double> read_values(const nc::File& f, const Variable& v) { return checked_values(f, v); }
+
+Grid map_grid(const nc::File& f) {
+    std::vector<double> xs = nc::read_finite(f, x), ys = nc::read_finite(f, y);
+    const double fx = units::length_factor(f, f.var(x)), fy = units::length_factor(f, f.var(y));
+    for (double& a : xs) a *= fx;
+    for (double& a : ys) a *= fy;
+    return grid_from_coordinates(xs, ys, f.path());
 }
 
 }  // namespace flotsam::stats_file

@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "common/checks.hpp"
+#include "common/grid.hpp"
 #include "common/netcdf.hpp"
 
 namespace flotsam::stats_file {
@@ -150,5 +152,39 @@ inline constexpr const char* control_param_set = "control_param_set";  // index;
 inline constexpr const char* map_coarsen = "map_coarsen";              // scene cells per map cell along a side
 }  // namespace attribute
 const std::vector<std::string>& attribute_names();
+
+// The tables `flotsam stats --csv DIR` writes into DIR, in order.
+namespace csv {
+inline constexpr const char* sections = "sections.csv";
+inline constexpr const char* speed_kde = "speed_kde.csv";
+inline constexpr const char* yaw_histogram = "yaw_histogram.csv";
+inline constexpr const char* rotation_from_start = "rotation_from_start.csv";
+inline constexpr const char* regions = "regions.csv";
+inline constexpr const char* distance = "distance.csv";
+inline constexpr const char* members = "members.csv";
+inline constexpr const char* buildings = "buildings.csv";
+}  // namespace csv
+// The paths of those tables in `dir`.
+std::vector<std::string> csv_paths(const std::string& dir);
+
+// ---- reading, checked ----
+
+// The values a statistic keeps, in its unit: fractions of trajectories in [0, 1], counts
+// from 0 (member_region from -1, "none"), speeds and forces from 0, a correlation in
+// [-1, 1], positions and distances within 1e8 m (spreads from 0), angles within 1e9
+// degrees; any finite time.
+Range range_of(const Variable& v);
+
+// Opens a statistics file and checks it whole before anything reads it: its kind, every
+// variable of the schema it holds on the schema's dimensions, in a unit that converts to
+// the schema's (common/units.hpp), every value finite, or the fill value where the
+// variable stores missing values, and within range_of(); the map axes x and y uniform.
+// Errors name the file, the variable and the value's place. `option` names where the file
+// was given ("--stats").
+nc::File open_checked(const std::string& path, const std::string& option);
+// A variable of a file from open_checked, in the schema's units; missing values NaN.
+std::vector<double> read_values(const nc::File& f, const Variable& v);
+// The map grid: the cell centres x and y [m].
+Grid map_grid(const nc::File& f);
 
 }  // namespace flotsam::stats_file

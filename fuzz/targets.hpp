@@ -38,18 +38,6 @@ struct Target {
 };
 const std::vector<Target>& targets();
 
-// Copies of a NetCDF file with one thing wrong, for the command-line tests of bad input
-// (tests/reliability_cli_test.cpp); the same edits the NetCDF targets make.
-// Variable `var` moved onto a new dimension of `length` (its table no longer matches).
-void copy_with_short_column(const std::string& in, const std::string& out, const std::string& var, std::size_t length);
-// Dimension `dim` resized to `length`; every variable on it follows.
-void copy_with_dimension(const std::string& in, const std::string& out, const std::string& dim, std::size_t length);
-// The two dimensions of the 2-D variable `var` swapped (x(trajectory, time) as x(time,
-// trajectory)), its values kept in their order.
-void copy_with_transposed(const std::string& in, const std::string& out, const std::string& var);
-// Value `index` (flat) of variable `var` set to `value`.
-void copy_with_value(const std::string& in, const std::string& out, const std::string& var, std::size_t index, double value);
-
 // The small valid files the NetCDF targets start from ("scene", "flow", "sweep"), written
 // into work_dir() on first use.
 const std::string& base_file(const std::string& which);

@@ -36,8 +36,10 @@ import math
 import os
 import sys
 
-import numpy as np
 import netCDF4
+import numpy as np
+
+from pipelines import input_checks as checks
 
 EPS = 1e-9
 
@@ -49,15 +51,17 @@ def strings(ds, name):
 
 
 def read_sweep(path):
-    with netCDF4.Dataset(path) as ds:
+    with checks.open_nc("--sweep", path, ["sweep"]) as ds:
+        x, y, _ = checks.tracks(ds)  # finite, in range, in metres (pipelines/input_checks.py)
         out = {
             "body": strings(ds, "body"),
             "flow": strings(ds, "flow"),
-            "x": np.ma.filled(ds["x"][:].astype(float), np.nan),
-            "y": np.ma.filled(ds["y"][:].astype(float), np.nan),
+            "x": x,
+            "y": y,
             "bodies": strings(ds, "body_name"),
             "flows": strings(ds, "flow_path"),
             "scene_file": getattr(ds, "scene_file", ""),
+            "crs": checks.crs_of(ds, "yaw"),
         }
         out["body_source"] = strings(ds, "body_source") if "body_source" in ds.variables else [""] * len(out["bodies"])
         if "impact_trajectory" in ds.variables:
@@ -69,9 +73,12 @@ def read_sweep(path):
 
 
 def read_scene(path):
-    with netCDF4.Dataset(path) as ds:
-        s = {"x": np.asarray(ds["x"][:], dtype=float), "y": np.asarray(ds["y"][:], dtype=float),
-             "z": np.asarray(ds["z"][:], dtype=float), "crs": grid_mapping(ds)}
+    with checks.open_nc("--scene", path, ["scene"]) as ds:
+        s = {"x": checks.finite_values(ds, "x", "length"), "y": checks.finite_values(ds, "y", "length"),
+             "z": checks.finite_values(ds, "z", "length", checks.MAX_DEPTH), "crs": grid_mapping(ds)}
+        if getattr(ds["z"], "positive", "up") == "down":
+            s["z"] = -s["z"]
+        s["crs_name"] = checks.crs_of(ds, "z")
         if "building_id" in ds.variables:
             s["building_id"] = np.asarray(ds["building_id"][:], dtype=int)
         elif "building" in ds.variables:
@@ -116,13 +123,11 @@ def flow_directions(flow_paths, x, y):
     """Inflow and outflow directions [rad] at (x, y), averaged over the flows; None where none."""
     inflow, outflow = np.zeros(2), np.zeros(2)
     for path in flow_paths:
-        with netCDF4.Dataset(path) as ds:
-            i, j = nearest(ds["x"][:], x), nearest(ds["y"][:], y)
+        with checks.open_nc("flow of the sweep", path, ["flow"]) as ds:
+            i, j = nearest(checks.finite_values(ds, "x", "length"), x), nearest(checks.finite_values(ds, "y", "length"), y)
             if i is None or j is None:
                 continue
-            h = np.asarray(ds["h"][:, j, i], dtype=float)
-            u = np.asarray(ds["u"][:, j, i], dtype=float)
-            v = np.asarray(ds["v"][:, j, i], dtype=float)
+            h, u, v = flow_series(ds, j, i)
         flux = h * (u * u + v * v)
         peak = int(np.argmax(h))
         k = int(np.argmax(flux[:peak + 1]))
@@ -138,13 +143,35 @@ def flow_directions(flow_paths, x, y):
     return tuple(math.atan2(p[1], p[0]) if np.hypot(*p) > EPS else None for p in (inflow, outflow))
 
 
+def flow_series(ds, j, i):
+    """Depth and velocity at cell (j, i) over the frames, in m and m/s: finite, the depth not
+    negative (a NaN or negative depth would move the directions silently)."""
+    out = []
+    for name, kind in (("h", "length"), ("u", "speed"), ("v", "speed")):
+        var = checks.variable(ds, name)
+        var.set_auto_mask(False)
+        values = np.asarray(var[:, j, i], dtype=float)
+        bad = ~np.isfinite(values) | (np.abs(values) >= 9.96e36) | (values < 0 if name == "h" else np.abs(values) > 1000.0)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            checks.fail(ds.filepath(), f"variable '{name}'", f"frame {k}, cell (i {i}, j {j}): {values[k]!r} is not "
+                        + ("a depth (NaN, a fill value or negative)" if name == "h" else "a speed in m/s"))
+        out.append(values * checks.unit_factor(ds, name, kind))
+    return out
+
+
 def flooded_on(scene, flow_paths):
     """Cells of the scene grid flooded in some flow (nearest flow cell; outside every window: dry)."""
     wet = np.zeros(scene["z"].shape, dtype=bool)
     for path in flow_paths:
-        with netCDF4.Dataset(path) as ds:
-            fx, fy = np.asarray(ds["x"][:]), np.asarray(ds["y"][:])
-            flooded = np.asarray(ds["flooded"][:]) != 0
+        with checks.open_nc("flow of the sweep", path, ["flow"]) as ds:
+            fx, fy = checks.finite_values(ds, "x", "length"), checks.finite_values(ds, "y", "length")
+            checks.same_crs(path, checks.crs_of(ds, "h"), scene["path"], scene["crs_name"])
+            flooded = checks.flags(ds, "flooded")
+            if flooded is None:  # never written: where some frame's depth passed the flood depth
+                depth = float(getattr(ds["flooded"], "flood_depth", 0.0))
+                flooded = (checks.finite_values(ds, "h", "length", checks.MAX_DEPTH, lo=0) > depth).any(axis=0)
+            flooded = flooded != 0
         i0 = nearest(scene["x"], fx[0])
         j0 = nearest(scene["y"], fy[0])
         wet[j0:j0 + len(fy), i0:i0 + len(fx)] |= flooded
@@ -377,6 +404,12 @@ def main(argv=None):
     if not scene_path:
         sys.exit(f"hazard_region: {a.sweep}: names no scene; give --scene")
     scene = read_scene(scene_path)
+    scene["path"] = scene_path
+    # Files given together: one CRS, the tracks on the scene's grid, each flow there to read.
+    checks.same_crs(a.sweep, sweep["crs"], scene_path, scene["crs_name"])
+    checks.within(a.sweep, sweep["x"], sweep["y"], scene["x"], scene["y"], f"the grid of the scene {scene_path}")
+    for f in sweep["flows"]:
+        checks.input_file(f"{a.sweep}: flow", f)
     names = sorted(set(source_of(sweep)), key=source_of(sweep).index)
     if a.sources:
         wanted = a.sources.split(",")
@@ -384,6 +417,12 @@ def main(argv=None):
             if w not in names:
                 sys.exit(f"hazard_region: --sources {w}: not a source of {a.sweep} ({', '.join(names)})")
         names = wanted
+    # No output over an input (compared by inode), before anything is written.
+    written = ["hazard_regions.csv", "hazard_buildings.csv", "hazard_regions.nc"]
+    if not a.no_charts:
+        written += ["hazard_" + n.replace("/", "_") + ".png" for n in names]
+    checks.outputs_not_inputs([("--out", os.path.join(a.out, w)) for w in written],
+                              [("--sweep", a.sweep), ("--scene", scene_path)] + [("flow", f) for f in sweep["flows"]])
     os.makedirs(a.out, exist_ok=True)
     wet = flooded_on(scene, sweep["flows"])
     results = [analyse(sweep, scene, wet, s, math.radians(a.half_angle)) for s in names]
@@ -399,4 +438,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    checks.run("hazard_region", main)

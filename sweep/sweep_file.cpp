@@ -14,8 +14,10 @@
 #include "common/error.hpp"
 #include "common/netcdf.hpp"
 #include "common/settings_nc.hpp"
+#include "common/units.hpp"
 #include "debris/impacts.hpp"
 #include "debris/trajectory_output.hpp"
+#include "formats/trajectory_file.hpp"
 #include "sweep/trajectory_kernels.hpp"
 
 namespace flotsam::sweep {
@@ -258,12 +260,8 @@ void read_sweep_attributes(nc::File& f, const std::string& path, SweepResult& r)
     r.perturbation.seed = std::uint64_t(number("perturbation_seed", Range::count(0, 1.8e19)));
 }
 
-// The time axis and the sweep's tables: flows, bodies, variants, parameter sets; the CRS.
+// The sweep's tables: flows, bodies, variants, parameter sets; the CRS.
 void read_sweep_tables(nc::File& f, const std::string& path, SweepResult& r) {
-    r.time = nc::read_finite(f, "time");
-    column_var(f, path, "time", "time");
-    for (std::size_t k = 1; k < r.time.size(); ++k)
-        if (!(r.time[k] > r.time[k - 1])) fail(path, "variable 'time'", "must increase (at index " + std::to_string(k) + ")");
     r.flows = f.get_strings(column_var(f, path, "flow_path", "flow"));
     r.bodies = f.get_strings(column_var(f, path, "body_name", "body"));
     // Optional: a file without them reads as empty entries.
@@ -311,6 +309,10 @@ struct MemberColumns {
         body = strings("body"), start = strings("start_name"), variant = strings("variant"), contact = strings("contact_model"),
         collision = strings("collision_model");
         x0 = doubles("x0"), y0 = doubles("y0"), heading0 = doubles("heading0");
+        for (auto [column, unit] : {std::pair{&x0, "m"}, std::pair{&y0, "m"}, std::pair{&heading0, "degree"}}) {
+            const double factor = units::factor_to(f, f.var(column == &x0 ? "x0" : column == &y0 ? "y0" : "heading0"), unit);
+            for (double& value : *column) value *= factor;
+        }
         // Optional: a file without it reads as no overlap left.
         residual = f.has_var("largest_residual_overlap") ? doubles("largest_residual_overlap") : std::vector<double>(nm, 0.0);
         jammed = f.has_var("jammed_steps") ? ints("jammed_steps") : std::vector<int>(nm, 0);
@@ -360,59 +362,13 @@ MemberRecord member_of(const MemberColumns& c, std::size_t b, const SweepResult&
     return m;
 }
 
-// The track variables (trajectory, time), checked for their shape; then member b's track.
-class TrackReader {
-public:
-    TrackReader(nc::File& f, const std::string& path, std::size_t nm, std::size_t nt) : f_(f), path_(path), nt_(nt), status_(nt) {
-        auto track_var = [&](const char* name) {
-            const int v = f.var(name);
-            if (f.dim_names(v) != std::vector<std::string>{"trajectory", "time"} || f.shape(v) != std::vector<std::size_t>{nm, nt})
-                fail(path, std::string("variable '") + name + "'",
-                     "must have dimensions (trajectory, time) = (" + std::to_string(nm) + ", " + std::to_string(nt) + ")");
-            return v;
-        };
-        vx_ = track_var("x"), vy_ = track_var("y"), vyaw_ = track_var("yaw"), vu_ = track_var("u"), vv_ = track_var("v"),
-        vom_ = track_var("omega"), vst_ = track_var("status");
-    }
-
-    void read(std::size_t b, debris::Track& t) {
-        for (auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega}) series->resize(nt_);
-        if (nt_ > 0) {
-            const std::vector<std::size_t> st = {b, 0}, count = {1, nt_};
-            f_.get_slab(vx_, st, count, t.x.data());
-            f_.get_slab(vy_, st, count, t.y.data());
-            f_.get_slab(vyaw_, st, count, t.yaw_deg.data());
-            f_.get_slab(vu_, st, count, t.u.data());
-            f_.get_slab(vv_, st, count, t.v.data());
-            f_.get_slab(vom_, st, count, t.omega.data());
-            f_.get_slab(vst_, st, count, status_.data());
-            for (const auto* series : {&t.x, &t.y, &t.yaw_deg, &t.u, &t.v, &t.omega})
-                for (std::size_t k = 0; k < nt_; ++k)
-                    if (!std::isfinite((*series)[k]) || std::fabs((*series)[k]) > 1e12)
-                        fail(path_, "trajectory " + std::to_string(b) + ", time index " + std::to_string(k),
-                             "a track value is not finite (or is a fill value)");
-        }
-        for (std::size_t k = 0; k < status_.size(); ++k) {
-            // Five flag bits (formats/trajectory_file.hpp); a byte beyond them is no status.
-            if (!(status_[k] >= 0 && status_[k] <= 31))
-                fail(path_, "variable 'status'",
-                     "trajectory " + std::to_string(b) + ", time index " + std::to_string(k) + ": " + number_text(status_[k]) +
-                         " is not a combination of the flags 1, 2, 4, 8, 16 (released moving grounded colliding pivoting)");
-            t.status.push_back(std::int8_t(status_[k]));
-        }
-    }
-
-private:
-    nc::File& f_;
-    const std::string& path_;
-    std::size_t nt_;
-    std::vector<double> status_;
-    int vx_ = -1, vy_ = -1, vyaw_ = -1, vu_ = -1, vv_ = -1, vom_ = -1, vst_ = -1;
-};
-
 }  // namespace
 
-SweepResult read_sweep_file(const std::string& path) {
+namespace {
+
+// The sweep file, its member table checked against the sweep's tables; the tracks read
+// (and checked, formats/trajectory_file.hpp) when `with_tracks`.
+SweepResult read_sweep(const std::string& path, bool with_tracks) {
     nc::File f = nc::File::open_read(path);
     cf::require_kind(f, {"sweep"});
     for (const char* v : {"member_id", "flow_path", "param_set_label", "variant"})
@@ -420,10 +376,11 @@ SweepResult read_sweep_file(const std::string& path) {
     SweepResult r;
     r.path = path;
     read_sweep_attributes(f, path, r);
+    const debris::TrackReader tracks(f, true);
+    r.time = tracks.time();
     read_sweep_tables(f, path, r);
-    const std::size_t nm = f.dim_length("trajectory"), nt = r.time.size();
+    const std::size_t nm = tracks.size();
     const MemberColumns columns(f, path, nm);
-    TrackReader tracks(f, path, nm, nt);
     std::set<int> seen;
     for (std::size_t b = 0; b < nm; ++b) {
         // Members are named by their place in the sweep's member list: each once, inside it.
@@ -436,11 +393,24 @@ SweepResult read_sweep_file(const std::string& path) {
             fail(path, "variable 'member_id'",
                  "member_id " + std::to_string(id) + " is given twice (trajectory " + std::to_string(b) + " and an earlier one)");
         MemberRecord m = member_of(columns, b, r, path);
-        tracks.read(b, m.track);
+        if (with_tracks) m.track = tracks.read(b);
         r.members.push_back(std::move(m));
     }
     for (const Impact& i : read_impacts(f, nm)) r.members[std::size_t(i.trajectory)].impacts.push_back(i);
     return r;
+}
+
+}  // namespace
+
+SweepResult read_sweep_file(const std::string& path) { return read_sweep(path, true); }
+
+SweepResult read_sweep_tables(const std::string& path) { return read_sweep(path, false); }
+
+void check_tracks_on(const SweepResult& r, const Grid& g, const std::string& what) {
+    const double tx = 1e-6 * g.dx, ty = 1e-6 * g.dy;
+    for (std::size_t m = 0; m < r.members.size(); ++m)
+        debris::check_track_within(r.path.empty() ? "--sweep" : r.path, m, r.members[m].track, g.x_min_edge() - tx,
+                                   g.x_max_edge() + tx, g.y_min_edge() - ty, g.y_max_edge() + ty, what);
 }
 
 SweepResult merge_sweeps(const std::vector<SweepResult>& parts, const std::vector<std::string>& paths) {

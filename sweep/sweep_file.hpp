@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/cf.hpp"
+#include "common/grid.hpp"
 #include "common/netcdf.hpp"
 #include "debris/world.hpp"
 #include "formats/impact_file.hpp"
@@ -61,8 +62,18 @@ void put_parameter_sets(nc::File& f, const ParameterSetVariables& vars, const st
 
 // Writes atomically.
 void write_sweep_file(const std::string& path, const SweepResult& r);
-// Reads a sweep file (a shard or the whole); errors name the file and variable.
+// Reads a sweep file (a shard or the whole); errors name the file and variable. The
+// tracks are checked as formats/trajectory_file.hpp's TrackReader checks them.
 SweepResult read_sweep_file(const std::string& path);
+// The same, without the tracks (the members' are empty): the member table checked
+// against the sweep's tables (member ids, flow, body, variant and parameter-set indices,
+// the body settings), for readers that take the tracks through TrackReader themselves.
+SweepResult read_sweep_tables(const std::string& path);
+
+// Throws naming the file and the member when a track leaves grid `g` (`what`: "the grid
+// of the scene s.nc"): a body never leaves the grid it moved on, so a sweep whose tracks
+// do is not of that scene, or its positions are wrong.
+void check_tracks_on(const SweepResult& r, const Grid& g, const std::string& what);
 
 // Joins shards of one sweep (same spec hash and member count; every member exactly
 // once). Errors name the offending part.

@@ -462,16 +462,23 @@ std::vector<std::array<double, 3>> perturbed_starts(const SweepSpec& spec, const
 
 std::array<double, 3> perturbed_start(const SweepSpec& spec, int body, int k) { return perturbed_starts(spec, {body}, k).front(); }
 
-std::vector<Member> enumerate_members(const SweepSpec& spec) {
-    std::vector<Member> out;
-    const int np = spec.perturbation.count + 1;
-    // Sized before anything is allocated: flows x bodies x starts x variants x sets.
-    const double members = double(spec.flows.size()) * double(spec.bodies.size()) * double(np) * double(spec.variants.size()) *
-                           double(spec.params.size());
+double member_count(const SweepSpec& spec) {
+    return double(spec.flows.size()) * double(spec.bodies.size()) * double(spec.perturbation.count + 1) *
+           double(spec.variants.size()) * double(spec.params.size());
+}
+
+void check_member_count(const SweepSpec& spec) {
+    const double members = member_count(spec);
     if (members > 2e9)
         fail(spec.path, "sweep size",
              number_text(members) + " members (flows x bodies x starts x variants x parameter sets), more than 2e9");
     check_allocation("sweep size", number_text(members) + " members", members, double(sizeof(Member)), "members", spec.path);
+}
+
+std::vector<Member> enumerate_members(const SweepSpec& spec) {
+    std::vector<Member> out;
+    const int np = spec.perturbation.count + 1;
+    check_member_count(spec);  // sized before anything is allocated
     const std::vector<std::vector<int>> runs = body_runs(spec);
     int run = 0;
     for (int f = 0; f < int(spec.flows.size()); ++f)

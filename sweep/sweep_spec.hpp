@@ -98,8 +98,8 @@ BodySpec body_at(const std::string& name, double x, double y, double heading_deg
 // The scene's start point of that name (null: none).
 const ScenePoint* scene_start(const Scene& scene, const std::string& name);
 
-// A [[sources]] table: a GIS file of debris sources (data/debris_sources.hpp), expanded
-// into bodies by the command line (app/debris_sources.hpp, which reads GIS) before the
+// A [[sources]] table: a GIS file of debris sources (data/source_features.hpp), expanded
+// into bodies by the command line (app/sourced_bodies.hpp, which reads GIS) before the
 // sweep runs. `model` holds the [sweep] model settings and the table's own.
 struct SourceFileSpec {
     std::string file;                 // vector file (GeoPackage, shapefile, GeoJSON, ...)
@@ -177,6 +177,12 @@ ParamValues catalogue_values(const SweepSpec& spec, const BodySpec& body, const 
 // The bodies that share a run, in the order of their first body: a source's bodies (every
 // body of one GIS feature), all of them with one_world, any other body alone.
 std::vector<std::vector<int>> body_runs(const SweepSpec& spec);
+
+// The sweep's members, counted without building them: flows x bodies x starts x variants
+// x parameter sets, flow outermost.
+double member_count(const SweepSpec& spec);
+// Throws naming the spec when the members would pass 2e9 or the machine's memory.
+void check_member_count(const SweepSpec& spec);
 
 // All members, flow outermost, then the bodies' runs (body_runs), perturbation, variant,
 // parameter set and the run's bodies: a run's members are consecutive (for a spec of

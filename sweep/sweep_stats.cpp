@@ -357,11 +357,11 @@ void pass_maps(SweepStats& s, const SweepResult& sw, const Scene& scene, const S
 // and the median, 90th percentile and largest speed and force of its impacts.
 std::vector<SweepStats::BuildingSummary> building_summaries(const SweepResult& sw, const std::vector<int>& members,
                                                            const std::vector<std::int32_t>& ids) {
-    const double nan = std::nan("");
+    const double missing = std::nan("");
     std::vector<SweepStats::BuildingSummary> out(ids.size());
     std::vector<std::vector<double>> speeds(ids.size()), forces(ids.size());
     std::vector<int> hit(ids.size(), 0);
-    std::vector<double> first(ids.size(), nan);
+    std::vector<double> first(ids.size(), missing);
     for (int m : members) {
         std::vector<char> hit_here(ids.size(), 0);
         for (const Impact& i : sw.members[std::size_t(m)].impacts) {

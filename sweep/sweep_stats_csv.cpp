@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "common/atomic_file.hpp"
+#include "formats/stats_file.hpp"
 #include "sweep/sweep_stats.hpp"
 
 namespace flotsam::sweep {
@@ -39,8 +40,8 @@ void write_sections_csv(const std::string& dir, const SweepStats& s) {
         for (std::size_t p = 0; p < s.params.size(); ++p)
             for (std::size_t c = 0; c < s.sections.size(); ++c) row(s.groups[g], s.params[p].label, c, s.section_by_param[g][p][c]);
     }
-    write_text_atomic(dir + "/sections.csv", t);
-    write_text_atomic(dir + "/speed_kde.csv", k);
+    write_text_atomic(dir + "/" + stats_file::csv::sections, t);
+    write_text_atomic(dir + "/" + stats_file::csv::speed_kde, k);
 }
 
 void write_yaw_csv(const std::string& dir, const SweepStats& s) {
@@ -51,7 +52,7 @@ void write_yaw_csv(const std::string& dir, const SweepStats& s) {
             t += group_key(s.groups[g]) + "," + num(s.yaw_edges[b]) + "," + num(s.yaw_edges[b + 1]) + "," +
                  std::to_string(s.rotation_hist[g][b]) + "," + std::to_string(s.yaw_motion_hist[g][b]) + "," +
                  std::to_string(s.rotation_from_start_hist[g][b]) + "\n";
-    write_text_atomic(dir + "/yaw_histogram.csv", t);
+    write_text_atomic(dir + "/" + stats_file::csv::yaw_histogram, t);
 }
 
 // rotation_from_start.csv: the paper's Fig. 16 per group.
@@ -64,7 +65,7 @@ void write_rotation_csv(const std::string& dir, const SweepStats& s) {
         t += group_key(s.groups[g]) + "," + std::to_string(q.count) + "," + num(q.median) + "," + num(q.mean) + "," + num(q.min) +
              "," + num(q.max) + "," + num(q.direction_correlation) + "\n";
     }
-    write_text_atomic(dir + "/rotation_from_start.csv", t);
+    write_text_atomic(dir + "/" + stats_file::csv::rotation_from_start, t);
 }
 
 void write_regions_csv(const std::string& dir, const SweepStats& s) {
@@ -78,7 +79,7 @@ void write_regions_csv(const std::string& dir, const SweepStats& s) {
                 t += group_key(s.groups[g]) + "," + s.params[p].label + "," + s.regions[r] + "," +
                      std::to_string(s.region_count_by_param[g][p][r]) + "," + std::to_string(s.param_members[g][p]) + "\n";
     }
-    write_text_atomic(dir + "/regions.csv", t);
+    write_text_atomic(dir + "/" + stats_file::csv::regions, t);
 }
 
 void write_distance_csv(const std::string& dir, const SweepStats& s) {
@@ -90,7 +91,7 @@ void write_distance_csv(const std::string& dir, const SweepStats& s) {
                 t += group_key(s.groups[g]) + "," + s.params[p].label + "," + num(s.time[k]) + "," + num(s.distance_mean[g][p][k]) +
                      "," + num(s.distance_std[g][p][k]) + "," + num(s.relative_error[g][p][k]) + "\n";
         }
-    write_text_atomic(dir + "/distance.csv", t);
+    write_text_atomic(dir + "/" + stats_file::csv::distance, t);
 }
 
 // members.csv: one row per trajectory with its per-member statistics.
@@ -116,7 +117,7 @@ void write_members_csv(const std::string& dir, const SweepStats& s, const SweepR
         }
         t += '\n';
     }
-    write_text_atomic(dir + "/members.csv", t);
+    write_text_atomic(dir + "/" + stats_file::csv::members, t);
 }
 
 }  // namespace
@@ -135,7 +136,7 @@ void write_buildings_csv(const std::string& dir, const SweepStats& s) {
     for (std::size_t g = 0; g < s.groups.size(); ++g)
         for (std::size_t b = 0; b < s.building_ids.size(); ++b) row(group_key(s.groups[g]), b, s.building[g][b]);
     for (std::size_t b = 0; b < s.building_ids.size(); ++b) row("all,all", b, s.building_all[b]);
-    write_text_atomic(dir + "/buildings.csv", t);
+    write_text_atomic(dir + "/" + stats_file::csv::buildings, t);
 }
 
 void write_stats_csv(const std::string& dir, const SweepStats& s, const SweepResult& sw) {

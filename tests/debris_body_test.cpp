@@ -38,7 +38,7 @@ FluidLoad load_at_rest(const std::string& path, const BodyDef& def, double headi
     const BodyParams p = make_body_params(def, rho);
     const FlowPointAccel centre = flow.sample_accel(0.0, 0.0, t);
     const Motion at_rest{{0.0, 0.0}, heading, {0.0, 0.0}, 0.0, 0.0, {0.0, 0.0}};
-    const ObstacleMap ground(flow.grid(), flow.bed(), {});
+    const ObstacleMap ground(flow.grid(), flow.description().bed, {});
     const Resting rest{resting_on_ground, bottom, &ground};
     return fluid_load(flow, p, at_rest, centre, p.plan_area * std::min(p.draft, centre.depth), t, rho, rest);
 }

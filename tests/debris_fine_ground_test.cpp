@@ -310,7 +310,7 @@ TEST(FineGround, DepthOverTheGroundFollowsItsDefinitionOnEveryWindow) {
             const int ni = i + (c & 1), nj = j + (c >> 1);
             const double x = coarse.x(ni), y = coarse.y(nj);
             const double h = double(float(std::max(level + 0.002 * frame_t + 0.05 * y - coarse_bed(x, y), 0.0)));
-            if (!(h > r.dry_depth())) continue;
+            if (!(h > r.description().dry_depth)) continue;
             const double w = ((c & 1) ? wx : 1.0 - wx) * ((c >> 1) ? wy : 1.0 - wy);
             wet += w;
             level_sum += w * (h + double(float(coarse_bed(x, y))));

@@ -146,7 +146,7 @@ TEST(FlowReader, HoldsLastFrameAndLoadsFramesOnce) {
         def.time_interpolation = interp;
         FlowReader r(path, def);
         for (double t = 0.0; t < 5.0; t += 0.25) r.prepare(t);
-        EXPECT_EQ(r.frames_loaded(), 6u) << enum_name(interp);  // each frame read once while time advances
+        EXPECT_EQ(r.read_stats().frames_loaded, 6u) << enum_name(interp);  // each frame read once while time advances
         r.prepare(7.0);
         const FlowPointAccel p = r.sample_accel(0.0, 2.2, 7.0);
         EXPECT_NEAR(p.u, 0.5, 1e-6);  // held
@@ -301,7 +301,7 @@ TEST(FlowReader, MovingWindowAndReusedFramesGiveTheSameBits) {
         EXPECT_GT(compared, 300) << enum_name(interp);
         // A window's move reads the frames held (2 linear, 4 cubic) again; otherwise each
         // frame is read once: 41 moves and 6 frames.
-        EXPECT_LE(moving.frames_loaded(), 41u * (interp == TimeInterpolation::cubic ? 4u : 2u) + 6u) << enum_name(interp);
+        EXPECT_LE(moving.read_stats().frames_loaded, 41u * (interp == TimeInterpolation::cubic ? 4u : 2u) + 6u) << enum_name(interp);
     }
 }
 
@@ -349,8 +349,8 @@ TEST(FlowReader, ReadAheadGivesTheSameBitsAsReadingInTurn) {
         // Each frame first needed without a window move at the same step came from the
         // other thread (k = 20 and 40; the cubic needs frames 3 and 4 there: both), and
         // only reads dropped by a move are extra.
-        EXPECT_GE(ahead.frames_read_ahead(), 2u) << enum_name(interp);
-        EXPECT_LE(ahead.frames_loaded(), in_turn.frames_loaded() + 4u) << enum_name(interp);
+        EXPECT_GE(ahead.read_stats().frames_read_ahead, 2u) << enum_name(interp);
+        EXPECT_LE(ahead.read_stats().frames_loaded, in_turn.read_stats().frames_loaded + 4u) << enum_name(interp);
     }
 }
 
@@ -419,12 +419,12 @@ TEST(FlowReader, DryToleranceComesFromTheFlowFile) {
     };
     FlowReader with(write("with.nc", {{"dry_depth_m", "0.001000"}}));
     with.prepare(0.5);
-    EXPECT_EQ(with.dry_depth(), 1e-3);
+    EXPECT_EQ(with.description().dry_depth, 1e-3);
     EXPECT_EQ(with.sample(0.0, 2.3, 0.5).u, 0.0);  // 0.5 mm is dry for this run
 
     FlowReader without(write("without.nc", {}));
     without.prepare(0.5);
-    EXPECT_EQ(without.dry_depth(), 1e-5);
+    EXPECT_EQ(without.description().dry_depth, 1e-5);
     EXPECT_NEAR(without.sample(0.0, 2.3, 0.5).u, 0.2, 1e-6);
 
     for (const char* bad : {"wet", "0.000000", "-1"}) {
@@ -486,7 +486,7 @@ TEST(FlowReader, RegionsReadOnlyTheirTilesAndGiveTheSameBits) {
             }
             sparse.set_regions({a, b});
             EXPECT_EQ(sparse.window(), (CellWindow{0, 40, 0, 24}));
-            EXPECT_EQ(sparse.tiles_loaded(), 8u);
+            EXPECT_EQ(sparse.read_stats().tiles_loaded, 8u);
             EXPECT_TRUE(sparse.covers(a));
             EXPECT_TRUE(sparse.covers(b));
             EXPECT_FALSE(sparse.covers(between));
@@ -574,9 +574,9 @@ TEST(FlowReader, AMovedWindowReadsOnlyItsNewTiles) {
             EXPECT_FALSE(moving.covers(a));
             same_bits(c, 1.2);
             if (interp == TimeInterpolation::linear) {
-                EXPECT_EQ(moving.frames_loaded(), 3u);
-                EXPECT_EQ(moving.frames_refit(), 5u);
-                EXPECT_EQ(moving.cells_read(), 24u * 64u);
+                EXPECT_EQ(moving.read_stats().frames_loaded, 3u);
+                EXPECT_EQ(moving.read_stats().frames_refit, 5u);
+                EXPECT_EQ(moving.read_stats().cells_read, 24u * 64u);
             }
             for (double t = 1.3; t <= 5.0; t += 0.45) {  // on to new frames, read on C's 4 tiles
                 moving.prepare(t);

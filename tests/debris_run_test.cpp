@@ -80,7 +80,7 @@ TEST(DebrisRun, CliWritesTheSameTrajectoryFileTwice) {
     const auto flow = varied_flow(dir + "/f.nc");
     Scene scene;
     scene.grid = grid;
-    const auto bed = debris::FlowReader(flow).bed();  // the scene the flow was computed on (a replay checks it)
+    const auto bed = debris::FlowReader(flow).description().bed;  // the scene the flow was computed on (a replay checks it)
     scene.z.assign(bed.begin(), bed.end());
     scene.building.assign(grid.size(), 0);
     for (int j = 0; j < grid.ny; ++j) scene.building[grid.index(80, j)] = 1;

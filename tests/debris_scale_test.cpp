@@ -176,7 +176,7 @@ TEST(DebrisScale, GroundedBodyFacesAreWettedFromItsBottom) {
     });
     FlowReader flow(path);
     flow.prepare(0.0);
-    const ObstacleMap ground(flow.grid(), flow.bed(), {});
+    const ObstacleMap ground(flow.grid(), flow.description().bed, {});
     const StepDef step = default_step_def();
     const StepContext ctx{flow, ground, step};
     const BodyDef def = test::body_at(0.0, 0.0, 0.0);

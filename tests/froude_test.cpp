@@ -98,7 +98,7 @@ std::vector<std::array<double, 2>> fd_path(const std::string& flow, const Scene&
     auto at = [&] { return std::array<double, 2>{world.states()[0].x + world.origin_x(), world.states()[0].y + world.origin_y()}; };
     std::vector<std::array<double, 2>> path{at()};
     for (int k = 1; k <= steps; ++k) {
-        world.advance_to(world.flow().start_time() + k * interval);
+        world.advance_to(world.flow().description().start_time() + k * interval);
         path.push_back(at());
     }
     return path;

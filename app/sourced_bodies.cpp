@@ -1,11 +1,11 @@
-#include "app/debris_sources.hpp"
+#include "app/sourced_bodies.hpp"
 
 #include <filesystem>
 #include <numbers>
 
 #include "common/checks.hpp"
 #include "common/error.hpp"
-#include "data/debris_sources.hpp"
+#include "data/source_features.hpp"
 #include "debris/catalogue.hpp"
 #include "debris/scene_match.hpp"
 #include "debris/source_layout.hpp"
@@ -37,10 +37,26 @@ debris::BodyDef body_of(const SourceFeature& f, const debris::BodyDef& model) {
     return b;
 }
 
+// A yard is a simple polygon, and its layout is estimated before it is made: the places
+// it tests at gap 0 (a 1e12 m² yard of containers is 3.5e10 of them) against the bound
+// of a run (docs/reliability.md, "Every run is bounded") and the machine's memory.
+void check_yard(const SourceFeature& f, const debris::Yard& yard, const debris::BodyDef& b, bool allow_large_run) {
+    if (const auto c = debris::polygon_crossing(yard.rings))
+        fail(f.where, "polygon",
+             "crosses itself: the edge from (" + coordinate_text((*c)[0][0]) + ", " + coordinate_text((*c)[0][1]) +
+                 ") crosses the edge from (" + coordinate_text((*c)[1][0]) + ", " + coordinate_text((*c)[1][1]) +
+                 "); a yard is a simple polygon (QGIS's Fix geometries mends it)");
+    const double places = debris::yard_lattice_places(yard, b.length, b.width);
+    const std::string text = "a yard of " + number_text(debris::polygon_area(yard.rings)) + " m² for bodies of " +
+                             number_text(b.length) + " x " + number_text(b.width) + " m";
+    check_work("yard", text, places, max_yard_places, "places to lay out", allow_large_run, f.where);
+    check_allocation("yard", text, places, 2.0 * sizeof(debris::Pose), "places", f.where);
+}
+
 }  // namespace
 
 std::vector<SourcedBody> bodies_from_sources(const std::string& path, const std::vector<std::string>& layers,
-                                             const Scene& scene, const debris::BodyDef& model) {
+                                             const Scene& scene, const debris::BodyDef& model, bool allow_large_run) {
     std::vector<SourcedBody> out;
     // On the scene's grid, off its buildings; the error names the feature (and its file).
     auto check_start = [&](const SourceFeature& f, const debris::BodyDef& b) {
@@ -50,7 +66,7 @@ std::vector<SourcedBody> bodies_from_sources(const std::string& path, const std:
             throw Error(f.where + ": " + e.what());
         }
     };
-    for (const SourceFeature& f : read_debris_sources(path, layers, scene)) {
+    for (const SourceFeature& f : read_source_features(path, layers, scene)) {
         const debris::BodyDef b = body_of(f, model);
         const std::string source = f.layer + "/" + std::to_string(f.fid);
         if (!f.is_yard) {
@@ -63,7 +79,9 @@ std::vector<SourcedBody> bodies_from_sources(const std::string& path, const std:
             out.push_back(s);
             continue;
         }
-        const debris::YardLayout layout = debris::lay_out_yard({f.rings, f.heading_deg, f.gap, f.count}, b.length, b.width);
+        const debris::Yard yard{f.rings, f.heading_deg, f.gap, f.count};
+        check_yard(f, yard, b, allow_large_run);
+        const debris::YardLayout layout = debris::lay_out_yard(yard, b.length, b.width);
         if (layout.poses.empty() || (f.count > 0 && int(layout.poses.size()) < f.count))
             fail(f.where, "yard",
                  "a yard of " + number_text(debris::polygon_area(f.rings)) + " m² holds " + std::to_string(layout.poses.size()) +
@@ -96,13 +114,13 @@ sweep::BodySpec body_spec_of(const SourcedBody& s) {
     return b;
 }
 
-void expand_sources(sweep::SweepSpec& spec, const Scene* scene) {
+void expand_sources(sweep::SweepSpec& spec, const Scene* scene, bool allow_large_run) {
     if (spec.sources.empty()) return;
     if (!scene) fail(spec.path, "[[sources]]", "sources need a scene ([sweep] scene = \"...\" or --scene): its CRS places them");
     for (const sweep::SourceFileSpec& file : spec.sources) {
         if (!std::filesystem::exists(file.file))
             fail(spec.path, "line " + std::to_string(file.line) + ": [[sources]] file", "'" + file.file + "' does not exist");
-        for (const SourcedBody& s : bodies_from_sources(file.file, file.layers, *scene, file.model)) {
+        for (const SourcedBody& s : bodies_from_sources(file.file, file.layers, *scene, file.model, allow_large_run)) {
             for (const auto& other : spec.bodies)
                 if (other.name == s.def.name)
                     fail(spec.path, "line " + std::to_string(file.line), "body name '" + s.def.name + "' used twice ([[body]] name = ...)");

@@ -40,7 +40,7 @@ struct SourceFeature {
 // a polygon (a multi-part one included), a missing or empty `type`, both heading and
 // bearing, count or gap on a point, a count below 1 or a negative gap, non-finite or
 // non-positive dimensions, no features at all.
-std::vector<SourceFeature> read_debris_sources(const std::string& path, const std::vector<std::string>& layers,
+std::vector<SourceFeature> read_source_features(const std::string& path, const std::vector<std::string>& layers,
                                                const Scene& scene);
 
 }  // namespace flotsam

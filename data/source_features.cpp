@@ -1,4 +1,4 @@
-#include "data/debris_sources.hpp"
+#include "data/source_features.hpp"
 
 #include "common/checks.hpp"
 #include "common/error.hpp"
@@ -61,6 +61,8 @@ SourceFeature read_feature(const VectorLayer& v, const OGRFeature& f) {
     s.type = f.IsFieldSetAndNotNull(kt) ? f.GetFieldAsString(kt) : "";
     if (s.type.empty()) fail(s.where, "attribute 'type'", "empty: name a debris catalogue entry");
     const double heading = number_field(v, f, s.where, "heading", false), bearing = number_field(v, f, s.where, "bearing", false);
+    for (const auto& [name, angle] : {std::pair{"heading", heading}, std::pair{"bearing", bearing}})
+        if (!std::isnan(angle)) check_range(std::string("attribute '") + name + "'", angle, Range::closed(-360.0, 360.0, "degree"), s.where);
     if (!std::isnan(heading) && !std::isnan(bearing))
         fail(s.where, "attributes 'heading' and 'bearing'", "both given: give one (heading from east counter-clockwise, bearing from north clockwise)");
     s.heading_deg = std::isnan(bearing) ? heading : 90.0 - bearing;
@@ -83,7 +85,7 @@ SourceFeature read_feature(const VectorLayer& v, const OGRFeature& f) {
 
 }  // namespace
 
-std::vector<SourceFeature> read_debris_sources(const std::string& path, const std::vector<std::string>& layers,
+std::vector<SourceFeature> read_source_features(const std::string& path, const std::vector<std::string>& layers,
                                                const Scene& scene) {
     std::vector<SourceFeature> out;
     const std::vector<std::string> names = layers.empty() ? vector_layer_names(path) : layers;
