@@ -7,7 +7,7 @@
 
 #include "debris/body.hpp"
 #include "formats/scene.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/spec_file.hpp"
 
 namespace flotsam {
 

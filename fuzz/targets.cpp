@@ -28,8 +28,9 @@
 #include "debris/world.hpp"
 #include "formats/flow_file.hpp"
 #include "formats/scene.hpp"
+#include "sweep/members.hpp"
+#include "sweep/spec_file.hpp"
 #include "sweep/sweep_file.hpp"
-#include "sweep/sweep_spec.hpp"
 #include "sweep/sweep_stats.hpp"
 
 namespace flotsam::fuzz {

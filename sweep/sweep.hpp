@@ -10,8 +10,9 @@
 
 #include "debris/flow_reader.hpp"
 #include "formats/scene.hpp"
+#include "sweep/members.hpp"
+#include "sweep/spec_file.hpp"
 #include "sweep/sweep_file.hpp"
-#include "sweep/sweep_spec.hpp"
 
 namespace flotsam::sweep {
 

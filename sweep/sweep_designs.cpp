@@ -1,4 +1,4 @@
-// The parameter-set designs of a sweep (sweep_spec.hpp): one factor at a time, full
+// The parameter-set designs of a sweep (spec_file.hpp): one factor at a time, full
 // factorial, random and Latin hypercube samples, with their labels.
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "common/checks.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/spec_file.hpp"
 
 namespace flotsam::sweep {
 

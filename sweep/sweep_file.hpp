@@ -18,7 +18,8 @@
 #include "debris/world.hpp"
 #include "formats/impact_file.hpp"
 #include "formats/trajectory_file.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/members.hpp"
+#include "sweep/spec_file.hpp"
 
 namespace flotsam::sweep {
 

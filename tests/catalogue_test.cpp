@@ -9,7 +9,8 @@
 #include <set>
 
 #include "debris/body.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/members.hpp"
+#include "sweep/spec_file.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

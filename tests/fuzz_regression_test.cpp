@@ -11,7 +11,7 @@
 #include <string>
 
 #include "fuzz/targets.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/spec_file.hpp"
 
 using namespace flotsam;
 

@@ -14,7 +14,8 @@
 #include "debris/body.hpp"
 #include "debris/world.hpp"
 #include "hydro/run_settings.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/members.hpp"
+#include "sweep/spec_file.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;

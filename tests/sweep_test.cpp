@@ -13,7 +13,8 @@
 #include "common/error.hpp"
 #include "common/sha256.hpp"
 #include "formats/scene.hpp"
-#include "sweep/sweep_spec.hpp"
+#include "sweep/members.hpp"
+#include "sweep/spec_file.hpp"
 #include "tests/test_support.hpp"
 
 using namespace flotsam;
