@@ -218,20 +218,23 @@ void apply_impulses(std::vector<GroupBody>& group, BodyCollisionScratch& s) {
     }
 }
 
-// The bodies' share of the moves out of what overlaps (pairs, walls; the walls within the
-// margin as gaps not to close): Gauss-Seidel over the contacts, linearised at the present
-// poses, until none is deeper than `settled` or the sweeps run out.
-void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double settled, double margin) {
-    struct Row {
-        int a, b;       // the bodies that move (taking part); −1: a wall, or a body not taking part, held
-        Vec2 n;         // from b (or what holds) into a
-        double ra, rb;  // (p − x) × n of each body [m]
-        double depth0;  // at the present poses [m]
-    };
-    std::vector<Row> rows;
+// One row of the moves out: a point where a body taking part overlaps, or nears, another
+// body or a wall, linearised at the present poses.
+struct OverlapRow {
+    int a, b;       // the bodies that move (taking part); −1: a wall, or a body not taking part, held
+    Vec2 n;         // from b (or what holds) into a
+    double ra, rb;  // (p − x) × n of each body [m]
+    double depth0;  // at the present poses [m]
+};
+
+// The rows of the bodies taking part: both ends of each face across another (so the turn
+// is held too), and the walls. No move out is longer than all the overlaps together: a
+// gap wider than that cannot be closed, and its row is left out.
+std::vector<OverlapRow> overlap_rows(const std::vector<GroupBody>& group, const BodyCollisionScratch& s) {
+    std::vector<OverlapRow> rows;
     rows.reserve(2 * s.near.size() + s.wall_contacts.size());
     const auto moving = [&](int k) { return s.involved[std::size_t(k)] ? k : -1; };
-    for (const BodyCollision& c : s.near) {  // both ends of each face across another: the turn is held too
+    for (const BodyCollision& c : s.near) {
         const int a = moving(c.a), b = moving(c.b);
         if (a < 0 && b < 0) continue;
         const BodyState &A = *group[std::size_t(c.a)].state, &B = *group[std::size_t(c.b)].state;
@@ -247,24 +250,26 @@ void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double set
         const BodyState& A = *group[std::size_t(w.body)].state;
         rows.push_back({w.body, -1, w.c.normal, cross(w.c.point - Vec2{A.x, A.y}, w.c.normal), 0.0, w.c.depth});
     }
-    // No move out is longer than all the overlaps together: a gap wider than that cannot
-    // be closed, and its row is left out.
     double total = 0.0;
-    for (const Row& r : rows) total += std::max(0.0, r.depth0);
-    std::erase_if(rows, [&](const Row& r) { return r.depth0 < -2.0 * total - separation_slop; });
-    const std::size_t n = group.size();
-    std::vector<Vec2> dx(n);
-    std::vector<double> dth(n, 0.0);
-    const auto depth_now = [&](const Row& r) {
+    for (const OverlapRow& r : rows) total += std::max(0.0, r.depth0);
+    std::erase_if(rows, [&](const OverlapRow& r) { return r.depth0 < -2.0 * total - separation_slop; });
+    return rows;
+}
+
+// Gauss-Seidel over the rows, adding each body's move dx [m] and turn dth [rad], until no
+// row is deeper than `settled` or the sweeps run out. Sweeps forth and back in turn: a row
+// of bodies pressed on a wall is cleared from whichever end it starts, in as many sweeps
+// as it has bodies at most.
+void relax_rows(const std::vector<GroupBody>& group, const std::vector<OverlapRow>& rows, double settled, std::vector<Vec2>& dx,
+                std::vector<double>& dth) {
+    const auto depth_now = [&](const OverlapRow& r) {
         double moved = dot(r.n, dx[std::size_t(r.a)]) + r.ra * dth[std::size_t(r.a)];
         if (r.b >= 0) moved -= dot(r.n, dx[std::size_t(r.b)]) + r.rb * dth[std::size_t(r.b)];
         return r.depth0 - moved;
     };
-    // Sweeps forth and back in turn: a row of bodies pressed on a wall is cleared from
-    // whichever end it starts, in as many sweeps as it has bodies at most.
     std::vector<double> k_row(rows.size());
     for (std::size_t q = 0; q < rows.size(); ++q) {
-        const Row& r = rows[q];
+        const OverlapRow& r = rows[q];
         const GroupBody& A = group[std::size_t(r.a)];
         k_row[q] = 1.0 / A.mass + r.ra * r.ra / A.inertia;
         if (r.b >= 0) {
@@ -273,7 +278,7 @@ void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double set
         }
     }
     const auto relax = [&](std::size_t q) {
-        const Row& r = rows[q];
+        const OverlapRow& r = rows[q];
         const double d = depth_now(r);
         if (!(d > -separation_slop)) return 0.0;
         const double p = (d + separation_slop) / k_row[q];
@@ -295,6 +300,17 @@ void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double set
             for (std::size_t q = rows.size(); q-- > 0;) deepest = std::max(deepest, relax(q));
         if (deepest <= settled) break;
     }
+}
+
+// The bodies' share of the moves out of what overlaps (pairs, walls; the walls within the
+// margin as gaps not to close): the rows relaxed at the present poses, then each body's
+// move added to its own.
+void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double settled, double margin) {
+    const std::vector<OverlapRow> rows = overlap_rows(group, s);
+    const std::size_t n = group.size();
+    std::vector<Vec2> dx(n);
+    std::vector<double> dth(n, 0.0);
+    relax_rows(group, rows, settled, dx, dth);
     // No corner moves beyond the margin in one pass: the walls held as gaps are those within
     // it, and where the rows contradict each other (a body pressed into a corner by others
     // that cannot give way) their moves must not carry it through a wall.

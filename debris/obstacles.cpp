@@ -240,24 +240,15 @@ bool gap_across(const Box& box, Vec2 cell, double hx, double hy, Vec2 n, Vec2& p
     return true;
 }
 
-}  // namespace
-
-bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by, double min_depth, double margin,
-                               std::vector<ObstacleCollision>& out) const {
+// The push-out direction of a body from the blocked cell at c and the depth along it: the
+// least of the candidate normals' penetrations; depth 1e300 where every side of the cell
+// lies inside the wall. A cell face shared with another blocked cell is inside a wall and
+// is never a push-out direction (no snagging on internal edges); a body axis is used only
+// in the direction pointing from the cell toward the body. `blocked_at(di, dj)`: whether
+// the cell's neighbour (i + di, j + dj) blocks.
+template <class BlockedAt>
+ObstacleCollision push_out(const Box& box, Vec2 c, const Penetration& pen, const BlockedAt& blocked_at) {
     ObstacleCollision best;
-    const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
-    const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
-    const auto corners = box.corners();
-    const Vec2 axes[2] = {box.axis_long, box.axis_wide};
-    const Penetration pen = penetration(box, c, hx, hy);
-    const double separation = pen.depth();  // > 0: overlap; ≤ 0: minus a lower bound of the gap
-    // Without a margin, only a cell the body reaches into by more than min_depth
-    // along every axis: one it only grazes (an edge on the cell's line, to round-off)
-    // is no contact, whatever its depth along the normals that are left.
-    if (!(separation > -margin) || (margin == 0.0 && !(separation > min_depth))) return false;
-    // Candidate normals. A cell face shared with another blocked cell is inside a
-    // wall and is never a push-out direction (no snagging on internal edges); a body
-    // axis is used only in the direction pointing from the cell toward the body.
     best.depth = 1e300;
     auto consider = [&](Vec2 n, double depth) {
         if (depth < best.depth) {
@@ -265,63 +256,90 @@ bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by,
             best.normal = n;
         }
     };
-    if (!blocked(i + 1, j, by)) consider({1, 0}, pen.px);
-    if (!blocked(i - 1, j, by)) consider({-1, 0}, pen.mx);
-    if (!blocked(i, j + 1, by)) consider({0, 1}, pen.py);
-    if (!blocked(i, j - 1, by)) consider({0, -1}, pen.my);
+    if (!blocked_at(1, 0)) consider({1, 0}, pen.px);
+    if (!blocked_at(-1, 0)) consider({-1, 0}, pen.mx);
+    if (!blocked_at(0, 1)) consider({0, 1}, pen.py);
+    if (!blocked_at(0, -1)) consider({0, -1}, pen.my);
     // A body axis n pushes the body off the cell's corner that points along n (the
     // cell's vertex in its face): only where that corner is one of the obstacle's
     // own, its two cells beside it along n open. Inside a straight wall the next cell
     // goes on where the corner is, and the push would be along the wall.
     const auto corner_exposed = [&](Vec2 n) {
         const int sx = n.x > 0.0 ? 1 : (n.x < 0.0 ? -1 : 0), sy = n.y > 0.0 ? 1 : (n.y < 0.0 ? -1 : 0);
-        return (sx == 0 || !blocked(i + sx, j, by)) && (sy == 0 || !blocked(i, j + sy, by));
+        return (sx == 0 || !blocked_at(sx, 0)) && (sy == 0 || !blocked_at(0, sy));
     };
+    const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const Vec2 rel = box.centre - c;
     for (int k = 0; k < 2; ++k) {
         const double side = dot(rel, axes[k]);
         if (side >= 0 && corner_exposed(axes[k])) consider(axes[k], pen.p[k]);
         if (side <= 0 && corner_exposed(-1.0 * axes[k])) consider(-1.0 * axes[k], pen.m[k]);
     }
+    return best;
+}
+
+// Where the impulse of an overlap with the cell at c acts: the mean of the body corners
+// inside the cell and the cell corners inside the body (both in the body); where there
+// are none, nearest_point_toward along n.
+Vec2 overlap_point(const Box& box, Vec2 c, double hx, double hy, Vec2 n) {
+    Vec2 sum;
+    int count = 0;
+    for (const Vec2& p : box.corners())
+        if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
+            sum += p;
+            ++count;
+        }
+    for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
+        if (box.contains(c + d)) {
+            sum += c + d;
+            ++count;
+        }
+    return count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, n);
+}
+
+// With a margin (the moves out), beside an overlap `contact` along a face of the cell at
+// c: the body's corners across from that face but not in the cell, within the margin,
+// are gaps the move may not close, so that turning one end of a body's side out of a cell
+// larger than it does not turn the other in. Appends them.
+void corner_gaps(const Box& box, Vec2 c, double hx, double hy, const ObstacleCollision& contact, double margin,
+                 std::int32_t building, std::vector<ObstacleCollision>& out) {
+    const Vec2 n = contact.normal, t{-n.y, n.x};
+    const double face = dot(c, n) + hx * std::fabs(n.x) + hy * std::fabs(n.y);
+    const double across = hx * std::fabs(t.x) + hy * std::fabs(t.y);
+    for (const Vec2& p : box.corners())
+        if (std::fabs(dot(p - c, t)) <= across && !(std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy))
+            if (const double depth = face - dot(p, n); depth > -margin && depth <= 0.0) {
+                ObstacleCollision gap = contact;
+                gap.depth = depth;
+                gap.point = p + depth * n;
+                gap.building = building;
+                out.push_back(gap);
+            }
+}
+
+}  // namespace
+
+bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by, double min_depth, double margin,
+                               std::vector<ObstacleCollision>& out) const {
+    const double hx = 0.5 * grid_.dx, hy = 0.5 * grid_.dy;
+    const Vec2 c{grid_.x0 + i * grid_.dx, grid_.y0 + j * grid_.dy};
+    const Penetration pen = penetration(box, c, hx, hy);
+    const double separation = pen.depth();  // > 0: overlap; ≤ 0: minus a lower bound of the gap
+    // Without a margin, only a cell the body reaches into by more than min_depth
+    // along every axis: one it only grazes (an edge on the cell's line, to round-off)
+    // is no contact, whatever its depth along the normals that are left.
+    if (!(separation > -margin) || (margin == 0.0 && !(separation > min_depth))) return false;
+    ObstacleCollision best = push_out(box, c, pen, [&](int di, int dj) { return blocked(i + di, j + dj, by); });
     if (best.depth == 1e300) return false;  // every side of it lies inside the wall
     if (best.depth <= min_depth) return false;
     // Apart from the body along an axis that lies inside a wall: a nearer blocked
     // neighbour holds that side, and this cell is no contact.
     if (separation <= 0.0 && best.depth > 0.0) return false;
+    const bool along_face = best.normal.x == 0.0 || best.normal.y == 0.0;
     if (separation > 0.0) {
-        // The contact point: the mean of the body corners inside the cell and the
-        // cell corners inside the body (both in the body).
-        Vec2 sum;
-        int count = 0;
-        for (const Vec2& p : corners)
-            if (std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy) {
-                sum += p;
-                ++count;
-            }
-        for (const Vec2 d : {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy}})
-            if (box.contains(c + d)) {
-                sum += c + d;
-                ++count;
-            }
-        best.point = count ? (1.0 / count) * sum : nearest_point_toward(box, c, hx, hy, best.normal);
-        // Looking at the margin as well (the moves out): the body's corners across from the
-        // cell's face but not in the cell are gaps the move may not close, so that turning
-        // one end of a body's side out of a cell larger than it does not turn the other in.
-        if (margin > 0.0 && (best.normal.x == 0.0 || best.normal.y == 0.0)) {
-            const Vec2 t{-best.normal.y, best.normal.x};
-            const double face = dot(c, best.normal) + hx * std::fabs(best.normal.x) + hy * std::fabs(best.normal.y);
-            const double across = hx * std::fabs(t.x) + hy * std::fabs(t.y);
-            for (const Vec2& p : corners)
-                if (std::fabs(dot(p - c, t)) <= across && !(std::fabs(p.x - c.x) <= hx && std::fabs(p.y - c.y) <= hy))
-                    if (const double depth = face - dot(p, best.normal); depth > -margin && depth <= 0.0) {
-                        ObstacleCollision gap = best;
-                        gap.depth = depth;
-                        gap.point = p + depth * best.normal;
-                        gap.building = building_id(i, j);
-                        out.push_back(gap);
-                    }
-        }
-    } else if (best.normal.x == 0.0 || best.normal.y == 0.0) {
+        best.point = overlap_point(box, c, hx, hy, best.normal);
+        if (margin > 0.0 && along_face) corner_gaps(box, c, hx, hy, best, margin, building_id(i, j), out);
+    } else if (along_face) {
         // Apart along one of the cell's faces: the gap to the body's part across
         // from this cell (the separating axis bounds the gap of the whole body).
         double gap = 0.0;

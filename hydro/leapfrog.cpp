@@ -20,11 +20,10 @@ std::size_t LeapfrogSolver::edge_cell(Side s, int k) const {
     return at(k, s == Side::south ? 0 : grid_.ny - 1);
 }
 
-LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const LeapfrogDef& leapfrog)
-    : grid_(scene.grid),
-      def_(def),
-      lf_(leapfrog),
-      forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
+namespace {
+
+// The boundaries and settings the leap-frog is written for; the others name the option.
+void check_leapfrog_options(const PhysicsDef& def, const LeapfrogDef& leapfrog) {
     for (const BoundaryDef* b : {&def.west, &def.east, &def.south, &def.north}) {
         if (b->kind == BoundaryKind::zero_gradient)
             fail("", "--scheme leapfrog",
@@ -41,66 +40,90 @@ LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const 
     if (!def.study_past_stability_limit && leapfrog.courant > 1.0)
         fail("", "--courant", "must be at most 1 (the leap-frog's linear stability limit)");
     if (!(def.dry_depth > 0.0)) fail("", "--dry-depth", "must be positive");
-    const int nx = grid_.nx, ny = grid_.ny;
-    stride_ = std::size_t(nx + 2);
-    const std::size_t n = stride_ * std::size_t(ny + 2);
+}
+
+}  // namespace
+
+LeapfrogSolver::LeapfrogSolver(const Scene& scene, const PhysicsDef& def, const LeapfrogDef& leapfrog)
+    : grid_(scene.grid),
+      def_(def),
+      lf_(leapfrog),
+      forcing_({def.west, def.east, def.south, def.north}, def.pump, scene.grid, scene.z) {
+    check_leapfrog_options(def, leapfrog);
+    stride_ = std::size_t(grid_.nx + 2);
+    const std::size_t n = stride_ * std::size_t(grid_.ny + 2);
     for (auto* v : {&h_, &u_, &v_, &m_, &n_, &u_new_, &v_new_, &m_new_, &n_new_, &z_, &g_n2_}) v->assign(n, 0.0);
     factor_.assign(n, 1.0);
+    double deepest = initial_cells(scene);
+    if (!scene.u0.empty()) initial_face_velocities(scene);
+    deepest = record_rest_depths(deepest);
+    dt_ = initial_step(scene, deepest);
+}
 
+double LeapfrogSolver::initial_cells(const Scene& scene) {
+    const int nx = grid_.nx, ny = grid_.ny;
     double deepest = 0.0;
     for (int j = -1; j <= ny; ++j)
         for (int i = -1; i <= nx; ++i) {
             const int ic = std::clamp(i, 0, nx - 1), jc = std::clamp(j, 0, ny - 1);  // ghosts copy the edge
             const std::size_t k = grid_.index(ic, jc), p = at(i, j);
             z_[p] = scene.z[k];
-            const double n_manning = scene.manning_n.empty() ? def.default_manning_n : scene.manning_n[k];
-            g_n2_[p] = def.gravity * n_manning * n_manning;
+            const double n_manning = scene.manning_n.empty() ? def_.default_manning_n : scene.manning_n[k];
+            g_n2_[p] = def_.gravity * n_manning * n_manning;
             if (i != ic || j != jc) continue;
             const double eta0 = scene.eta0.empty() ? 0.0 : scene.eta0[k];
             h_[p] = std::max(0.0, eta0 - z_[p]);
             deepest = std::max(deepest, h_[p]);
         }
-    // Initial velocities on open interior faces: the mean of the two cells' u0, v0.
-    if (!scene.u0.empty()) {
-        const double dry = def.dry_depth;
-        for (int j = 0; j < ny; ++j)
-            for (int i = 1; i < nx; ++i) {
-                const std::size_t p = at(i, j), q = p - 1;
-                if (!face_open(h_[q], z_[q], h_[p], z_[p], dry)) continue;
-                u_[p] = 0.5 * (scene.u0[grid_.index(i - 1, j)] + scene.u0[grid_.index(i, j)]);
-                m_[p] = upstream_depth(u_[p], h_[q], z_[q], h_[p], z_[p], dry) * u_[p];
-            }
-        for (int j = 1; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                const std::size_t p = at(i, j), q = p - stride_;
-                if (!face_open(h_[q], z_[q], h_[p], z_[p], dry)) continue;
-                v_[p] = 0.5 * (scene.v0[grid_.index(i, j - 1)] + scene.v0[grid_.index(i, j)]);
-                n_[p] = upstream_depth(v_[p], h_[q], z_[q], h_[p], z_[p], dry) * v_[p];
-            }
-    }
-    // Each side's initial edge depths; the deepest water a level side brings: its
-    // highest level over its deepest edge cell.
+    return deepest;
+}
+
+void LeapfrogSolver::initial_face_velocities(const Scene& scene) {
+    const int nx = grid_.nx, ny = grid_.ny;
+    const double dry = def_.dry_depth;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 1; i < nx; ++i) {
+            const std::size_t p = at(i, j), q = p - 1;
+            if (!face_open(h_[q], z_[q], h_[p], z_[p], dry)) continue;
+            u_[p] = 0.5 * (scene.u0[grid_.index(i - 1, j)] + scene.u0[grid_.index(i, j)]);
+            m_[p] = upstream_depth(u_[p], h_[q], z_[q], h_[p], z_[p], dry) * u_[p];
+        }
+    for (int j = 1; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const std::size_t p = at(i, j), q = p - stride_;
+            if (!face_open(h_[q], z_[q], h_[p], z_[p], dry)) continue;
+            v_[p] = 0.5 * (scene.v0[grid_.index(i, j - 1)] + scene.v0[grid_.index(i, j)]);
+            n_[p] = upstream_depth(v_[p], h_[q], z_[q], h_[p], z_[p], dry) * v_[p];
+        }
+}
+
+double LeapfrogSolver::record_rest_depths(double deepest) {
     for (Side s : {Side::west, Side::east, Side::south, Side::north})
-        for (int k = 0; k < (is_x_side(s) ? ny : nx); ++k) {
+        for (int k = 0; k < (is_x_side(s) ? grid_.ny : grid_.nx); ++k) {
             const std::size_t e = edge_cell(s, k);
             rest_depth_[int(s)].push_back(h_[e]);
             if (forcing_.def(s).kind == BoundaryKind::level) deepest = std::max(deepest, -z_[e] + forcing_.series_max(s));
         }
-    // The largest Courant rate at the start: the deepest water at rest, and every cell
-    // of a scene that starts moving with its |u| + c per direction (courant_number).
+    return deepest;
+}
+
+// The largest Courant rate at the start: the deepest water at rest, and every cell of a
+// scene that starts moving with its |u| + c per direction (courant_number).
+double LeapfrogSolver::initial_step(const Scene& scene, double deepest) const {
     const double wave_metric = std::sqrt(1.0 / (grid_.dx * grid_.dx) + 1.0 / (grid_.dy * grid_.dy));
-    double rate = std::sqrt(def.gravity * deepest) * wave_metric;
+    double rate = std::sqrt(def_.gravity * deepest) * wave_metric;
     if (!scene.u0.empty())
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
+        for (int j = 0; j < grid_.ny; ++j)
+            for (int i = 0; i < grid_.nx; ++i) {
                 const std::size_t k = grid_.index(i, j);
-                if (h_[at(i, j)] > def.dry_depth)
-                    rate = std::max(rate, courant_number(h_[at(i, j)], scene.u0[k], scene.v0[k], def.gravity, 1.0, 1.0 / grid_.dx,
+                if (h_[at(i, j)] > def_.dry_depth)
+                    rate = std::max(rate, courant_number(h_[at(i, j)], scene.u0[k], scene.v0[k], def_.gravity, 1.0, 1.0 / grid_.dx,
                                                          1.0 / grid_.dy));
             }
-    dt_ = def.max_dt;
-    if (rate > 0.0) dt_ = std::min(dt_, leapfrog.courant / rate);
-    if (leapfrog.step_divides > 0.0) dt_ = leapfrog.step_divides / std::ceil(leapfrog.step_divides / dt_ - 1e-9);
+    double dt = def_.max_dt;
+    if (rate > 0.0) dt = std::min(dt, lf_.courant / rate);
+    if (lf_.step_divides > 0.0) dt = lf_.step_divides / std::ceil(lf_.step_divides / dt - 1e-9);
+    return dt;
 }
 
 std::string LeapfrogSolver::description() const {

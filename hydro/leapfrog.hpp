@@ -138,6 +138,15 @@ public:
 
 private:
     std::size_t edge_cell(Side s, int k) const;  // padded index of the k-th cell along side s
+    // The start, in the order the constructor takes it: bed, friction and initial depths of
+    // every cell (ghosts copy the edge), returning the deepest water [m]; the scene's u0,
+    // v0 on the open interior faces (the mean of the two cells); each side's edge depths,
+    // returning `deepest` raised to the deepest water a level side brings (its highest
+    // level over its deepest edge cell); the fixed step [s].
+    double initial_cells(const Scene& scene);
+    void initial_face_velocities(const Scene& scene);
+    double record_rest_depths(double deepest);
+    double initial_step(const Scene& scene, double deepest) const;
     void boundary_faces(double t);
     void momentum(double dt);
     void limit_outflow(double dt);
