@@ -332,6 +332,19 @@ bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by,
     ObstacleCollision best = push_out(box, c, pen, [&](int di, int dj) { return blocked(i + di, j + dj, by); });
     if (best.depth == 1e300) return false;  // every side of it lies inside the wall
     if (best.depth <= min_depth) return false;
+    // Reached through a face it shares with another blocked cell (a wall's inside corner):
+    // where the body is less than half the cell past that face and more than half the cell
+    // from the open one, it came in from the neighbour's side, which holds it. Out through
+    // the far face would carry the body through the cell (a car's corner in an L-shaped
+    // building's inside corner on 10 m cells: 11.8 m deep, into the building).
+    if (separation > 0.0) {
+        double through_wall = 1e300;
+        if (blocked(i + 1, j, by)) through_wall = std::min(through_wall, pen.px);
+        if (blocked(i - 1, j, by)) through_wall = std::min(through_wall, pen.mx);
+        if (blocked(i, j + 1, by)) through_wall = std::min(through_wall, pen.py);
+        if (blocked(i, j - 1, by)) through_wall = std::min(through_wall, pen.my);
+        if (through_wall < std::min(hx, hy) && best.depth > std::min(hx, hy)) return false;
+    }
     // Apart from the body along an axis that lies inside a wall: a nearer blocked
     // neighbour holds that side, and this cell is no contact.
     if (separation <= 0.0 && best.depth > 0.0) return false;

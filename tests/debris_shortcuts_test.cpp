@@ -93,7 +93,8 @@ TEST(StepShortcuts, WholeFootprintCellsAreTheCornerTestsAnswer) {
 // The contact scan with the block maxima against every blocked cell checked one by one:
 // a contact for each blocked cell on a wall's edge (a side open) that the body reaches into
 // (by more than 1 nm; a cell inside a wall has no side to push out through and gives
-// none), none for a cell it stays clear of (by 1 nm); the ground test against a plain scan of the cells
+// none, nor one the body reaches only from a blocked neighbour's side, as at a wall's
+// inside corner), none for a cell it stays clear of (by 1 nm); the ground test against a plain scan of the cells
 // within a cell of the body's bounding box. The poses: a corner of the body 2 mm into a
 // building's corner cell, 0.5 mm short of it, a body across the grid's edge and one just
 // inside it, one whose cells reach a block that holds a wall but not the wall itself,
@@ -122,9 +123,27 @@ TEST(StepShortcuts, ContactAndGroundScansGiveTheCellByCellAnswer) {
         for (int j = -20; j < g.ny + 20; ++j)  // outside the grid too: the flume walls
             for (int i = -20; i < g.nx + 20; ++i) {
                 if (!blocked(i, j)) continue;
-                const double d = overlap_depth(box, Vec2{g.x0 + i * g.dx, g.y0 + j * g.dy}, hx, hy);
+                const Vec2 c{g.x0 + i * g.dx, g.y0 + j * g.dy};
+                const double d = overlap_depth(box, c, hx, hy);
                 const bool edge = !blocked(i + 1, j) || !blocked(i - 1, j) || !blocked(i, j + 1) || !blocked(i, j - 1);
-                deep += d > 1e-9 && edge ? 1 : 0;
+                // How far the body reaches past each face (out through it: +x, −x, +y, −y),
+                // the least through a face it shares with another blocked cell and through an
+                // open one: a cell the body reaches less than half a cell through a shared face
+                // and more than half a cell from every open face is held by its neighbour.
+                double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+                for (const Vec2& p : box.corners()) {
+                    lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
+                    lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+                }
+                const double past[4] = {c.x + hx - lo_x, hi_x - (c.x - hx), c.y + hy - lo_y, hi_y - (c.y - hy)};
+                const bool shut[4] = {blocked(i + 1, j), blocked(i - 1, j), blocked(i, j + 1), blocked(i, j - 1)};
+                double via_wall = 1e300, via_open = 1e300;
+                for (int f = 0; f < 4; ++f) {
+                    double& least = shut[f] ? via_wall : via_open;
+                    least = std::min(least, past[f]);
+                }
+                const bool held_by_neighbour = via_wall < hx && via_open > hx;
+                deep += d > 1e-9 && edge && !held_by_neighbour ? 1 : 0;
                 touching += d > -1e-9 ? 1 : 0;
             }
         // The highest open ground under the body: cells it reaches into by more than 1 µm.

@@ -39,12 +39,13 @@ TEST(DebrisStability, ExplicitAddedMassFailsAboveCm2WhereImplicitHolds) {
 
 // A body at 3 m/s against a wall one cell thick, eight start phases per case. At the
 // default vertex_step_fraction 0.25 (and up to 1: a corner moves at most a cell per
-// step) nothing goes through, on 1 cm and on 4 cm cells. The first runs go through at
-// 6 cm steps (1 cm cells) and 8 cm (4 cm cells): the limit is set by the body (a step
-// longer than about half its 10 cm width carries its centre past the wall), not by the
-// cell. At the longest steps mapped (24 cm on 1 cm cells, 28 cm on 4 cm cells) 1 to 7 of
-// the 8 go through in every case (the jam rule, which puts back a body whose overlap the
-// collision passes cannot clear, holds some of the others).
+// step) nothing goes through, on 1 cm and on 4 cm cells. Broadside (heading 90, moving
+// across its 10 cm width) the first runs go through at 10 cm steps (1 cm cells) and 8 cm
+// (4 cm cells): a step longer than about its width carries it past the wall before any
+// contact is seen, and at the longest steps mapped (24 cm on 1 cm cells, 28 cm on 4 cm
+// cells) 6 or 7 of the 8 do. End-on and at 20 degrees most are held: no move out carries
+// a corner further than the margin in one pass, so what the step put deep in the wall is
+// not pushed out through its far side; the jam rule puts the body back.
 TEST(DebrisStability, StepLimitKeepsBodyOutOfOneCellWallWhereLongStepsTunnel) {
     const auto dir = test::scratch_dir("stab_tunnel");
     for (double cell : {0.01, 0.04}) {
@@ -54,8 +55,8 @@ TEST(DebrisStability, StepLimitKeepsBodyOutOfOneCellWallWhereLongStepsTunnel) {
                 EXPECT_EQ(test::wall_tunnelling_count(flow, cell, heading, f, 8), 0)
                     << cell << " m cells, heading " << heading << ", f " << f;
             const double longest = cell < 0.02 ? 0.24 : 0.28;  // [m]
-            EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, longest / cell, 8), 1)
-                << cell << " m cells, heading " << heading;
+            if (heading == 90.0)
+                EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, longest / cell, 8), 6) << cell << " m cells";
         }
     }
 }
