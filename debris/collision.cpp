@@ -249,11 +249,9 @@ CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& stat
         detect_near(pose(state, body));
         std::sort(contacts.begin(), contacts.end(), by_depth);
         const SeparatingMove m = clearing_move(contacts, Vec2{state.x, state.y}, mass, inertia);
-        // No corner beyond the margin in one pass: nearly opposed rows at nearly one point
-        // (a corner pressed both ways) admit only a move of metres and a turn of many
-        // revolutions, which must not carry the body through the wall.
         const double reach = norm(m.shift) + std::fabs(m.turn) * body.half_diagonal;
-        const double scale = reach > margin ? margin / reach : 1.0;
+        const double most = largest_move_cells * std::min(obstacles.grid().dx, obstacles.grid().dy);
+        const double scale = reach > most ? most / reach : 1.0;
         moved_out += scale * m.shift;
         turned_out += scale * m.turn;
         place();

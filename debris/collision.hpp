@@ -25,6 +25,14 @@ inline constexpr double unresolved_overlap_cells = 1e-3;  // [-]
 // own box, its gap the most the move may close (ObstacleMap::find_contacts) [-].
 inline constexpr double clearing_margin_cells = 0.25;
 
+// No move out of walls carries a corner further than this many cells in one pass: an
+// overlap a step makes is at most the quarter cell a corner moves, and further would
+// carry it through a wall one cell thick. Nearly opposed contacts at nearly one point (a
+// corner pressed both ways) admit only moves of kilometres and turns of many revolutions
+// [-]. (At the margin instead, wedged bodies took more than the passes allow: a wedged LD
+// box on the 1 cm ground jammed 1 035 steps instead of 14.)
+inline constexpr double largest_move_cells = 1.0;
+
 struct CollisionOutcome {
     bool touched = false;     // some contact was found
     bool unresolved = false;  // MC: the pass bound was reached with an overlap deeper than the tolerance left
