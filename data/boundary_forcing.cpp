@@ -350,6 +350,22 @@ std::vector<std::pair<double, std::size_t>> stations_along(const nc::File& f, co
     return unique;
 }
 
+// Station and grid coordinates (after the conversion to metres) that another program could
+// write absurd: longitudes within a turn either way, latitudes within the poles, projected
+// coordinates within 1e8 m, as tracks are checked. A station at −1e30 m was left out of
+// the side without a word.
+void check_coordinates(const nc::File& f, const Source& s, const std::vector<double>& xs, const std::vector<double>& ys) {
+    for (const int axis : {0, 1}) {
+        const int var = axis == 0 ? s.x : s.y;
+        const double bound = s.geographic ? (axis == 0 ? 360.0 : 90.0) : 1e8;
+        for (const double v : axis == 0 ? xs : ys)
+            if (!(std::fabs(v) <= bound))
+                fail(f.path(), "variable '" + f.var_name(var) + "'",
+                     "value " + number_text(v) + (s.geographic ? " degrees" : " m") + " is outside [" + number_text(-bound) + ", " +
+                         number_text(bound) + "]");
+    }
+}
+
 SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
     const std::size_t nt = s.time.size(), ns = f.shape(s.level)[1];
     std::vector<double> xs = nc::read_finite(f, f.var_name(s.x)), ys = nc::read_finite(f, f.var_name(s.y));
@@ -358,6 +374,7 @@ SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, 
         for (double& v : xs) v *= fx;
         for (double& v : ys) v *= fy;
     }
+    check_coordinates(f, s, xs, ys);
     std::vector<double> sx = xs, sy = ys;
     for (std::size_t p = 0; p < ns; ++p) fr.scene(sx[p], sy[p]);
     const std::vector<std::pair<double, std::size_t>> unique = stations_along(f, sx, sy, line);
@@ -436,6 +453,7 @@ SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, c
         for (double& v : ax) v *= fx;
         for (double& v : ay) v *= fy;
     }
+    check_coordinates(f, s, ax, ay);
     const std::size_t np = line.along.size();
     std::vector<double> fi(np), fj(np);
     std::vector<std::array<double, 4>> axes(np);

@@ -16,8 +16,9 @@ namespace fs = std::filesystem;
 // forced on its west side by it runs. Copies with a depth of -1 m along the whole side
 // (used as it was: depths in the flow changed by up to 0.15 m), times shifted by 1e6 s
 // (the side was left unforced), a level of 1e5 m (the run blew up blaming the scene's
-// ground) and 2000 times at 310 stations on a machine of 8 MB (out of memory without a
-// word of the file) are each refused naming the file and what is wrong, before any step.
+// ground), a station at y = −1e30 m (left out of the side without a word) and 2000 times
+// at 310 stations on a machine of 8 MB (out of memory without a word of the file) are each
+// refused naming the file and what is wrong, before any step.
 TEST(ReliabilityCli, ForcingFilesAreCheckedForWhatTheSideNeeds) {
     const SmallCase c = small_case("cli_forcing");
     std::string out;
@@ -34,16 +35,19 @@ TEST(ReliabilityCli, ForcingFilesAreCheckedForWhatTheSideNeeds) {
     ASSERT_EQ(test::run_cli(forced(outline), &out), 0) << out;
     fs::remove(c.dir + "/f.nc");
     const std::string dry = copy_of(outline, c.dir + "/negative.nc"), late = copy_of(outline, c.dir + "/late.nc"),
-                      high = copy_of(outline, c.dir + "/high.nc"), long_record = c.dir + "/long.nc";
+                      high = copy_of(outline, c.dir + "/high.nc"), far = copy_of(outline, c.dir + "/far.nc"),
+                      long_record = c.dir + "/long.nc";
     fuzz::set_all(dry, "depth", -1.0);
     fuzz::shift_values(late, "time", 1e6);
     fuzz::set_all(high, "eta", 1e5);
+    fuzz::set_value(far, "y", 7, -1e30);
     fuzz::copy_with_dimension(outline, long_record, "time", 2000);
     expect_named_errors({
         {forced(dry), "negative.nc: variable 'depth': -1 at time index 0, station 0 is outside [0, 11000] (a water depth: never negative)"},
         {forced(late), "late.nc: time: covers 1e+06 to 1e+06 s, the run 0 to 2 s: they do not overlap"},
         {forced(high), "high.nc: variable 'eta': 100000 at time index 0, station 0 is outside [-11000.9, 10999.1] (a level within "
                        "11000 m of the scene's lowest bed"},
+        {forced(far), "far.nc: variable 'y': value -1e+30 m is outside [-1e+08, 1e+08]"},
     });
     EXPECT_EQ(test::finish_cli(test::start_cli(forced(long_record), "FLOTSAM_MEMORY_LIMIT_MB=8"), &out), 1) << out;
     EXPECT_NE(out.find("--west-forcing " + long_record + ": 2000 times at 310 points would make 2.48e+06 values"), std::string::npos)
