@@ -137,8 +137,12 @@ def nc_values(path):
     with netCDF4.Dataset(path) as ds:
         for name, v in ds.variables.items():
             v.set_auto_mask(False)
-            if v.dtype == str or v.dtype.kind in "SU" or v.dtype == "S1":
-                v.set_auto_chartostring(True)
+            if v.dtype == "S1":  # character arrays as bytes: a changed byte need not be UTF-8
+                v.set_auto_chartostring(False)
+                chars = np.atleast_2d(v[:])
+                out[name] = [b"".join(row).decode("utf-8", "replace") for row in chars.reshape(-1, chars.shape[-1])]
+                continue
+            if v.dtype == str or v.dtype.kind in "SU":
                 out[name] = [str(s) for s in np.atleast_1d(v[:]).ravel()]
                 continue
             a = np.asarray(v[:], dtype=float).ravel()
