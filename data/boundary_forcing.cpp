@@ -350,31 +350,32 @@ std::vector<std::pair<double, std::size_t>> stations_along(const nc::File& f, co
     return unique;
 }
 
-// Station and grid coordinates (after the conversion to metres) that another program could
-// write absurd: longitudes within a turn either way, latitudes within the poles, projected
-// coordinates within 1e8 m, as tracks are checked. A station at −1e30 m was left out of
-// the side without a word.
-void check_coordinates(const nc::File& f, const Source& s, const std::vector<double>& xs, const std::vector<double>& ys) {
+// The station or grid coordinates, in metres (projected) or degrees, checked: values
+// another program could write absurd are refused (longitudes within a turn either way,
+// latitudes within the poles, projected coordinates within 1e8 m, as tracks are checked;
+// a station at −1e30 m was left out of the side without a word).
+std::array<std::vector<double>, 2> read_coordinates(const nc::File& f, const Source& s) {
+    std::array<std::vector<double>, 2> xy;
     for (const int axis : {0, 1}) {
         const int var = axis == 0 ? s.x : s.y;
+        std::vector<double>& values = xy[std::size_t(axis)];
+        values = nc::read_finite(f, f.var_name(var));
+        const double factor = s.geographic ? 1.0 : units::length_factor(f, var);
         const double bound = s.geographic ? (axis == 0 ? 360.0 : 90.0) : 1e8;
-        for (const double v : axis == 0 ? xs : ys)
+        for (double& v : values) {
+            v *= factor;
             if (!(std::fabs(v) <= bound))
                 fail(f.path(), "variable '" + f.var_name(var) + "'",
-                     "value " + number_text(v) + (s.geographic ? " degrees" : " m") + " is outside [" + number_text(-bound) + ", " +
-                         number_text(bound) + "]");
+                     "value " + number_text(v) + (s.geographic ? " degrees" : " m") + " is outside [" + number_text(-bound) +
+                         ", " + number_text(bound) + "]");
+        }
     }
+    return xy;
 }
 
 SideRecord place_stations(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
     const std::size_t nt = s.time.size(), ns = f.shape(s.level)[1];
-    std::vector<double> xs = nc::read_finite(f, f.var_name(s.x)), ys = nc::read_finite(f, f.var_name(s.y));
-    if (!s.geographic) {
-        const double fx = units::length_factor(f, s.x), fy = units::length_factor(f, s.y);
-        for (double& v : xs) v *= fx;
-        for (double& v : ys) v *= fy;
-    }
-    check_coordinates(f, s, xs, ys);
+    const auto [xs, ys] = read_coordinates(f, s);
     std::vector<double> sx = xs, sy = ys;
     for (std::size_t p = 0; p < ns; ++p) fr.scene(sx[p], sy[p]);
     const std::vector<std::pair<double, std::size_t>> unique = stations_along(f, sx, sy, line);
@@ -447,13 +448,7 @@ double axis_position(const std::vector<double>& axis, double a, const nc::File& 
 SideRecord place_on_grid(const nc::File& f, const Source& s, const Frames& fr, const SideLine& line, const Limits& limits) {
     const auto shape = f.shape(s.level);
     const std::size_t nt = s.time.size(), ny = shape[1], nx = shape[2];
-    std::vector<double> ax = nc::read_finite(f, f.var_name(s.x)), ay = nc::read_finite(f, f.var_name(s.y));
-    if (!s.geographic) {
-        const double fx = units::length_factor(f, s.x), fy = units::length_factor(f, s.y);
-        for (double& v : ax) v *= fx;
-        for (double& v : ay) v *= fy;
-    }
-    check_coordinates(f, s, ax, ay);
+    const auto [ax, ay] = read_coordinates(f, s);
     const std::size_t np = line.along.size();
     std::vector<double> fi(np), fj(np);
     std::vector<std::array<double, 4>> axes(np);
