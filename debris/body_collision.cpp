@@ -315,8 +315,7 @@ void move_out(std::vector<GroupBody>& group, BodyCollisionScratch& s, double set
     // it, and where the rows contradict each other (a body pressed into a corner by others
     // that cannot give way) their moves must not carry it through a wall.
     for (std::size_t k = 0; k < n; ++k) {
-        const double reach = norm(dx[k]) + std::fabs(dth[k]) * group[k].body->half_diagonal;
-        const double scale = reach > margin ? margin / reach : 1.0;
+        const double scale = share_within(dx[k], dth[k], group[k].body->half_diagonal, margin);
         s.moved[k] += scale * dx[k];
         s.turned[k] += scale * dth[k];
     }

@@ -249,9 +249,8 @@ CollisionOutcome resolve_collisions(const CollisionSetup& setup, BodyState& stat
         detect_near(pose(state, body));
         std::sort(contacts.begin(), contacts.end(), by_depth);
         const SeparatingMove m = clearing_move(contacts, Vec2{state.x, state.y}, mass, inertia);
-        const double reach = norm(m.shift) + std::fabs(m.turn) * body.half_diagonal;
         const double most = largest_move_cells * std::min(obstacles.grid().dx, obstacles.grid().dy);
-        const double scale = reach > most ? most / reach : 1.0;
+        const double scale = share_within(m.shift, m.turn, body.half_diagonal, most);
         moved_out += scale * m.shift;
         turned_out += scale * m.turn;
         place();

@@ -264,12 +264,10 @@ StepOutcome take_step(const StepContext& ctx, const BodyParams& b, BodyState& s,
     if (!(s.flags & flag_released)) {
         if (!(centre.depth > b.draft)) {  // a body starts once the depth at its centre exceeds the draft
             s.time = t + dt;
-            // Until then it rests on the highest ground under it: what blocks it when another
-            // body pushes it (from the level less the draft, the land under its own footprint
-            // walled it in).
-            const Grid& g = ctx.obstacles.grid();
-            const double afloat = ctx.obstacles.ground(s.x, s.y) + centre.depth - b.draft;
-            return {0.0, st.eff, std::max(afloat, ctx.obstacles.highest_ground(st.box, footprint_overlap_cells * std::min(g.dx, g.dy)))};
+            // Until then it rests where it would rest released (no patches yet): that bottom
+            // is what blocks it when another body pushes it (from the level less the draft,
+            // the land under its own footprint walled it in).
+            return {0.0, st.eff, resting_place(ctx, b, st.box, centre.depth, {}).bottom};
         }
         s.flags |= flag_released;
     }

@@ -24,6 +24,12 @@ inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 // ω ẑ × r: velocity of a point at r from the axis of a rotation at rate ω.
 inline Vec2 spin(double omega, Vec2 r) { return {-omega * r.y, omega * r.x}; }
 inline double norm(Vec2 a) { return std::sqrt(dot(a, a)); }
+// The share of a move (shift, turn) that carries no corner of a body, `half_diagonal` from
+// its centre, further than `most`: 1 where none goes further [-].
+inline double share_within(Vec2 shift, double turn, double half_diagonal, double most) {
+    const double reach = norm(shift) + std::fabs(turn) * half_diagonal;
+    return reach > most ? most / reach : 1.0;
+}
 inline Vec2 rotate(Vec2 a, double angle) {
     const double c = std::cos(angle), s = std::sin(angle);
     return {c * a.x - s * a.y, s * a.x + c * a.y};

@@ -244,11 +244,18 @@ bool gap_across(const Box& box, Vec2 cell, double hx, double hy, Vec2 n, Vec2& p
 // least of the candidate normals' penetrations; depth 1e300 where every side of the cell
 // lies inside the wall. A cell face shared with another blocked cell is inside a wall and
 // is never a push-out direction (no snagging on internal edges); a body axis is used only
-// in the direction pointing from the cell toward the body. `blocked_at(di, dj)`: whether
-// the cell's neighbour (i + di, j + dj) blocks.
-template <class BlockedAt>
-ObstacleCollision push_out(const Box& box, Vec2 c, const Penetration& pen, const BlockedAt& blocked_at) {
+// in the direction pointing from the cell toward the body. And how far the body reaches
+// into the cell through the faces it shares with other blocked cells (the least; 1e300
+// where none is shared).
+struct PushOut {
     ObstacleCollision best;
+    double through_wall = 1e300;  // [m]
+};
+
+// shut: the cell's neighbours across its faces +x, −x, +y, −y are blocked.
+PushOut push_out(const Box& box, Vec2 c, const Penetration& pen, const std::array<bool, 4>& shut) {
+    PushOut out;
+    ObstacleCollision& best = out.best;
     best.depth = 1e300;
     auto consider = [&](Vec2 n, double depth) {
         if (depth < best.depth) {
@@ -256,17 +263,22 @@ ObstacleCollision push_out(const Box& box, Vec2 c, const Penetration& pen, const
             best.normal = n;
         }
     };
-    if (!blocked_at(1, 0)) consider({1, 0}, pen.px);
-    if (!blocked_at(-1, 0)) consider({-1, 0}, pen.mx);
-    if (!blocked_at(0, 1)) consider({0, 1}, pen.py);
-    if (!blocked_at(0, -1)) consider({0, -1}, pen.my);
+    const Vec2 faces[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    const double through[4] = {pen.px, pen.mx, pen.py, pen.my};
+    for (int f = 0; f < 4; ++f) {
+        if (shut[f])
+            out.through_wall = std::min(out.through_wall, through[f]);
+        else
+            consider(faces[f], through[f]);
+    }
     // A body axis n pushes the body off the cell's corner that points along n (the
     // cell's vertex in its face): only where that corner is one of the obstacle's
     // own, its two cells beside it along n open. Inside a straight wall the next cell
     // goes on where the corner is, and the push would be along the wall.
     const auto corner_exposed = [&](Vec2 n) {
-        const int sx = n.x > 0.0 ? 1 : (n.x < 0.0 ? -1 : 0), sy = n.y > 0.0 ? 1 : (n.y < 0.0 ? -1 : 0);
-        return (sx == 0 || !blocked_at(sx, 0)) && (sy == 0 || !blocked_at(0, sy));
+        const bool x_open = n.x > 0.0 ? !shut[0] : (n.x < 0.0 ? !shut[1] : true);
+        const bool y_open = n.y > 0.0 ? !shut[2] : (n.y < 0.0 ? !shut[3] : true);
+        return x_open && y_open;
     };
     const Vec2 axes[2] = {box.axis_long, box.axis_wide};
     const Vec2 rel = box.centre - c;
@@ -275,7 +287,7 @@ ObstacleCollision push_out(const Box& box, Vec2 c, const Penetration& pen, const
         if (side >= 0 && corner_exposed(axes[k])) consider(axes[k], pen.p[k]);
         if (side <= 0 && corner_exposed(-1.0 * axes[k])) consider(-1.0 * axes[k], pen.m[k]);
     }
-    return best;
+    return out;
 }
 
 // Where the impulse of an overlap with the cell at c acts: the mean of the body corners
@@ -329,7 +341,9 @@ bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by,
     // along every axis: one it only grazes (an edge on the cell's line, to round-off)
     // is no contact, whatever its depth along the normals that are left.
     if (!(separation > -margin) || (margin == 0.0 && !(separation > min_depth))) return false;
-    ObstacleCollision best = push_out(box, c, pen, [&](int di, int dj) { return blocked(i + di, j + dj, by); });
+    const std::array<bool, 4> shut{blocked(i + 1, j, by), blocked(i - 1, j, by), blocked(i, j + 1, by), blocked(i, j - 1, by)};
+    const PushOut push = push_out(box, c, pen, shut);
+    ObstacleCollision best = push.best;
     if (best.depth == 1e300) return false;  // every side of it lies inside the wall
     if (best.depth <= min_depth) return false;
     // Reached through a face it shares with another blocked cell (a wall's inside corner):
@@ -337,14 +351,8 @@ bool ObstacleMap::cell_contact(const Box& box, int i, int j, const Blocking& by,
     // from the open one, it came in from the neighbour's side, which holds it. Out through
     // the far face would carry the body through the cell (a car's corner in an L-shaped
     // building's inside corner on 10 m cells: 11.8 m deep, into the building).
-    if (separation > 0.0) {
-        double through_wall = 1e300;
-        if (blocked(i + 1, j, by)) through_wall = std::min(through_wall, pen.px);
-        if (blocked(i - 1, j, by)) through_wall = std::min(through_wall, pen.mx);
-        if (blocked(i, j + 1, by)) through_wall = std::min(through_wall, pen.py);
-        if (blocked(i, j - 1, by)) through_wall = std::min(through_wall, pen.my);
-        if (through_wall < std::min(hx, hy) && best.depth > std::min(hx, hy)) return false;
-    }
+    const double half = std::min(hx, hy);
+    if (separation > 0.0 && push.through_wall < half && best.depth > half) return false;
     // Apart from the body along an axis that lies inside a wall: a nearer blocked
     // neighbour holds that side, and this cell is no contact.
     if (separation <= 0.0 && best.depth > 0.0) return false;

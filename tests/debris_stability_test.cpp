@@ -55,8 +55,9 @@ TEST(DebrisStability, StepLimitKeepsBodyOutOfOneCellWallWhereLongStepsTunnel) {
                 EXPECT_EQ(test::wall_tunnelling_count(flow, cell, heading, f, 8), 0)
                     << cell << " m cells, heading " << heading << ", f " << f;
             const double longest = cell < 0.02 ? 0.24 : 0.28;  // [m]
-            if (heading == 90.0)
+            if (heading == 90.0) {
                 EXPECT_GE(test::wall_tunnelling_count(flow, cell, heading, longest / cell, 8), 6) << cell << " m cells";
+            }
         }
     }
 }

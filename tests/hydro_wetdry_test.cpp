@@ -5,7 +5,7 @@
 // below a twentieth of the case's wave-speed bound, cfl / (s (1/dx + 1/dy)) with s =
 // max |u| + sqrt(g max h) of the exact solution. The tolerances of each test are in one
 // block at its top, with what was measured. bench/wetdry_suite.cpp runs the same cases at
-// the grids for each front treatment (docs/studies/wetdry_suite.md).
+// the study's grids for each front treatment (docs/studies/wetdry_suite.md).
 #include <gtest/gtest.h>
 #include <omp.h>
 
