@@ -154,10 +154,9 @@ void write_debris_outputs(const DebrisOptions& o, const sweep::SweepInputs& in, 
     for (const auto& i : impacts) largest = std::max(largest, i.force);
     if (!impacts.empty()) std::fprintf(stderr, "impacts on buildings: %zu (largest force %.4g N)\n", impacts.size(), largest);
     const sweep::CollisionReport c = sweep::collision_report(r);
-    if (c.members > 0)  // docs/debris.md, "Collisions"
-        std::fprintf(stderr,
-                     "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
-                     c.jammed, c.unresolved, c.members, records.size());
+    // Said also when none (docs/debris.md, "Collisions").
+    std::fprintf(stderr, "collisions: %ld jammed and %ld unresolved steps in %ld of %zu bodies (jammed_steps, unresolved_collisions)\n",
+                 c.jammed, c.unresolved, c.members, records.size());
 }
 
 void run_debris(const DebrisOptions& o, bool dt_max_default, const std::string& command_line) {
